@@ -1,0 +1,115 @@
+"""Command line: ``gearcad build`` and ``gearcad check``."""
+
+from __future__ import annotations
+
+import argparse
+import logging
+import math
+import sys
+from pathlib import Path
+
+from .build import BuildResult, build_all
+from .design import design
+from .errors import GearcadError
+from .profiles import load_profile
+
+__all__ = ["main"]
+
+EXIT_BAD_INPUT = 2
+
+
+def _parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(prog="gearcad", description=__doc__)
+    sub = parser.add_subparsers(dest="command", required=True)
+    b = sub.add_parser("build", help="build profiles into DXF, charts and report.json")
+    b.add_argument("profiles", nargs="*", type=Path, help="profile files (default: every profiles/*.toml)")
+    b.add_argument("--out", type=Path, default=Path("out"), help="output folder (default: out)")
+    b.add_argument(
+        "--set",
+        dest="overrides",
+        action="append",
+        default=[],
+        metavar="KEY=VALUE",
+        help="override a profile value by dotted key, e.g. --set gear1.a=30",
+    )
+    c = sub.add_parser("check", help="print the checks of profiles without writing anything")
+    c.add_argument("profiles", nargs="+", type=Path)
+    c.add_argument("--set", dest="overrides", action="append", default=[], metavar="KEY=VALUE")
+    return parser
+
+
+def _profile_paths(paths: list[Path]) -> list[Path]:
+    if paths:
+        return paths
+    found = sorted(Path("profiles").glob("*.toml"))
+    if not found:
+        raise GearcadError("no profiles given and none found in ./profiles")
+    return found
+
+
+def _summary(result_data) -> str:
+    pair = result_data.pair
+    return (
+        f"E = {pair.center_distance:.6f} mm, closure {pair.closure_error:.1e} rad, "
+        f"rolling {pair.rolling_residual:.1e} mm, {len(result_data.findings)} warning(s)"
+    )
+
+
+def _progress(n: int, total: int, result: BuildResult) -> None:
+    print(f"[{n}/{total}] {result.name}: {_summary(result.data)} ({1000 * result.seconds:.0f} ms)", flush=True)
+
+
+def _check(params) -> None:
+    data = design(params)
+    print(f"{params.name}: {_summary(data)}")
+    for g in data.gears:
+        print(
+            f"  {g.name}: r {g.r_min:.4f}…{g.r_max:.4f} mm, perimeter {g.perimeter:.6f} mm, "
+            f"{'convex' if g.shape.convex else 'not convex'}, "
+            f"min radius of curvature {g.shape.min_curvature_radius:.4g} mm"
+        )
+    lo, hi = data.ratio_range
+    print(f"  ratio ω2/ω1 {lo:.6g}…{hi:.6g}")
+    if data.walker is not None:
+        w = data.walker
+        print(
+            f"  walker: i (paper's method) = {w.i_paper:.6f}, i (rolls and closes) = {w.i:.6f}"
+            + (f", i (blended) = {w.i_blended:.6f}" if w.blend_width else "")
+        )
+    for f in data.findings:
+        print(f"  warning [{f.code}] {f.message}")
+
+
+def main(argv: list[str] | None = None) -> int:
+    args = _parser().parse_args(argv)
+    logging.basicConfig(level=logging.ERROR, format="%(levelname)s: %(message)s")
+    try:
+        paths = _profile_paths(args.profiles)
+        profiles, errors = [], []
+        for path in paths:
+            try:
+                profiles.append(load_profile(path, args.overrides))
+            except GearcadError as exc:
+                errors.append(str(exc))
+        if errors:
+            for e in errors:
+                print(f"gearcad: error: {e}".replace("\n", "\ngearcad: error: "), file=sys.stderr)
+            return EXIT_BAD_INPUT
+        if args.command == "check":
+            for params in profiles:
+                try:
+                    _check(params)
+                except GearcadError as exc:
+                    raise type(exc)(f"{params.name}: {exc}") from None
+            return 0
+        results = build_all(profiles, args.out, _progress)
+        total = math.fsum(r.seconds for r in results)
+        print(f"built {len(results)} profile(s) into {args.out}/ in {total:.2f} s")
+        return 0
+    except GearcadError as exc:
+        print(f"gearcad: error: {exc}", file=sys.stderr)
+        return EXIT_BAD_INPUT
+
+
+if __name__ == "__main__":
+    sys.exit(main())

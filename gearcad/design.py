@@ -1,0 +1,293 @@
+"""The pitch stage of the pipeline: profile parameters → a checked gear pair.
+
+``design(params)`` builds the driver curve, synthesises the mate that truly rolls and closes,
+measures every check a reviewer needs, and tests the papers' own constructions alongside.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from .diagnostics import Finding, finding
+from .errors import DesignError
+from .pitch import shapes
+from .pitch import walker as W
+from .pitch.curve import TWO_PI, ConvexityData, PitchCurve, convexity, perimeter, radius_range
+from .pitch.kinematics import KinematicsData, kinematics
+from .pitch.pair import (
+    ClaimData,
+    PairData,
+    angle_map,
+    conjugate_pair,
+    identical_mate_claim,
+    rolling_residuals,
+    shape_difference,
+    solve_center_distance,
+)
+from .profiles import (
+    CircleParams,
+    EllipseParams,
+    GearPairParams,
+    OvalParams,
+    RatioParams,
+    SamplesParams,
+    WalkerParams,
+)
+from .tolerances import DEFAULT, Tolerances
+
+__all__ = ["GearData", "WalkerData", "DesignData", "design", "driver_curve"]
+
+
+@dataclass(frozen=True)
+class GearData:
+    name: str
+    curve: PitchCurve
+    pivot: tuple[float, float]
+    r_min: float
+    r_max: float
+    perimeter: float
+    shape: ConvexityData
+
+
+@dataclass(frozen=True)
+class WalkerData:
+    """The wheel-walker paper's construction next to the pair that rolls."""
+
+    i_paper: float
+    paper_iterations: int
+    i: float
+    """i of the pair that rolls and closes 4:1, without blending."""
+    i_blended: float
+    blend_width: float
+    blend_ratio_deviation: float
+    """Largest |k_blended − k|/k over a turn: what the blend costs in ratio."""
+    paper_turn_per_quarter: float
+    """How far the paper's pinion would have to turn per quarter turn of the wheel if it
+    rolled without slip (it is meant to turn exactly 2π), rad."""
+    paper_slip: float
+    """Largest slip of the paper's pinion on its wheel with θ = 4φ, mm per rad of wheel."""
+    paper_table_offset: float
+    """Largest |r_H(paper) − r_H(rolling)| over the wheel, mm."""
+    speed_variation: float
+    """(max − min)/mean of the vehicle speed ω_H·dX01/dφ for the built pair."""
+
+
+@dataclass(frozen=True)
+class DesignData:
+    params: GearPairParams
+    gears: tuple[GearData, GearData]
+    pair: PairData
+    ratio_range: tuple[float, float]
+    kinematics: KinematicsData
+    mate_shape_difference: float
+    """min over rotations of max |r2 − r1|: 0 for a self-conjugate (identical) pair, mm."""
+    findings: tuple[Finding, ...]
+    claim: ClaimData | None = None
+    walker: WalkerData | None = None
+
+
+def driver_curve(params: GearPairParams) -> tuple[PitchCurve, W.RatioLaw | None]:
+    """Gear 1's pitch curve from its parameters (and the walker's ratio law if any)."""
+    g = params.gear1
+    if isinstance(g, EllipseParams):
+        curve = shapes.ellipse_focus(g.a, g.b) if g.pivot == "focus" else shapes.ellipse_centre(g.a, g.b)
+        return curve, None
+    if isinstance(g, OvalParams):
+        return shapes.oval(g.a, g.b), None
+    if isinstance(g, CircleParams):
+        return shapes.circle(g.radius), None
+    if isinstance(g, SamplesParams):
+        return shapes.from_samples("curve from samples", g.radii, lobes=g.lobes), None
+    if isinstance(g, RatioParams):
+        k, dk, d2k = shapes.harmonic_ratio(g.mean, g.harmonics)
+        return shapes.from_ratio("curve from a ratio law", k, dk, d2k, params.center_distance, lobes=g.lobes), None
+    if isinstance(g, WalkerParams):
+        law = W.ratio_law(_walker_geometry(params), blend_width=g.blend_width)
+        return W.wheel_curve(law), law
+    raise TypeError(f"unknown curve parameters {g!r}")  # pragma: no cover
+
+
+def _walker_geometry(params: GearPairParams) -> W.WalkerGeometry:
+    g = params.gear1
+    return W.WalkerGeometry(L=params.center_distance, a=g.a, b=g.b, c=g.c)
+
+
+def _gear(name: str, curve: PitchCurve, pivot, tol: Tolerances) -> GearData:
+    r_min, r_max = radius_range(curve)
+    return GearData(name, curve, pivot, r_min, r_max, perimeter(curve, tol=tol), convexity(curve, tol=tol))
+
+
+def _shape_findings(gear: GearData) -> list[Finding]:
+    out = []
+    for c in gear.shape.corners:
+        kind = "convex corner" if c.convex else "notch (concave corner)"
+        out.append(
+            finding(
+                "corner",
+                f"{gear.name}: {kind} at φ = {math.degrees(c.phi):.3f}°, the tangent turns "
+                f"{math.degrees(c.turn):+.3f}°",
+                gear.name,
+            )
+        )
+    for lo, hi in gear.shape.concave_intervals:
+        out.append(
+            finding(
+                "concave",
+                f"{gear.name}: concave between φ = {math.degrees(lo):.2f}° and {math.degrees(hi):.2f}° "
+                f"(r² + 2r'² − r·r'' < 0)",
+                gear.name,
+            )
+        )
+    return out
+
+
+def _check_center_distance(params: GearPairParams, curve: PitchCurve, tol: Tolerances) -> None:
+    e = params.center_distance
+    r_max = radius_range(curve)[1]
+    if e <= r_max:
+        raise DesignError(
+            f"pair.center_distance = {e:g}: must exceed {params.gear1_name}'s largest radius {r_max:.6g} mm"
+        )
+    if isinstance(params.gear1, (RatioParams, WalkerParams)):
+        return  # the law closes by construction (checked in the profile, measured below)
+    target = TWO_PI * curve.lobes / params.gear2_lobes
+    turn = angle_map(curve, e, tol=tol).turn
+    if abs(turn - target) > tol.closure_rad:
+        solved = solve_center_distance(curve, target, tol=tol)
+        raise DesignError(
+            f"pair.center_distance = {e:g}: the pair does not close there (the mate turns "
+            f"{math.degrees(turn):.4f}° of the {math.degrees(target):.4f}° it needs per driver "
+            f'turn); use "solve" — it closes at {solved:.9g} mm'
+        )
+
+
+def _walker(
+    params: GearPairParams, law: W.RatioLaw, pair: PairData, kin: KinematicsData, tol: Tolerances
+) -> tuple[WalkerData, list[Finding]]:
+    g = _walker_geometry(params)
+    i_paper, iterations = W.paper_ratio_constant(g)
+    true_law = W.ratio_law(g)
+    phi = np.linspace(0.0, TWO_PI, 8193)
+    deviation = float(np.max(np.abs(law.k(phi) - true_law.k(phi)) / true_law.k(phi)))
+    # The paper's pair: wheel from eq. 10 with its i, pinion from eq. 12, assembled with θ = 4φ.
+    paper_law = W.RatioLaw(g=g, i=i_paper, half_width=0.0, poly=(0.0, 0.0, 0.0))
+    paper_wheel = W.wheel_curve(paper_law)
+    paper_pinion = W.paper_pinion(i_paper, g)
+    # The paper turns the pinion by θ = 4φ while the wheel turns by φ.
+    contact, slip = rolling_residuals(
+        paper_wheel, paper_pinion, g.L, lambda p: 4 * p, lambda p: np.full_like(p, 4.0), phi
+    )
+    turn_quarter = angle_map(paper_wheel, g.L, tol=tol).turn / 4
+    assert contact < 1e-9, "eqs. 10 and 12 keep r + r_H = L by construction"
+    offset = float(np.max(np.abs(paper_wheel.r(phi) - W.wheel_curve(true_law).r(phi))))
+    # Vehicle speed v = ω_H · dX01/dφ at the wheel's angle within its quarter (eq. 6).
+    quarter = (kin.follower_angle + np.pi / 4) % (np.pi / 2) - np.pi / 4
+    v = kin.speed * W.shoe_functions(quarter, g)["dX01"]
+    data = WalkerData(
+        i_paper=i_paper,
+        paper_iterations=iterations,
+        i=true_law.i,
+        i_blended=law.i,
+        blend_width=2 * law.half_width,
+        blend_ratio_deviation=deviation,
+        paper_turn_per_quarter=turn_quarter,
+        paper_slip=slip,
+        paper_table_offset=offset,
+        speed_variation=float((v.max() - v.min()) / v.mean()),
+    )
+    found = [
+        finding(
+            "not-closed",
+            f"the paper's pair (i = {i_paper:.6f}, θ = 4φ) does not close: rolling without slip "
+            f"its pinion would turn {math.degrees(turn_quarter):.4f}° per quarter turn of the "
+            f"wheel instead of 360°; the pair that rolls and closes has i = {true_law.i:.6f}",
+            "walker",
+        ),
+        finding(
+            "slips",
+            f"the paper's pinion slips on its wheel by up to {slip:.4g} mm per rad of wheel "
+            f"(equal arc lengths are necessary for rolling, not sufficient); its radii differ "
+            f"from the rolling pair's by up to {offset:.4f} mm",
+            "walker",
+        ),
+    ]
+    if law.half_width > 0:
+        found.append(
+            finding(
+                "blend",
+                f"seams blended over {math.degrees(2 * law.half_width):g}° of wheel angle: the ratio "
+                f"deviates from the required law by up to {100 * deviation:.3f}% (i = {law.i:.6f})",
+                params.gear1_name,
+            )
+        )
+    return data, found
+
+
+def design(params: GearPairParams, *, tol: Tolerances = DEFAULT) -> DesignData:
+    """Build and check the pair a profile describes."""
+    curve, law = driver_curve(params)
+    if params.center_distance is not None:
+        _check_center_distance(params, curve, tol)
+    pair = conjugate_pair(
+        curve,
+        mate_lobes=params.gear2_lobes,
+        center_distance=params.center_distance,
+        mate_name=params.gear2_name,
+        tol=tol,
+    )
+    if pair.closure_error > tol.closure_rad or pair.rolling_residual > tol.rolling_mm:
+        raise DesignError(  # never expected: a synthesis that fails its own checks is a bug to report
+            f"the synthesised pair fails its checks (closure {pair.closure_error:.3g} rad, rolling "
+            f"{pair.rolling_residual:.3g} mm); please report this profile"
+        )
+    gears = (
+        _gear(params.gear1_name, pair.gear1, (0.0, 0.0), tol),
+        _gear(params.gear2_name, pair.gear2, (pair.center_distance, 0.0), tol),
+    )
+    findings: list[Finding] = []
+    for gear in gears:
+        findings += _shape_findings(gear)
+    phi = np.linspace(0.0, TWO_PI, 4097)
+    k = pair.angle_map.slope(phi)
+    omega = params.driver_rpm * TWO_PI / 60
+    kin = kinematics(pair, driver=params.driver, speed=omega)
+    claim = None
+    if params.claim is not None:
+        claim = identical_mate_claim(curve, params.claim.center_distance, tol=tol)
+        if not claim.holds:
+            src = f" ({params.claim.source})" if params.claim.source else ""
+            findings.append(
+                finding(
+                    "not-closed",
+                    f"claim{src}: at E = {claim.center_distance:g} mm the mate falls short by "
+                    f"{math.degrees(claim.shortfall):.4f}° per turn ({claim.shortfall:.6g} rad); the pair "
+                    f"built closes at E = {pair.center_distance:.9g} mm",
+                    "claim",
+                )
+            )
+            findings.append(
+                finding(
+                    "not-identical",
+                    f"claim{src}: an identical mate at E = {claim.center_distance:g} mm misses the "
+                    f"contact by up to {claim.shape_difference:.4f} mm; the built mate is computed",
+                    "claim",
+                )
+            )
+    walker = None
+    if law is not None:
+        walker, extra = _walker(params, law, pair, kin, tol)
+        findings += extra
+    return DesignData(
+        params=params,
+        gears=gears,
+        pair=pair,
+        ratio_range=(float(k.min()), float(k.max())),
+        kinematics=kin,
+        mate_shape_difference=shape_difference(pair.gear1, pair.gear2)[0],
+        findings=tuple(findings),
+        claim=claim,
+        walker=walker,
+    )

@@ -1,0 +1,78 @@
+"""PNG charts a reviewer would rather look at than read."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+from ..design import DesignData  # noqa: E402
+from ..pitch.curve import TWO_PI, points  # noqa: E402
+
+__all__ = ["pitch_chart", "kinematics_chart"]
+
+_META = {"Software": "gearcad"}  # no creation time: the same design gives the same bytes
+
+
+def _save(fig, path: Path) -> None:
+    fig.savefig(path, dpi=110, metadata=_META)
+    plt.close(fig)
+
+
+def pitch_chart(data: DesignData, path: Path, rings) -> None:
+    """The pair in place at driver angle 0, and r(φ) of both gears."""
+    fig, (ax, ax2) = plt.subplots(1, 2, figsize=(12, 5.2), gridspec_kw={"width_ratios": [1.25, 1]})
+    e = data.pair.center_distance
+    colours = ("tab:blue", "tab:orange")
+    for gear, ring, colour in zip(data.gears, rings, colours):
+        closed = np.vstack([ring, ring[:1]]) + np.asarray(gear.pivot)
+        ax.plot(closed[:, 0], closed[:, 1], color=colour, lw=1.4, label=gear.name)
+        ax.plot(*gear.pivot, "+", color=colour, ms=10)
+        for c in gear.shape.corners:
+            p = points(gear.curve, np.array([c.phi]))[0] + np.asarray(gear.pivot)
+            ax.plot(*p, "o", mfc="none", color="red", ms=8)
+    contact = data.gears[0].curve.r(np.array([0.0]))[0]
+    ax.plot([0, e], [0, 0], color="0.6", lw=0.8, ls=":")
+    ax.plot(contact, 0, "k.", ms=6)
+    ax.set_aspect("equal")
+    ax.set_title(f"pitch curves in mesh, E = {e:.4f} mm")
+    ax.set_xlabel("mm")
+    ax.legend(loc="upper right", fontsize=8)
+    ax.grid(alpha=0.3)
+    phi = np.linspace(0.0, TWO_PI, 1441)
+    for gear, colour in zip(data.gears, colours):
+        ax2.plot(np.degrees(phi), gear.curve.r(phi), color=colour, label=gear.name)
+    ax2.set_xlabel("polar angle φ, degrees")
+    ax2.set_ylabel("r, mm")
+    ax2.set_xticks(range(0, 361, 45))
+    ax2.set_title("radius against polar angle")
+    ax2.grid(alpha=0.3)
+    ax2.legend(fontsize=8)
+    fig.suptitle(data.params.title or data.params.name)
+    fig.tight_layout()
+    _save(fig, path)
+
+
+def kinematics_chart(data: DesignData, path: Path) -> None:
+    """Follower speed and acceleration against driver angle at constant driver speed."""
+    k = data.kinematics
+    p = data.params
+    names = (p.gear1_name, p.gear2_name)
+    driver, follower = names[k.driver - 1], names[2 - k.driver]
+    fig, (a1, a2) = plt.subplots(2, 1, figsize=(8, 6.4), sharex=True)
+    x = np.degrees(k.driver_angle)
+    a1.plot(x, k.speed, color="tab:blue")
+    a1.set_ylabel(f"ω {follower}, rad/s")
+    a1.grid(alpha=0.3)
+    a2.plot(x, k.acceleration, color="tab:red")
+    a2.set_ylabel(f"ε {follower}, rad/s²")
+    a2.set_xlabel(f"{driver} angle, degrees")
+    a2.set_xticks(range(0, 361, 45))
+    a2.grid(alpha=0.3)
+    a1.set_title(f"{follower} driven by {driver} at {p.driver_rpm:g} rpm ({k.driver_speed:.4g} rad/s)")
+    fig.tight_layout()
+    _save(fig, path)

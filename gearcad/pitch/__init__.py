@@ -1,0 +1,1 @@
+"""Pitch curves: polar curves, conjugate synthesis, closure and kinematics (numpy/scipy only)."""

@@ -1,0 +1,177 @@
+"""Driver pitch curves in closed form, from a ratio law, or spectrally from samples."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+import numpy as np
+
+from .curve import PitchCurve
+
+__all__ = [
+    "circle",
+    "ellipse_focus",
+    "ellipse_centre",
+    "oval",
+    "from_ratio",
+    "harmonic_ratio",
+    "from_samples",
+]
+
+
+def circle(radius: float) -> PitchCurve:
+    """A circle about its centre."""
+    return PitchCurve(
+        name=f"circle r={radius:g}",
+        r=lambda p: np.full_like(np.asarray(p, dtype=float), radius),
+        dr=lambda p: np.zeros_like(np.asarray(p, dtype=float)),
+        d2r=lambda p: np.zeros_like(np.asarray(p, dtype=float)),
+    )
+
+
+def _reciprocal_cosine(name: str, p: float, alpha: float, beta: float, n: int) -> PitchCurve:
+    """r = p / (α − β·cos nφ) and its derivatives in closed form."""
+
+    def den(phi):
+        return alpha - beta * np.cos(n * phi)
+
+    def r(phi):
+        return p / den(np.asarray(phi, dtype=float))
+
+    def dr(phi):
+        phi = np.asarray(phi, dtype=float)
+        return -p * beta * n * np.sin(n * phi) / den(phi) ** 2
+
+    def d2r(phi):
+        phi = np.asarray(phi, dtype=float)
+        d, s, c = den(phi), np.sin(n * phi), np.cos(n * phi)
+        return -p * beta * n * n * (c * d - 2 * beta * s * s) / d**3
+
+    return PitchCurve(name=name, r=r, dr=dr, d2r=d2r, lobes=n)
+
+
+def ellipse_focus(a: float, b: float) -> PitchCurve:
+    """Ellipse pivoted at a focus, far apex at φ = 0: r = b²/(a − c·cos φ) (seed 004 eq. 6)."""
+    c = np.sqrt(a * a - b * b)
+    return _reciprocal_cosine(f"ellipse a={a:g} b={b:g} about a focus", b * b, a, c, 1)
+
+
+def oval(a: float, b: float) -> PitchCurve:
+    """Self-conjugate centre-pivoted oval r = 2ab/((a + b) − (a − b)·cos 2φ) (SPEC §1a ii)."""
+    return _reciprocal_cosine(f"oval a={a:g} b={b:g} about its centre", 2 * a * b, a + b, a - b, 2)
+
+
+def ellipse_centre(a: float, b: float) -> PitchCurve:
+    """Ellipse pivoted at its centre: r = ab/√(b²cos²φ + a²sin²φ) (seed 004 eq. 16)."""
+    k = a * a - b * b
+
+    def r(phi):
+        phi = np.asarray(phi, dtype=float)
+        return a * b / np.sqrt(b * b + k * np.sin(phi) ** 2)
+
+    def dr(phi):
+        phi = np.asarray(phi, dtype=float)
+        d = b * b + k * np.sin(phi) ** 2
+        return -a * b * k * np.sin(2 * phi) / (2 * d**1.5)
+
+    def d2r(phi):
+        phi = np.asarray(phi, dtype=float)
+        d = b * b + k * np.sin(phi) ** 2
+        d1 = k * np.sin(2 * phi)
+        d2 = 2 * k * np.cos(2 * phi)
+        return -a * b * (d2 / (2 * d**1.5) - 0.75 * d1 * d1 / d**2.5)
+
+    return PitchCurve(name=f"ellipse a={a:g} b={b:g} about its centre", r=r, dr=dr, d2r=d2r, lobes=2)
+
+
+def from_ratio(
+    name: str,
+    k: Callable,
+    dk: Callable,
+    d2k: Callable,
+    center_distance: float,
+    *,
+    lobes: int = 1,
+    breaks: tuple[float, ...] = (),
+) -> PitchCurve:
+    """Driver curve from a transmission function k(φ1) = ω2/ω1: r1 = E·k/(1 + k) (SPEC §1)."""
+    e = center_distance
+
+    def r(phi):
+        kk = k(np.asarray(phi, dtype=float))
+        return e * kk / (1 + kk)
+
+    def dr(phi):
+        phi = np.asarray(phi, dtype=float)
+        return e * dk(phi) / (1 + k(phi)) ** 2
+
+    def d2r(phi):
+        phi = np.asarray(phi, dtype=float)
+        kk, k1 = k(phi), dk(phi)
+        return e * (d2k(phi) * (1 + kk) - 2 * k1 * k1) / (1 + kk) ** 3
+
+    return PitchCurve(name=name, r=r, dr=dr, d2r=d2r, lobes=lobes, breaks=breaks)
+
+
+def harmonic_ratio(mean: float, terms) -> tuple[Callable, Callable, Callable]:
+    """k(φ) = mean + Σ (c_j cos jφ + s_j sin jφ) and its two derivatives.
+
+    ``terms`` is a sequence of (j, c_j, s_j).
+    """
+    terms = [(int(j), float(c), float(s)) for j, c, s in terms]
+
+    def k(phi):
+        phi = np.asarray(phi, dtype=float)
+        out = np.full_like(phi, mean)
+        for j, c, s in terms:
+            out += c * np.cos(j * phi) + s * np.sin(j * phi)
+        return out
+
+    def dk(phi):
+        phi = np.asarray(phi, dtype=float)
+        out = np.zeros_like(phi)
+        for j, c, s in terms:
+            out += j * (-c * np.sin(j * phi) + s * np.cos(j * phi))
+        return out
+
+    def d2k(phi):
+        phi = np.asarray(phi, dtype=float)
+        out = np.zeros_like(phi)
+        for j, c, s in terms:
+            out -= j * j * (c * np.cos(j * phi) + s * np.sin(j * phi))
+        return out
+
+    return k, dk, d2k
+
+
+def from_samples(name: str, radii, *, lobes: int = 1) -> PitchCurve:
+    """A smooth curve through radii sampled at equal steps over one turn (trigonometric
+    interpolation: spectrally accurate for smooth periodic data)."""
+    radii = np.asarray(radii, dtype=float)
+    n = len(radii)
+    spectrum = np.fft.rfft(radii) / n
+    orders = np.arange(len(spectrum))
+    weight = np.ones(len(spectrum))
+    weight[1:] = 2.0
+    if n % 2 == 0:
+        weight[-1] = 1.0  # the Nyquist term appears once
+    cos_c = weight * spectrum.real
+    sin_c = -weight * spectrum.imag
+
+    def series(phi, power):
+        phi = np.asarray(phi, dtype=float)
+        arg = np.multiply.outer(phi, orders)
+        scale = orders.astype(float) ** power
+        if power % 4 == 0:
+            return (np.cos(arg) * cos_c * scale + np.sin(arg) * sin_c * scale).sum(-1)
+        if power % 4 == 1:
+            return (-np.sin(arg) * cos_c * scale + np.cos(arg) * sin_c * scale).sum(-1)
+        return (-np.cos(arg) * cos_c * scale - np.sin(arg) * sin_c * scale).sum(-1)
+
+    return PitchCurve(
+        name=name,
+        r=lambda p: series(p, 0),
+        dr=lambda p: series(p, 1),
+        d2r=lambda p: series(p, 2),
+        lobes=lobes,
+    )

@@ -1,0 +1,213 @@
+"""The command line, through main(argv): builds, checks, and bad input."""
+
+import json
+import shutil
+from pathlib import Path
+
+import ezdxf
+import numpy as np
+import pytest
+
+from gearcad.cli import main
+from gearcad.diagnostics import CODES
+
+from .conftest import PROFILES
+
+ROOT = Path(__file__).parent.parent
+
+
+def _tree(folder: Path) -> dict:
+    return {p.relative_to(folder): p.read_bytes() for p in sorted(folder.rglob("*")) if p.is_file()}
+
+
+@pytest.fixture(scope="module")
+def built(tmp_path_factory):
+    out = tmp_path_factory.mktemp("build") / "out"
+    assert main(["build", *map(str, PROFILES), "--out", str(out)]) == 0
+    return out
+
+
+def test_every_profile_builds_its_files(built):
+    names = {p.stem for p in PROFILES}
+    assert {p.name for p in built.iterdir()} == names
+    for name in names:
+        report = json.loads((built / name / "report.json").read_text())
+        for f in report["files"]:
+            assert (built / name / f).is_file(), f
+        assert {"pitch_curves.png", "kinematics.png", "kinematics.csv", "pair.dxf"} <= set(report["files"])
+        for gear in report["gears"]:
+            assert f"{gear['name']}.dxf" in report["files"]
+
+
+def test_report_schema_and_residuals(built):
+    for path in built.glob("*/report.json"):
+        report = json.loads(path.read_text())
+        assert {"name", "gears", "pair", "warnings", "files", "kinematics"} <= set(report)
+        for gear in report["gears"]:
+            assert {"name", "pivot", "lobes", "r_min", "r_max", "perimeter", "convex"} <= set(gear)
+            assert 0 < gear["r_min"] <= gear["r_max"]
+        pair = report["pair"]
+        assert {"center_distance", "closure_error", "rolling_residual", "ratio_min", "ratio_max"} <= set(pair)
+        assert pair["closure_error"] < 1e-9 and pair["rolling_residual"] < 1e-9
+        for w in report["warnings"]:
+            assert w["code"] in CODES and w["message"]
+
+
+def test_papers_findings_in_reports(built):
+    centre = json.loads((built / "elliptic_centre" / "report.json").read_text())
+    assert not centre["claim"]["holds"]
+    assert {"not-closed", "not-identical"} <= {w["code"] for w in centre["warnings"]}
+    assert centre["pair"]["center_distance"] < 40
+    oval = json.loads((built / "oval_centre" / "report.json").read_text())
+    assert oval["claim"]["holds"] and oval["pair"]["center_distance"] == pytest.approx(40, abs=1e-9)
+    walker = json.loads((built / "walker" / "report.json").read_text())
+    assert round(walker["walker"]["i_paper"], 6) == 3.207678
+    assert walker["walker"]["i"] == pytest.approx(3.182936, abs=5e-7)
+    assert {"not-closed", "slips", "blend"} <= {w["code"] for w in walker["warnings"]}
+    spur = json.loads((built / "spur_pair" / "report.json").read_text())
+    assert spur["pair"]["center_distance"] == pytest.approx(60, abs=1e-9)
+    assert spur["pair"]["ratio_min"] == pytest.approx(0.5) and spur["pair"]["ratio_max"] == pytest.approx(0.5)
+
+
+def test_dxf_files_read_back(built):
+    for path in built.glob("*/*.dxf"):
+        doc = ezdxf.readfile(path)
+        assert doc.units == 4  # mm
+        auditor = doc.audit()
+        assert not auditor.has_errors, path
+        closed = [e for e in doc.modelspace().query("LWPOLYLINE") if e.closed]
+        assert closed and all(e.dxf.layer == "MARK" for e in closed)
+
+
+def test_pitch_dxf_matches_the_curve(built):
+    report = json.loads((built / "elliptic_focus" / "report.json").read_text())
+    doc = ezdxf.readfile(built / "elliptic_focus" / "driver.dxf")
+    ring = max((e for e in doc.modelspace().query("LWPOLYLINE") if e.closed), key=len)
+    pts = np.array([p[:2] for p in ring.get_points()])
+    r = np.hypot(pts[:, 0], pts[:, 1])
+    phi = np.arctan2(pts[:, 1], pts[:, 0])
+    np.testing.assert_allclose(r, 15.0**2 / (25 - 20 * np.cos(phi)), atol=1e-9)  # vertices on the ellipse
+    assert r.max() == pytest.approx(report["gears"][0]["r_max"], abs=1e-9)
+
+
+def test_build_is_deterministic(built, tmp_path):
+    again = tmp_path / "again"
+    assert main(["build", str(ROOT / "profiles" / "walker.toml"), "--out", str(again)]) == 0
+    for name in ("wheel.dxf", "pinion.dxf", "pair.dxf", "kinematics.csv", "report.json"):
+        assert (again / "walker" / name).read_bytes() == (built / "walker" / name).read_bytes(), name
+
+
+def test_set_overrides_a_value(tmp_path):
+    out = tmp_path / "out"
+    args = [
+        "build",
+        str(ROOT / "profiles" / "elliptic_focus.toml"),
+        "--out",
+        str(out),
+        "--set",
+        "gear1.b=20",
+        "--set",
+        "name=wider",
+    ]
+    assert main(args) == 0
+    report = json.loads((out / "wider" / "report.json").read_text())
+    assert report["gears"][0]["r_max"] == pytest.approx(25 + 15)  # a + c, c = √(25² − 20²)
+
+
+def test_check_prints_without_writing(tmp_path, capsys, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    assert main(["check", str(ROOT / "profiles" / "walker.toml")]) == 0
+    text = capsys.readouterr().out
+    assert "i (paper's method) = 3.207678" in text and "[slips]" in text
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_build_without_arguments_builds_every_profile(tmp_path, monkeypatch, capsys):
+    shutil.copytree(ROOT / "profiles", tmp_path / "profiles")
+    monkeypatch.chdir(tmp_path)
+    assert main(["build"]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    assert [ln.split("]")[0] for ln in lines[:-1]] == [f"[{n}/{len(PROFILES)}" for n in range(1, len(PROFILES) + 1)]
+    assert {p.name for p in (tmp_path / "out").iterdir()} == {p.stem for p in PROFILES}
+
+
+BAD = [
+    ("gear1.bb=3", "gear1.bb", "unknown key"),
+    ('gear1.a="big"', "gear1.a = 'big'", "a length in mm"),
+    ("gear1.b=-3", "gear1.b = -3", "> 0"),
+    ("gear1.a=0", "gear1.a = 0", "> 0"),
+    ("gear1.b=30", "gear1.b = 30", "must not exceed"),
+    ("pair.driver_rpm=true", "pair.driver_rpm = true", "rev/min"),
+    ('pair.driver="crank"', "pair.driver = 'crank'", "one of"),
+    ("gear2.lobes=0", "gear2.lobes = 0", "integer ≥ 1"),
+    ("output.tolerance=0", "output.tolerance = 0", "> 0"),
+    ("pair.center_distance=20", "pair.center_distance = 20", "largest radius"),
+    ("pair.center_distance=49", "pair.center_distance = 49", "does not close"),
+    ("color=1", "color", "unknown key"),
+]
+
+
+@pytest.mark.parametrize("override,names,allowed", BAD)
+def test_bad_values_give_one_clear_line_and_write_nothing(tmp_path, capsys, override, names, allowed):
+    out = tmp_path / "out"
+    code = main(["build", str(ROOT / "profiles" / "elliptic_focus.toml"), "--out", str(out), "--set", override])
+    assert code == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1, err
+    assert names in err[0] and allowed in err[0]
+    assert not out.exists()
+    assert list(tmp_path.iterdir()) == []  # no staging folder left behind either
+
+
+def test_eccentricity_at_or_above_one(tmp_path, capsys):
+    path = tmp_path / "e.toml"
+    path.write_text('[gear1]\ncurve = "ellipse"\na = 10\neccentricity = 1.0\n')
+    assert main(["build", str(path), "--out", str(tmp_path / "out")]) == 2
+    err = capsys.readouterr().err
+    assert "gear1.eccentricity = 1.0" in err and "< 1" in err
+    assert not (tmp_path / "out").exists()
+
+
+def test_ratio_law_that_cannot_close(tmp_path, capsys):
+    path = tmp_path / "law.toml"
+    path.write_text('[gear1]\ncurve = "ratio"\nmean = 1.2\nharmonics = [[1, 0.3, 0.0]]\n[pair]\ncenter_distance = 50\n')
+    assert main(["build", str(path), "--out", str(tmp_path / "out")]) == 2
+    err = capsys.readouterr().err
+    assert "gear1.mean = 1.2" in err and "cannot close" in err and "must be 1" in err
+    path.write_text('[gear1]\ncurve = "ratio"\nharmonics = [[1, 1.5, 0.0]]\n[pair]\ncenter_distance = 50\n')
+    assert main(["build", str(path), "--out", str(tmp_path / "out")]) == 2
+    assert "gear1.harmonics" in capsys.readouterr().err
+    path.write_text('[gear1]\ncurve = "ratio"\nharmonics = [[1, 0.3, 0.0]]\n[pair]\ncenter_distance = 50\n')
+    assert main(["build", str(path), "--out", str(tmp_path / "out")]) == 0
+
+
+def test_several_bad_values_one_line_each(tmp_path, capsys):
+    path = tmp_path / "bad.toml"
+    path.write_text('[gear1]\ncurve = "ellipse"\na = -1\nb = "x"\nwobble = 2\n')
+    assert main(["check", str(path)]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 3 and all(str(path) in line for line in err)
+
+
+def test_unreadable_and_invalid_files(tmp_path, capsys):
+    assert main(["check", str(tmp_path / "missing.toml")]) == 2
+    assert "cannot read" in capsys.readouterr().err
+    broken = tmp_path / "broken.toml"
+    broken.write_text("[gear1\n")
+    assert main(["check", str(broken)]) == 2
+    assert "not valid TOML" in capsys.readouterr().err
+
+
+def test_failed_build_leaves_previous_output_untouched(tmp_path, capsys):
+    out = tmp_path / "out"
+    good = ROOT / "profiles" / "spur_pair.toml"
+    assert main(["build", str(good), "--out", str(out)]) == 0
+    before = _tree(out)
+    bad = tmp_path / "bad.toml"  # valid values, but a centre distance at which it cannot close
+    bad.write_text(
+        'name = "spur_pair"\n[gear1]\ncurve = "circle"\nradius = 20\n[gear2]\nlobes = 2\n[pair]\ncenter_distance = 70\n'
+    )
+    assert main(["build", str(bad), "--out", str(out)]) == 2
+    assert "does not close" in capsys.readouterr().err
+    assert _tree(out) == before
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["bad.toml", "out"]

@@ -1,0 +1,163 @@
+"""The pitch-curve core against closed forms and independent methods."""
+
+import math
+
+import numpy as np
+import pytest
+from scipy.special import ellipe
+
+from gearcad.pitch import chebyshev, shapes
+from gearcad.pitch.curve import (
+    TWO_PI,
+    PitchCurve,
+    arc_length_map,
+    convexity,
+    corners,
+    curvature,
+    perimeter,
+    radius_range,
+)
+from gearcad.pitch.discretize import chord_deviation, polyline, polyline_angles
+
+
+def test_chebyshev_integral_derivative_inverse():
+    f = chebyshev.fit(np.exp, [0.0, 1.0, 3.0], rel_tol=1e-14)
+    x = np.linspace(0, 3, 101)
+    np.testing.assert_allclose(f(x), np.exp(x), rtol=1e-14)
+    np.testing.assert_allclose(f.integral()(x), np.exp(x) - 1, rtol=1e-13, atol=1e-14)
+    np.testing.assert_allclose(f.derivative()(x), np.exp(x), rtol=1e-11)
+    inv = f.inverse(rel_tol=1e-14)
+    y = np.linspace(1, math.exp(3), 77)
+    np.testing.assert_allclose(inv(y), np.log(y), atol=1e-13)
+
+
+def test_chebyshev_splits_sharp_functions():
+    def peak(x):  # height 10 000, width ~0.014 rad
+        return 1 / (1.0001 - np.cos(x))
+
+    f = chebyshev.fit(peak, [-math.pi, math.pi], rel_tol=1e-13)
+    assert len(f.coefs) > 1 and max(len(c) for c in f.coefs) <= 128
+    x = np.linspace(-math.pi, math.pi, 999)
+    np.testing.assert_allclose(f(x), peak(x), rtol=1e-11)
+
+
+def test_inverse_rejects_non_monotone_maps():
+    f = chebyshev.fit(np.sin, [0.0, 3.0], rel_tol=1e-14)
+    with pytest.raises(Exception, match="not increasing"):
+        f.inverse(rel_tol=1e-14)
+
+
+@pytest.mark.parametrize("a,b", [(25, 15), (10, 9.99), (40, 4)])
+def test_ellipse_perimeter_against_complete_elliptic_integral(a, b):
+    e2 = 1 - (b / a) ** 2
+    exact = 4 * a * ellipe(e2)
+    assert perimeter(shapes.ellipse_centre(a, b)) == pytest.approx(exact, rel=1e-13)
+    assert perimeter(shapes.ellipse_focus(a, b)) == pytest.approx(exact, rel=1e-13)
+
+
+def test_arc_length_inverse_round_trip():
+    s = arc_length_map(shapes.ellipse_focus(25, 15))
+    phi = np.linspace(0, TWO_PI, 50)
+    np.testing.assert_allclose(s.inverse(rel_tol=1e-14)(s(phi)), phi, atol=1e-12)
+
+
+def test_closed_form_derivatives_against_finite_differences():
+    h = 1e-5
+    phi = np.linspace(0.1, 6.0, 13)
+    curves = [
+        shapes.ellipse_focus(25, 15),
+        shapes.ellipse_centre(25, 15),
+        shapes.oval(30, 12),
+        shapes.from_ratio("law", *shapes.harmonic_ratio(1.0, [(1, 0.3, 0.1), (2, 0.05, 0)]), 40.0),
+    ]
+    for c in curves:
+        np.testing.assert_allclose(c.dr(phi), (c.r(phi + h) - c.r(phi - h)) / (2 * h), rtol=1e-7, atol=1e-7)
+        np.testing.assert_allclose(c.d2r(phi), (c.dr(phi + h) - c.dr(phi - h)) / (2 * h), rtol=1e-6, atol=1e-6)
+
+
+def test_circle_curvature_and_convexity():
+    c = shapes.circle(20)
+    np.testing.assert_allclose(curvature(c, np.linspace(0, 6, 7)), 1 / 20)
+    data = convexity(c)
+    assert data.convex and data.min_curvature_radius == pytest.approx(20)
+    assert radius_range(c) == (20, 20)
+
+
+def test_ellipse_extreme_radii_and_curvature():
+    a, b = 25.0, 15.0
+    c = math.sqrt(a * a - b * b)
+    assert radius_range(shapes.ellipse_focus(a, b)) == pytest.approx((a - c, a + c), rel=1e-12)
+    assert radius_range(shapes.ellipse_centre(a, b)) == pytest.approx((b, a), rel=1e-12)
+    # smallest radius of curvature of an ellipse is b²/a at the ends of the major axis
+    assert convexity(shapes.ellipse_centre(a, b)).min_curvature_radius == pytest.approx(b * b / a, rel=1e-9)
+
+
+def _trefoil(depth):
+    """r = 1 + depth·cos 3φ: convex for depth ≤ 1/10, concave near φ = 60° beyond."""
+    return PitchCurve(
+        "trefoil",
+        r=lambda p: 1 + depth * np.cos(3 * np.asarray(p)),
+        dr=lambda p: -3 * depth * np.sin(3 * np.asarray(p)),
+        d2r=lambda p: -9 * depth * np.cos(3 * np.asarray(p)),
+        lobes=3,
+    )
+
+
+def test_convexity_threshold_of_a_trefoil():
+    # at φ = 60°: r = 1 − d, r' = 0, r'' = 9d, so r² − r·r'' = (1 − d)(1 − 10d): zero at d = 1/10
+    assert convexity(_trefoil(0.0999)).convex
+    bad = convexity(_trefoil(0.2))
+    assert not bad.convex
+    centres = [0.5 * (lo + hi) for lo, hi in bad.concave_intervals]
+    assert any(abs(math.degrees(c) - 60) < 1 for c in centres)
+    assert bad.min_margin == pytest.approx((0.8 * 0.8 - 0.8 * 1.8) / 0.64, rel=1e-6)
+
+
+def test_corner_detection_on_a_v_shaped_curve():
+    """r = 10 + |sin φ| has corners at 0 and π (tangent turns by 2·atan(1/10))."""
+    c = PitchCurve(
+        "v",
+        r=lambda p: 10 + np.abs(np.sin(p)),
+        dr=lambda p: np.sign(np.sin(p)) * np.cos(p),
+        d2r=lambda p: -np.abs(np.sin(p)),
+        lobes=2,
+        breaks=(0.0, math.pi),
+    )
+    found = corners(c)
+    assert [round(x.phi, 9) for x in found] == [0.0, round(math.pi, 9)]
+    assert all(not x.convex for x in found)
+    assert abs(found[0].turn) == pytest.approx(2 * math.atan(0.1), rel=1e-6)
+    assert corners(shapes.ellipse_focus(25, 15)) == []
+
+
+def test_from_samples_reproduces_a_trigonometric_polynomial():
+    exact = shapes.from_ratio("law", *shapes.harmonic_ratio(1.0, [(2, 0.2, 0.1), (4, 0.03, 0)]), 40.0)
+
+    # r of a ratio law is not a trig polynomial; sample a genuine one instead
+    def r(p):
+        return 20 + 2 * np.cos(2 * p) - np.sin(3 * p) + 0.5 * np.cos(5 * p)
+
+    curve = shapes.from_samples("s", r(np.linspace(0, TWO_PI, 16, endpoint=False)))
+    phi = np.linspace(0, TWO_PI, 33)
+    np.testing.assert_allclose(curve.r(phi), r(phi), atol=1e-12)
+    np.testing.assert_allclose(
+        curve.dr(phi), -4 * np.sin(2 * phi) - 3 * np.cos(3 * phi) - 2.5 * np.sin(5 * phi), atol=1e-11
+    )
+    assert exact.lobes == 1
+
+
+@pytest.mark.parametrize("tol", [0.1, 0.01, 0.001])
+def test_polyline_within_tolerance_and_not_wasteful(tol):
+    curve = shapes.ellipse_focus(25, 15)
+    phi = polyline_angles(curve, tol)
+    dense = np.linspace(phi[:-1], phi[1:], 17, axis=1)
+    # true deviation: the curve between two vertices against their chord, sampled densely
+    pts = curve.r(dense)[..., None] * np.stack([np.cos(dense), np.sin(dense)], -1)
+    a, b = pts[:, :1], pts[:, -1:]
+    d = b - a
+    dist = np.abs(d[..., 0] * (pts[..., 1] - a[..., 1]) - d[..., 1] * (pts[..., 0] - a[..., 0])) / np.hypot(
+        d[..., 0], d[..., 1]
+    )
+    assert dist.max() <= tol
+    assert chord_deviation(curve, phi).max() > 0.5 * tol  # not over-sampled by a fixed count
+    assert len(polyline(curve, tol)) == len(phi) - 1
