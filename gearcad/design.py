@@ -82,8 +82,9 @@ class DesignData:
     pair: PairData
     ratio_range: tuple[float, float]
     kinematics: KinematicsData
-    mate_shape_difference: float
-    """min over rotations of max |r2 − r1|: 0 for a self-conjugate (identical) pair, mm."""
+    mate_shape_difference: float | None
+    """min over rotations of max |r2 − r1|: 0 for a self-conjugate (identical) pair, mm;
+    None when the lobes differ (the gears cannot be alike)."""
     findings: tuple[Finding, ...]
     claim: ClaimData | None = None
     walker: WalkerData | None = None
@@ -286,7 +287,7 @@ def design(params: GearPairParams, *, tol: Tolerances = DEFAULT) -> DesignData:
         pair=pair,
         ratio_range=(float(k.min()), float(k.max())),
         kinematics=kin,
-        mate_shape_difference=shape_difference(pair.gear1, pair.gear2)[0],
+        mate_shape_difference=(shape_difference(pair.gear1, pair.gear2)[0] if pair.lobes[0] == pair.lobes[1] else None),
         findings=tuple(findings),
         claim=claim,
         walker=walker,

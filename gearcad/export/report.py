@@ -65,7 +65,7 @@ def report(data: DesignData, files: dict[str, dict]) -> dict:
             "slip_residual": pair.slip_residual,
             "ratio_min": data.ratio_range[0],
             "ratio_max": data.ratio_range[1],
-            "mate_shape_difference": data.mate_shape_difference if n1 == n2 else None,
+            "mate_shape_difference": data.mate_shape_difference,
         },
         "kinematics": {
             "driver": (p.gear1_name, p.gear2_name)[kin.driver - 1],

@@ -185,15 +185,26 @@ class RatioLaw:
     def shape(self, phi, order: int = 0) -> np.ndarray:
         """G(φ) (order 0) or its first / second derivative."""
         psi = _centred(np.asarray(phi, dtype=float), QUARTER)
-        t = np.pi / 4 - np.abs(psi)  # distance to the nearest seam
-        sign = np.where(psi >= 0, 1.0, -1.0)  # dt/dφ = −sign
-        A, B, C = self.poly
-        inside = t < self.half_width
         if order == 0:
-            return np.where(inside, A + B * t**2 + C * t**4, np.cos(2 * psi))
-        if order == 1:
-            return np.where(inside, -sign * (2 * B * t + 4 * C * t**3), -2 * np.sin(2 * psi))
-        return np.where(inside, 2 * B + 12 * C * t**2, -4 * np.cos(2 * psi))
+            out = np.cos(2 * psi)
+        elif order == 1:
+            out = -2 * np.sin(2 * psi)
+        else:
+            out = -4 * np.cos(2 * psi)
+        if self.half_width == 0:
+            return out
+        t = np.pi / 4 - np.abs(psi)  # distance to the nearest seam
+        inside = t < self.half_width
+        if np.any(inside):
+            A, B, C = self.poly
+            ti = t[inside]
+            if order == 0:
+                out[inside] = A + B * ti**2 + C * ti**4
+            elif order == 1:  # dt/dφ = −sign(ψ)
+                out[inside] = -np.sign(psi[inside]) * (2 * B * ti + 4 * C * ti**3)
+            else:
+                out[inside] = 2 * B + 12 * C * ti**2
+        return out
 
     def k(self, phi):
         return self.i * (self.g.K + 3 * self.g.b * self.shape(phi)) / self.g.K
