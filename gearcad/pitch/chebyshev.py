@@ -100,6 +100,11 @@ class Piecewise:
         return float(self.breaks[-1])
 
     @property
+    def hi_value(self) -> float:
+        """The function's value at the right end."""
+        return float(self(np.array([self.hi]))[0])
+
+    @property
     def degree(self) -> int:
         """Total number of coefficients held (a measure of cost)."""
         return sum(len(c) for c in self.coefs)

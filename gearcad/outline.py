@@ -1,0 +1,46 @@
+"""The one intermediate representation of a part's shape: closed rings in mm."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+__all__ = ["Outline", "ring_area", "rotate"]
+
+
+def ring_area(ring: np.ndarray) -> float:
+    """Signed area (shoelace) of an open ring: positive when counter-clockwise, mm²."""
+    x, y = ring[:, 0], ring[:, 1]
+    return 0.5 * float(np.dot(x, np.roll(y, -1)) - np.dot(y, np.roll(x, -1)))
+
+
+def rotate(points: np.ndarray, angle: float, center=(0.0, 0.0)) -> np.ndarray:
+    """Points rotated by ``angle`` (rad, counter-clockwise) about ``center``: (n, 2) float."""
+    c, s = np.cos(angle), np.sin(angle)
+    p = np.asarray(points, dtype=float) - center
+    return np.column_stack([c * p[:, 0] - s * p[:, 1], s * p[:, 0] + c * p[:, 1]]) + center
+
+
+@dataclass(frozen=True)
+class Outline:
+    """A part's cut shape: ``rings[0]`` the outer boundary (counter-clockwise), the rest holes
+    (clockwise); each ring an open (n, 2) float64 array in mm, its pivot at the origin."""
+
+    rings: tuple[np.ndarray, ...]
+
+    @property
+    def outer(self) -> np.ndarray:
+        return self.rings[0]
+
+    @property
+    def area(self) -> float:
+        return sum(ring_area(r) for r in self.rings)
+
+    @property
+    def vertex_count(self) -> int:
+        return sum(len(r) for r in self.rings)
+
+    def placed(self, angle: float = 0.0, offset=(0.0, 0.0)) -> Outline:
+        """Rotated about the pivot by ``angle`` (rad) and moved by ``offset`` (mm)."""
+        return Outline(tuple(rotate(r, angle) + np.asarray(offset, dtype=float) for r in self.rings))

@@ -1,0 +1,243 @@
+"""Tooth outlines: the envelope of a generating rack rolled without slip along a pitch curve.
+
+The rack's rolling line touches the pitch curve at C(s) with the rack displaced so that its
+coordinate u = s there (displacement = arc length).  A rack point (u, v) shapes the gear at the
+instant its profile normal passes through the pitch point (equation of meshing), which gives
+the contact parameter s* in closed form for every part of the rack:
+
+* straight flanks, normal (±cos α, −sin α):      s* = u ± v·cot α
+* tip fillet of radius ρ about (u_c, v_c):        s* = u_c − v_c·cot β (β the normal's angle)
+* flat tip (normal straight down):               s* = u
+
+and the gear point is P = C(s*) + (u − s*)·T(s*) + v·N(s*).  On a circle the flank is exactly
+the involute of the base circle r·cos α.  Where the flank envelope folds back (it does once
+v < −ρ_c·sin²α, ρ_c the pitch curve's radius of curvature) the trochoid of the rack tip cuts
+into it: the loop is removed, leaving what a real rack would leave (undercut).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+import shapely
+
+from ..errors import DesignError
+from ..outline import Outline, ring_area
+from .frame import ArcFrame
+from .rack import Rack
+from .sampling import sample_curves
+
+__all__ = ["ToothedGear", "cut_teeth", "remove_loops"]
+
+
+@dataclass(frozen=True)
+class ToothedGear:
+    """A gear's toothed outline and what was measured while cutting it."""
+
+    outline: Outline
+    teeth: int
+    rack: Rack
+    phase: float
+    """Arc length (mm) of the centre of tooth space 0; spaces every pitch from there."""
+    undercut_depth: np.ndarray
+    """(2·teeth,) how far each flank's straight rack part reaches below its fold point, mm
+    (positive = undercut): |v_low| − ρ_c·sin²α.  Order: space k's left flank, right flank."""
+    flank_phi: np.ndarray
+    """(2·teeth,) polar angle of each flank at the pitch curve, rad."""
+    tip_thickness: np.ndarray
+    """(teeth,) chord across each tooth's tip land, mm; ≤ 0 where the flanks cross below it."""
+    tooth_phi: np.ndarray
+    """(teeth,) polar angle of each tooth centre, rad."""
+    loops_removed: int
+    """How many undercut loops were trimmed from the outline."""
+    space_root: np.ndarray
+    """(teeth,) index in the outline ring of the vertex nearest each space's root centre."""
+    under_root: np.ndarray
+    """(teeth, 2) a point a module below each space's root: solid material, mm."""
+
+    @property
+    def undercut(self) -> bool:
+        return self.loops_removed > 0 or bool(np.any(self.undercut_depth > 0))
+
+    @property
+    def pointed(self) -> np.ndarray:
+        """Indices of teeth whose flanks meet below the tip curve."""
+        return np.nonzero(self.tip_thickness <= 0)[0]
+
+
+class _Generator:
+    """Closed-form gear points of each part of every rack tooth."""
+
+    def __init__(self, frame: ArcFrame, rack: Rack, centres: np.ndarray):
+        self.f, self.k, self.U = frame, rack, centres
+
+    def _point(self, u, v, s):
+        c, t, n = self.f.frame(s)
+        return c + (u - s)[..., None] * t + v[..., None] * n
+
+    def flank(self, ids, v, side):
+        """side −1: the left flank of space ``ids`` (u < U), +1: the right flank."""
+        k = self.k
+        u = self.U[ids] + side * (k.half_width + v * k.tan_a)
+        return self._point(u, v, u + side * v * k.cot_a)
+
+    def fillet(self, ids, beta, side):
+        k = self.k
+        uc = self.U[ids] + side * k.fillet_u
+        u = uc + side * k.radius * np.cos(beta)
+        v = k.fillet_v + k.radius * np.sin(beta)
+        return self._point(u, v, uc - side * k.fillet_v / np.tan(beta))
+
+    def root(self, ids, u):
+        return self._point(u, np.full_like(u, self.k.v_root), u)
+
+    def tip(self, ids, s):
+        c, _, n = self.f.frame(s)
+        return c + self.k.v_tip * n
+
+
+def _newton2(residual, x, y, *, h=1e-7, iterations=30):
+    """Solve residual(x, y) = 0 (a 2-vector per element) by Newton with finite differences."""
+    for _ in range(iterations):
+        f = residual(x, y)
+        fx = (residual(x + h, y) - residual(x - h, y)) / (2 * h)
+        fy = (residual(x, y + h) - residual(x, y - h)) / (2 * h)
+        det = fx[:, 0] * fy[:, 1] - fx[:, 1] * fy[:, 0]
+        dx = (f[:, 0] * fy[:, 1] - f[:, 1] * fy[:, 0]) / det
+        dy = (fx[:, 0] * f[:, 1] - fx[:, 1] * f[:, 0]) / det
+        x, y = x - dx, y - dy
+        if np.max(np.abs(dx) + np.abs(dy)) < 1e-12:
+            break
+    return x, y
+
+
+def remove_loops(points: np.ndarray) -> tuple[np.ndarray, int]:
+    """Cut self-intersection loops out of an open polyline: (points, loops removed).
+
+    Where segment i crosses a later segment j, the vertices between them form a loop that
+    both sides of the rack removed; the polyline goes straight through the crossing instead.
+    """
+    removed = 0
+    while len(points) > 3:
+        a, b = points[:-1], points[1:]
+        d = b - a
+        i, j = np.triu_indices(len(a), k=2)
+        denom = d[i, 0] * d[j, 1] - d[i, 1] * d[j, 0]
+        w = a[j] - a[i]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            t = (w[:, 0] * d[j, 1] - w[:, 1] * d[j, 0]) / denom
+            s = (w[:, 0] * d[i, 1] - w[:, 1] * d[i, 0]) / denom
+        hit = (denom != 0) & (t > 0) & (t < 1) & (s > 0) & (s < 1)
+        if not np.any(hit):
+            break
+        first = np.nonzero(hit)[0]
+        k = first[np.lexsort((-j[first], i[first]))[0]]  # earliest segment, outermost loop
+        cross = a[i[k]] + t[k] * d[i[k]]
+        points = np.vstack([points[: i[k] + 1], cross, points[j[k] + 1:]])
+        removed += 1
+    return points, removed
+
+
+def cut_teeth(frame: ArcFrame, rack: Rack, teeth: int, phase: float, *, tolerance: float) -> ToothedGear:
+    """Cut ``teeth`` evenly spaced teeth, space k centred at arc length phase + k·pitch.
+
+    The perimeter must be exactly teeth × pitch (the caller chooses the module so).
+    """
+    p = rack.pitch
+    if not math.isclose(frame.perimeter, teeth * p, rel_tol=1e-9):
+        raise DesignError(f"perimeter {frame.perimeter:.9g} mm is not {teeth} × π·m = {teeth * p:.9g} mm")
+    centres = phase + p * np.arange(teeth)
+    gen = _Generator(frame, rack, centres)
+    ids = np.arange(teeth)
+    nxt = (ids + 1) % teeth
+    wrap = np.where(nxt == 0, frame.perimeter, 0.0)  # space k+1 seen from tooth k, unwrapped
+
+    # Where each tooth's flanks meet its tip curve (Newton on flank(v) = tip(s)).
+    def meet_tip(side, space):
+        def residual(v, s):
+            return gen.flank(space, v, side) - gen.tip(space, s)
+
+        v0 = np.full(teeth, rack.v_tip)
+        s0 = centres[space] + side * (rack.half_width + rack.v_tip * rack.tan_a)
+        return _newton2(residual, v0, s0)
+
+    v_start, s_start = meet_tip(+1, ids)  # tooth k begins on space k's right flank
+    v_end, s_end = meet_tip(-1, nxt)  # and ends on space k+1's left flank
+    s_end = s_end + wrap
+    a_pt, b_pt = gen.tip(ids, s_start), gen.tip(ids, s_end)
+    thickness = np.hypot(*(b_pt - a_pt).T) * np.sign(s_end - s_start)
+    pointed = thickness <= 0
+    if np.any(pointed):  # flanks cross below the tip: the tooth ends in their crossing
+
+        def crossing(v1, v2):
+            return gen.flank(ids[pointed], v1, +1) - gen.flank(nxt[pointed], v2, -1)
+
+        v1, v2 = _newton2(crossing, v_start[pointed] * 0.5, v_end[pointed] * 0.5)
+        v_start[pointed], v_end[pointed] = v1, v2
+    prev = (ids - 1) % teeth
+    left_top = v_end[prev]  # space k's left flank starts where tooth k−1 ends
+
+    tol = tolerance
+    b0 = rack.fillet_start
+    left = sample_curves(lambda i, v: gen.flank(i, v, -1), left_top, np.full(teeth, rack.v_low), tol)
+    lfil = sample_curves(lambda i, b: gen.fillet(i, b, -1), np.full(teeth, b0), np.full(teeth, -np.pi / 2), tol)
+    if rack.fillet_u > 0:
+        root = sample_curves(gen.root, centres - rack.fillet_u, centres + rack.fillet_u, tol)
+    else:
+        root = [np.empty((0, 2))] * teeth
+    rfil = sample_curves(lambda i, b: gen.fillet(i, b, +1), np.full(teeth, -np.pi / 2), np.full(teeth, b0), tol)
+    right = sample_curves(lambda i, v: gen.flank(i, v, +1), np.full(teeth, rack.v_low), v_start, tol)
+    land = ~pointed
+    tips = sample_curves(gen.tip, s_start[land], s_end[land], tol)
+    tip_of = dict(zip(np.nonzero(land)[0], tips))
+
+    root_centre = gen.root(ids, centres)
+    parts, loops, start, space_root = [], 0, 0, np.empty(teeth, dtype=int)
+    for k in range(teeth):
+        space = np.vstack([left[k], lfil[k][1:], root[k][1:], rfil[k][1:], right[k][1:]])
+        space, n = remove_loops(space)
+        loops += n
+        parts.append(space[:-1])
+        space_root[k] = start + int(np.argmin(np.hypot(*(space[:-1] - root_centre[k]).T)))
+        start += len(space) - 1
+        if k in tip_of:
+            parts.append(tip_of[k][:-1])
+            start += len(tip_of[k]) - 1
+    ring = np.vstack(parts)
+    _check_ring(ring)
+
+    # Undercut by the fold criterion at the lowest straight-flank point of every flank.
+    fold = math.sin(rack.params.pressure_angle) ** 2
+    s_low = np.stack([centres - rack.half_width - rack.v_low * (rack.tan_a + rack.cot_a),
+                      centres + rack.half_width + rack.v_low * (rack.tan_a + rack.cot_a)], axis=1).ravel()
+    kappa = frame.curvature(s_low)
+    depth = np.where(kappa > 0, -rack.v_low - fold / np.where(kappa > 0, kappa, 1.0), -np.inf)
+    flank_s = np.stack([centres - rack.half_width, centres + rack.half_width], axis=1).ravel()
+    return ToothedGear(
+        outline=Outline((ring,)),
+        teeth=teeth,
+        rack=rack,
+        phase=phase,
+        undercut_depth=depth,
+        flank_phi=frame.angle(flank_s) % (2 * np.pi),
+        tip_thickness=thickness,
+        tooth_phi=frame.angle(centres + p / 2) % (2 * np.pi),
+        loops_removed=loops,
+        space_root=space_root,
+        under_root=gen._point(centres, np.full(teeth, rack.v_root - rack.params.module), centres),
+    )
+
+
+def _check_ring(ring: np.ndarray) -> None:
+    """A toothed outline must be one simple counter-clockwise ring: never a wrong shape."""
+    if not np.all(np.isfinite(ring)):
+        raise DesignError("the tooth outline is not finite (the rack cannot follow this pitch curve)")
+    polygon = shapely.Polygon(ring)
+    if not polygon.is_valid or ring_area(ring) <= 0:
+        reason = shapely.is_valid_reason(polygon)
+        raise DesignError(
+            f"the teeth overlap each other ({reason}): the module is too large for this pitch "
+            "curve; choose a smaller module or more teeth"
+        )

@@ -1,0 +1,112 @@
+"""Proof that a toothed pair meshes: overlap of the two outlines over a full cycle.
+
+At every driver position the two outlines, placed as assembled, must overlap by no more than a
+tolerance-sized area; turned a little further against each other they must overlap (so the
+test can fail both ways).  Only the few teeth around the pitch point are intersected.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import shapely
+
+from ..errors import DesignError
+from ..pitch.pair import PairData
+from .frame import ArcFrame
+from .gear import ToothedGear
+
+__all__ = ["MeshData", "mesh_check"]
+
+
+@dataclass(frozen=True)
+class MeshData:
+    positions: int
+    max_overlap: float
+    """Largest overlap area as assembled, mm²."""
+    allowed_overlap: float
+    """Tolerance-level area it is held to, mm²."""
+    nudge: float
+    """Extra turn given to gear 2 (rad) for the nudged test."""
+    nudged_min_overlap: float
+    """Smallest (over positions) of the larger overlap when nudged either way, mm²."""
+    worst_phi: float
+    """Driver angle of the largest overlap, rad."""
+
+    @property
+    def meshes(self) -> bool:
+        return self.max_overlap <= self.allowed_overlap and self.nudged_min_overlap > self.allowed_overlap
+
+
+_REACH = 2
+"""Tooth spaces either side of the pitch point that a window keeps: contact stays within about
+one pitch of it, so two leave a margin."""
+
+
+def _windows(gear: ToothedGear) -> list[np.ndarray]:
+    """For each space k, the outline from space k−2's root to space k+2's root, closed through
+    points a module under those roots: a small simple polygon that is all of the gear near k."""
+    ring, z = gear.outline.outer, gear.teeth
+    n = len(ring)
+    out = []
+    for k in range(z):
+        a = gear.space_root[(k - _REACH) % z]
+        b = gear.space_root[(k + _REACH) % z]
+        run = ring[a:b + 1] if b > a else np.vstack([ring[a:], ring[:b + 1]])
+        if len(run) > n // 2 and z > 2 * _REACH + 1:  # wrapped the wrong way round: cannot happen
+            raise ValueError("mesh window spans half the gear")
+        inner = gear.under_root[[(k + j) % z for j in range(_REACH, -_REACH - 1, -1)]]
+        out.append(np.vstack([run, inner]))
+    return out
+
+
+def _space_at(frame: ArcFrame, gear: ToothedGear, phi: np.ndarray) -> np.ndarray:
+    """Index of the tooth space nearest polar angle φ."""
+    s = frame.arc(phi)
+    return np.round((s - gear.phase) / gear.rack.pitch).astype(int) % gear.teeth
+
+
+def mesh_check(
+    pair: PairData, gears: tuple[ToothedGear, ToothedGear], frames: tuple[ArcFrame, ArcFrame], *,
+    tolerance: float, backlash: float = 0.0, positions: int = 360,
+) -> MeshData:
+    """Overlap of the pair's outlines at ``positions`` driver angles over one full cycle.
+
+    Everything is measured in gear 1's frame: gear 1 turned by −φ1 and gear 2 by +φ2 about
+    (E, 0) is, relative to gear 1, gear 2 turned by φ1 + φ2 about the origin after moving it.
+    """
+    if min(g.teeth for g in gears) <= 2 * _REACH + 1:
+        raise DesignError("the mesh check needs more than 5 teeth on each gear")
+    e = pair.center_distance
+    m = gears[0].rack.params.module
+    phi1 = np.linspace(0.0, pair.cycle, positions, endpoint=False)
+    phi2 = pair.angle_map(phi1)
+    w1 = np.array([shapely.Polygon(w) for w in _windows(gears[0])], dtype=object)
+    w2 = _windows(gears[1])
+    g1 = w1[_space_at(frames[0], gears[0], phi1 % (2 * np.pi))]
+    pick = _space_at(frames[1], gears[1], (np.pi - phi2) % (2 * np.pi))
+    sizes = np.array([len(w2[k]) for k in pick])
+    coords = np.vstack([w2[k] for k in pick])
+    which = np.repeat(np.arange(positions), sizes)
+    # tolerance-level overlap: each of the two flanks in contact may stray by the tolerance
+    # over its working depth (ha + hf ≈ 2.25 m)
+    allowed = 2 * tolerance * 2.25 * m
+    nudge = (backlash + 40 * tolerance) / float(np.min(e - pair.gear1.r(phi1)))
+
+    def overlap(turn):
+        a2 = (phi2 + turn)[which]
+        x = np.cos(a2) * coords[:, 0] - np.sin(a2) * coords[:, 1] + e
+        y = np.sin(a2) * coords[:, 0] + np.cos(a2) * coords[:, 1]
+        a1 = phi1[which]  # undo gear 1's turn of −φ1
+        xy = np.column_stack([np.cos(a1) * x - np.sin(a1) * y, np.sin(a1) * x + np.cos(a1) * y])
+        placed = shapely.polygons(shapely.linearrings(xy, indices=which))
+        return shapely.area(shapely.intersection(g1, placed))
+
+    assembled = overlap(0.0)
+    nudged = np.maximum(overlap(nudge), overlap(-nudge))
+    worst = int(np.argmax(assembled))
+    return MeshData(
+        positions=positions, max_overlap=float(assembled[worst]), allowed_overlap=allowed,
+        nudge=float(nudge), nudged_min_overlap=float(np.min(nudged)), worst_phi=float(phi1[worst]),
+    )

@@ -1,0 +1,106 @@
+"""The generating rack: its profile in rolling-line coordinates.
+
+Coordinates (u, v): u along the rack's rolling line (the line that rolls without slip on the
+pitch curve), v across it, positive away from the gear.  A rack tooth centred at u = 0 cuts a
+tooth space of the gear.  With profile shift x the rack sits x·m further out, so its reference
+line is at v = x·m; backlash thins the gear's teeth by widening the rack's.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..errors import DesignError
+
+__all__ = ["RackParams", "Rack", "rack_polygon"]
+
+
+@dataclass(frozen=True)
+class RackParams:
+    module: float
+    """mm."""
+    pressure_angle: float = math.radians(20)
+    """rad."""
+    addendum: float = 1.0
+    """Gear addendum coefficient (tip height over the pitch curve / m)."""
+    dedendum: float = 1.25
+    """Gear dedendum coefficient (root depth under the pitch curve / m) = rack tooth height."""
+    tip_radius: float = 0.38
+    """Rack tip fillet radius / m (cuts the trochoidal root fillet)."""
+    profile_shift: float = 0.0
+    """x: the rack moved out by x·m."""
+    thinning: float = 0.0
+    """How much thinner than nominal each gear tooth is on the pitch curve, mm (half the
+    pair's backlash)."""
+
+
+@dataclass(frozen=True)
+class Rack:
+    """Derived rack geometry (mm, rad)."""
+
+    params: RackParams
+    pitch: float
+    half_width: float
+    """w0: half the rack tooth thickness on the rolling line."""
+    tan_a: float
+    cot_a: float
+    v_tip: float
+    """Gear tip (blank) height above the pitch curve."""
+    v_root: float
+    """Depth of the rack tip line, i.e. the gear's root (negative)."""
+    v_low: float
+    """Where the straight flank meets the tip fillet (negative)."""
+    fillet_u: float
+    """u of the fillet centre (right side, ≥ 0)."""
+    fillet_v: float
+    radius: float
+    """Fillet radius, mm."""
+
+    @classmethod
+    def from_params(cls, p: RackParams) -> Rack:
+        m, a = p.module, p.pressure_angle
+        pitch = math.pi * m
+        w0 = pitch / 4 - p.profile_shift * m * math.tan(a) + p.thinning / 2
+        v_root = (p.profile_shift - p.dedendum) * m
+        rho = p.tip_radius * m
+        v_c = v_root + rho
+        u_c = w0 + v_c * math.tan(a) - rho / math.cos(a)
+        if u_c < -1e-12:
+            limit = (w0 + v_root * math.tan(a)) * math.cos(a) / (1 - math.sin(a)) / m
+            raise DesignError(
+                f"teeth.tip_radius = {p.tip_radius:g}: the rack tip is too narrow for this fillet; "
+                f"at most {max(limit, 0):.3f} fits"
+            )
+        return cls(
+            params=p, pitch=pitch, half_width=w0, tan_a=math.tan(a), cot_a=1 / math.tan(a),
+            v_tip=(p.profile_shift + p.addendum) * m, v_root=v_root, v_low=v_c - rho * math.sin(a),
+            fillet_u=max(u_c, 0.0), fillet_v=v_c, radius=rho,
+        )
+
+    @property
+    def fillet_start(self) -> float:
+        """β where the fillet meets the straight flank: the flank's outward normal, −α."""
+        return -self.params.pressure_angle
+
+
+def rack_polygon(rack: Rack, teeth: int, *, samples: int = 12, top: float | None = None) -> np.ndarray:
+    """One rack as a closed (n, 2) polygon in (u, v), teeth centred at u = k·p, k = 0…teeth−1,
+    body up to ``top`` (default 3 m above the rolling line): for drawings and the boolean
+    reference method."""
+    top = 3 * rack.params.module if top is None else top
+    beta = np.linspace(-math.pi / 2, rack.fillet_start, samples)
+    pts = []
+    for k in range(teeth):
+        c = k * rack.pitch
+        left = [(c - rack.half_width - top * rack.tan_a, top)]
+        left += list(zip(c - rack.fillet_u - rack.radius * np.cos(beta[::-1]),
+                         rack.fillet_v + rack.radius * np.sin(beta[::-1])))
+        right = list(zip(c + rack.fillet_u + rack.radius * np.cos(beta),
+                         rack.fillet_v + rack.radius * np.sin(beta)))
+        right += [(c + rack.half_width + top * rack.tan_a, top)]
+        pts += left + right
+    pts += [(pts[-1][0], top + rack.params.module), (pts[0][0], top + rack.params.module)]
+    return np.array(pts)

@@ -1,0 +1,68 @@
+"""Adaptive sampling of many parametric curves at once, from one tolerance.
+
+Every curve is split into a few intervals; each round evaluates all midpoints in one call,
+keeps the intervals whose midpoint lies within the tolerance of their chord and halves the
+rest.  The result has no more vertices than the tolerance needs, wherever the curvature is.
+"""
+
+from __future__ import annotations
+
+from typing import Callable
+
+import numpy as np
+
+__all__ = ["sample_curves"]
+
+Curves = Callable[[np.ndarray, np.ndarray], np.ndarray]
+
+
+def _distance_to_chord(p, a, b):
+    d = b - a
+    length = np.hypot(d[:, 0], d[:, 1])
+    cross = np.abs(d[:, 0] * (p[:, 1] - a[:, 1]) - d[:, 1] * (p[:, 0] - a[:, 0]))
+    far = np.hypot(p[:, 0] - a[:, 0], p[:, 1] - a[:, 1])
+    return np.where(length > 1e-300, cross / np.where(length > 1e-300, length, 1.0), far)
+
+
+def sample_curves(func: Curves, t0, t1, tolerance: float, *, start: int = 4, max_rounds: int = 40) -> list[np.ndarray]:
+    """Sample curves ``func(ids, t) -> (n, 2)`` on their intervals [t0[i], t1[i]].
+
+    Returns, for each curve i, its points (m_i, 2) from t0[i] to t1[i] inclusive, with every
+    chord within ``tolerance`` of the curve at the chord's parameter midpoint and at its
+    quarter points (so an inflexion inside a chord is not missed).
+    """
+    t0, t1 = np.asarray(t0, dtype=float), np.asarray(t1, dtype=float)
+    n = len(t0)
+    if n == 0:
+        return []
+    frac = np.linspace(0.0, 1.0, start + 1)
+    ids = np.repeat(np.arange(n), start)
+    a = (t0[:, None] + (t1 - t0)[:, None] * frac[None, :-1]).ravel()
+    b = (t0[:, None] + (t1 - t0)[:, None] * frac[None, 1:]).ravel()
+    pa, pb = func(ids, a), func(ids, b)
+    kept_ids, kept_t, kept_p = [], [], []
+    for _ in range(max_rounds):
+        quarter = np.concatenate([0.75 * a + 0.25 * b, 0.5 * (a + b), 0.25 * a + 0.75 * b])
+        pq = func(np.tile(ids, 3), quarter).reshape(3, len(a), 2)
+        dev = np.max([_distance_to_chord(pq[k], pa, pb) for k in range(3)], axis=0)
+        ok = dev <= tolerance
+        kept_ids.append(ids[ok])
+        kept_t.append(a[ok])
+        kept_p.append(pa[ok])
+        if np.all(ok):
+            break
+        bad = ~ok
+        m, pm = 0.5 * (a[bad] + b[bad]), pq[1][bad]
+        ids = np.concatenate([ids[bad], ids[bad]])
+        a, b = np.concatenate([a[bad], m]), np.concatenate([m, b[bad]])
+        pa, pb = np.concatenate([pa[bad], pm]), np.concatenate([pm, pb[bad]])
+    else:  # the round limit: keep what is left rather than loop forever
+        kept_ids.append(ids)
+        kept_t.append(a)
+        kept_p.append(pa)
+    ids, t, p = np.concatenate(kept_ids), np.concatenate(kept_t), np.concatenate(kept_p)
+    order = np.lexsort((t * np.sign(t1 - t0)[ids], ids))  # along each curve, from t0 to t1
+    ids, p = ids[order], p[order]
+    ends = func(np.arange(n), t1)
+    cuts = np.searchsorted(ids, np.arange(n + 1))
+    return [np.vstack([p[cuts[i]:cuts[i + 1]], ends[i:i + 1]]) for i in range(n)]
