@@ -23,6 +23,7 @@ from .export.dxf import cross, write_dxf
 from .export.report import write_report
 from .pitch.discretize import polyline
 from .profiles import GearPairParams
+from .teeth.pair import ToothedPairData, cut_pair
 from .tolerances import DEFAULT
 
 __all__ = ["BuildResult", "build_profile", "build_all"]
@@ -32,6 +33,7 @@ __all__ = ["BuildResult", "build_profile", "build_all"]
 class BuildResult:
     name: str
     data: DesignData
+    teeth: ToothedPairData | None
     files: dict[str, dict]
     seconds: float
 
@@ -56,30 +58,36 @@ def build_profile(params: GearPairParams, folder: Path) -> BuildResult:
     start = time.perf_counter()
     tol = replace(DEFAULT, outline_mm=params.output.tolerance)
     data = design(params, tol=tol)
-    rings = [polyline(g.curve, tol.outline_mm) for g in data.gears]
+    teeth = cut_pair(data, params.teeth, tol=tol) if params.teeth is not None else None
+    pitch = [polyline(g.curve, tol.outline_mm) for g in data.gears]
     files: dict[str, dict] = {}
     mark = 0.05 * min(g.r_min for g in data.gears)
-    for gear, ring in zip(data.gears, rings):
+    for i, (gear, ring) in enumerate(zip(data.gears, pitch)):
         path = folder / f"{gear.name}.dxf"
-        n = write_dxf(path, {"MARK": [ring]}, {"MARK": cross((0.0, 0.0), mark)})
+        cut = {"CUT": [teeth.gears[i].outline.outer]} if teeth else {}
+        n = write_dxf(path, {**cut, "MARK": [ring]}, {"MARK": cross((0.0, 0.0), mark)})
         files[path.name] = _file_entry(path, vertices=n, kind="dxf", part=gear.name)
     path = folder / "pair.dxf"
-    placed = [ring + np.asarray(g.pivot) for g, ring in zip(data.gears, rings)]
-    n = write_dxf(path, {"MARK": placed}, {"MARK": [s for g in data.gears for s in cross(g.pivot, mark)]})
+    placed = [ring + np.asarray(g.pivot) for g, ring in zip(data.gears, pitch)]
+    cut = {"CUT": [t.outline.outer + np.asarray(g.pivot) for g, t in zip(data.gears, teeth.gears)]} if teeth else {}
+    n = write_dxf(path, {**cut, "MARK": placed}, {"MARK": [s for g in data.gears for s in cross(g.pivot, mark)]})
     files[path.name] = _file_entry(path, vertices=n, kind="dxf", part="assembly")
     path = folder / "kinematics.csv"
     _write_kinematics_csv(data, path)
     files[path.name] = _file_entry(path, kind="csv", rows=len(data.kinematics.driver_angle))
     if params.output.charts:
-        for name, draw in (
-            ("pitch_curves.png", lambda p: charts.pitch_chart(data, p, rings)),
+        charts_to_draw = [
+            ("pitch_curves.png", lambda p: charts.pitch_chart(data, p, pitch)),
             ("kinematics.png", lambda p: charts.kinematics_chart(data, p)),
-        ):
+        ]
+        if teeth:
+            charts_to_draw.append(("mesh.png", lambda p: charts.mesh_chart(data, teeth, p)))
+        for name, draw in charts_to_draw:
             draw(folder / name)
             files[name] = _file_entry(folder / name, kind="png")
     files["report.json"] = {"kind": "json"}
-    write_report(data, files, folder / "report.json")
-    return BuildResult(params.name, data, files, time.perf_counter() - start)
+    write_report(data, teeth, files, folder / "report.json")
+    return BuildResult(params.name, data, teeth, files, time.perf_counter() - start)
 
 
 def build_all(

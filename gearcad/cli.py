@@ -12,6 +12,7 @@ from .build import BuildResult, build_all
 from .design import design
 from .errors import GearcadError
 from .profiles import load_profile
+from .teeth.pair import cut_pair
 
 __all__ = ["main"]
 
@@ -47,21 +48,31 @@ def _profile_paths(paths: list[Path]) -> list[Path]:
     return found
 
 
-def _summary(result_data) -> str:
-    pair = result_data.pair
-    return (
+def _summary(data, teeth=None) -> str:
+    pair = data.pair
+    text = (
         f"E = {pair.center_distance:.6f} mm, closure {pair.closure_error:.1e} rad, "
-        f"rolling {pair.rolling_residual:.1e} mm, {len(result_data.findings)} warning(s)"
+        f"rolling {pair.rolling_residual:.1e} mm"
     )
+    warnings = len(data.findings)
+    if teeth is not None:
+        z1, z2 = teeth.plan.teeth
+        text += f", {z1}/{z2} teeth m = {teeth.plan.module:.4f}, {'meshes' if teeth.mesh.meshes else 'INTERFERES'}"
+        warnings += len(teeth.findings)
+    return f"{text}, {warnings} warning(s)"
 
 
 def _progress(n: int, total: int, result: BuildResult) -> None:
-    print(f"[{n}/{total}] {result.name}: {_summary(result.data)} ({1000 * result.seconds:.0f} ms)", flush=True)
+    print(
+        f"[{n}/{total}] {result.name}: {_summary(result.data, result.teeth)} ({1000 * result.seconds:.0f} ms)",
+        flush=True,
+    )
 
 
 def _check(params) -> None:
     data = design(params)
-    print(f"{params.name}: {_summary(data)}")
+    teeth = cut_pair(data, params.teeth) if params.teeth is not None else None
+    print(f"{params.name}: {_summary(data, teeth)}")
     for g in data.gears:
         print(
             f"  {g.name}: r {g.r_min:.4f}…{g.r_max:.4f} mm, perimeter {g.perimeter:.6f} mm, "
@@ -76,7 +87,18 @@ def _check(params) -> None:
             f"  walker: i (paper's method) = {w.i_paper:.6f}, i (rolls and closes) = {w.i:.6f}"
             + (f", i (blended) = {w.i_blended:.6f}" if w.blend_width else "")
         )
-    for f in data.findings:
+    if teeth is not None:
+        for g, t in zip(data.gears, teeth.gears):
+            print(
+                f"  {g.name}: {t.teeth} teeth, thinnest tip land {t.tip_thickness.min():.3f} mm, "
+                f"{'undercut' if t.undercut else 'no undercut'}, {t.outline.vertex_count} vertices"
+            )
+        lo, hi = teeth.backlash_range
+        print(
+            f"  mesh: max overlap {teeth.mesh.max_overlap:.3g} mm² (allowed {teeth.mesh.allowed_overlap:.3g}), "
+            f"backlash {lo:.4f}…{hi:.4f} mm"
+        )
+    for f in data.findings + (teeth.findings if teeth else ()):
         print(f"  warning [{f.code}] {f.message}")
 
 

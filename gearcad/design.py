@@ -85,6 +85,8 @@ class DesignData:
     mate_shape_difference: float | None
     """min over rotations of max |r2 − r1|: 0 for a self-conjugate (identical) pair, mm;
     None when the lobes differ (the gears cannot be alike)."""
+    mate_rotation: float | None
+    """The rotation δ of that best fit: r2(θ) ≈ r1(θ + δ), rad."""
     findings: tuple[Finding, ...]
     claim: ClaimData | None = None
     walker: WalkerData | None = None
@@ -281,13 +283,15 @@ def design(params: GearPairParams, *, tol: Tolerances = DEFAULT) -> DesignData:
     if law is not None:
         walker, extra = _walker(params, law, pair, kin, tol)
         findings += extra
+    likeness = shape_difference(pair.gear1, pair.gear2) if pair.lobes[0] == pair.lobes[1] else (None, None)
     return DesignData(
         params=params,
         gears=gears,
         pair=pair,
         ratio_range=(float(k.min()), float(k.max())),
         kinematics=kin,
-        mate_shape_difference=(shape_difference(pair.gear1, pair.gear2)[0] if pair.lobes[0] == pair.lobes[1] else None),
+        mate_shape_difference=likeness[0],
+        mate_rotation=likeness[1],
         findings=tuple(findings),
         claim=claim,
         walker=walker,

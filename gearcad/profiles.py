@@ -89,6 +89,21 @@ class ClaimParams:
 
 
 @dataclass(frozen=True)
+class TeethParams:
+    """The generating rack and how many teeth (exactly one of ``module`` / ``count``)."""
+
+    module: float | None
+    count: int | None
+    pressure_angle: float = math.radians(20)  # rad
+    addendum: float = 1.0
+    dedendum: float = 1.25
+    tip_radius: float = 0.38
+    profile_shift: float = 0.0  # gear 1; gear 2 gets the opposite so the centre distance stays
+    backlash: float = 0.0  # mm, for the pair, on the pitch curves
+    clearance: float = 0.0  # mm, every toothed outline offset inwards by this
+
+
+@dataclass(frozen=True)
 class OutputParams:
     tolerance: float = 0.001
     charts: bool = True
@@ -109,6 +124,7 @@ class GearPairParams:
     driver: int  # 1 or 2
     driver_rpm: float
     claim: ClaimParams | None = None
+    teeth: TeethParams | None = None
     output: OutputParams = field(default_factory=OutputParams)
 
 
@@ -122,7 +138,18 @@ _CURVE_KEYS = {
     "samples": {"radii", "lobes"},
 }
 _TABLE_KEYS = {
-    "": {"name", "title", "gear1", "gear2", "pair", "claim", "output"},
+    "": {"name", "title", "gear1", "gear2", "pair", "claim", "teeth", "output"},
+    "teeth": {
+        "module",
+        "count",
+        "pressure_angle_deg",
+        "addendum",
+        "dedendum",
+        "tip_radius",
+        "profile_shift",
+        "backlash",
+        "clearance",
+    },
     "gear2": {"name", "lobes"},
     "pair": {"center_distance", "driver", "driver_rpm"},
     "claim": {"center_distance", "source"},
@@ -142,7 +169,7 @@ class _Reader:
     def fail(self, name: str, value: Any, allowed: str) -> None:
         self.errors.append(f"{self.key(name)} = {_show(value)}: {allowed}")
 
-    def number(self, name, default=None, *, positive=False, minimum=None, below=None, what="a number"):
+    def number(self, name, default=None, *, positive=False, minimum=None, maximum=None, below=None, what="a number"):
         value = self.data.get(name, default)
         if value is None:
             self.errors.append(f"{self.key(name)} is missing: {what} is required")
@@ -154,7 +181,11 @@ class _Reader:
             self.fail(name, value, f"must be {what} > 0")
             return math.nan
         if minimum is not None and value < minimum:
-            self.fail(name, value, f"must be {what} ≥ {minimum:g}")
+            span = f"from {minimum:g} to {maximum:g}" if maximum is not None else f"≥ {minimum:g}"
+            self.fail(name, value, f"must be {what} {span}")
+            return math.nan
+        if maximum is not None and value > maximum:
+            self.fail(name, value, f"must be {what} from {minimum:g} to {maximum:g}")
             return math.nan
         if below is not None and value >= below:
             self.fail(name, value, f"must be {what} < {below:g}")
@@ -352,6 +383,8 @@ def parse_profile(data: dict, *, default_name: str = "profile") -> GearPairParam
                 f"gear1 lobes = {lobes1}, got {gear2_lobes}"
             )
 
+    teeth = _teeth(_table(data, "teeth", errors, required=False), errors) if "teeth" in data else None
+
     to = _table(data, "output", errors, required=False)
     o = _Reader(to, "output.", errors)
     o.unknown(_TABLE_KEYS["output"])
@@ -375,7 +408,34 @@ def parse_profile(data: dict, *, default_name: str = "profile") -> GearPairParam
         driver=driver,
         driver_rpm=rpm,
         claim=claim,
+        teeth=teeth,
         output=output,
+    )
+
+
+def _teeth(t: dict, errors: list[str]) -> TeethParams | None:
+    r = _Reader(t, "teeth.", errors)
+    r.unknown(_TABLE_KEYS["teeth"])
+    if ("module" in t) == ("count" in t):
+        errors.append("[teeth]: give exactly one of teeth.module (mm) or teeth.count (teeth on gear 1)")
+        return None
+    module = r.number("module", positive=True, what="a module in mm") if "module" in t else None
+    count = r.integer("count", minimum=6) if "count" in t else None
+    angle = r.number("pressure_angle_deg", 20.0, minimum=10, maximum=35, what="an angle in degrees")
+    addendum = r.number("addendum", 1.0, positive=True, what="a coefficient (× module)")
+    dedendum = r.number("dedendum", 1.25, positive=True, what="a coefficient (× module)")
+    if math.isfinite(addendum) and math.isfinite(dedendum) and dedendum < addendum:
+        r.fail("dedendum", t.get("dedendum"), f"must be ≥ teeth.addendum = {addendum:g} (the mate's tips need room)")
+    return TeethParams(
+        module=module,
+        count=count,
+        pressure_angle=math.radians(angle) if math.isfinite(angle) else math.nan,
+        addendum=addendum,
+        dedendum=dedendum,
+        tip_radius=r.number("tip_radius", 0.38, minimum=0, what="a coefficient (× module)"),
+        profile_shift=r.number("profile_shift", 0.0, minimum=-0.8, maximum=0.8, what="a coefficient (× module)"),
+        backlash=r.number("backlash", 0.0, minimum=0, what="a length in mm"),
+        clearance=r.number("clearance", 0.0, minimum=0, what="a length in mm"),
     )
 
 

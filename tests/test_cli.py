@@ -76,18 +76,59 @@ def test_dxf_files_read_back(built):
         auditor = doc.audit()
         assert not auditor.has_errors, path
         closed = [e for e in doc.modelspace().query("LWPOLYLINE") if e.closed]
-        assert closed and all(e.dxf.layer == "MARK" for e in closed)
+        layers = {e.dxf.layer for e in closed}
+        assert layers == {"CUT", "MARK"}, path  # every profile has teeth: outline to cut, pitch curve to mark
 
 
 def test_pitch_dxf_matches_the_curve(built):
     report = json.loads((built / "elliptic_focus" / "report.json").read_text())
     doc = ezdxf.readfile(built / "elliptic_focus" / "driver.dxf")
-    ring = max((e for e in doc.modelspace().query("LWPOLYLINE") if e.closed), key=len)
+    ring = next(e for e in doc.modelspace().query("LWPOLYLINE") if e.closed and e.dxf.layer == "MARK")
     pts = np.array([p[:2] for p in ring.get_points()])
     r = np.hypot(pts[:, 0], pts[:, 1])
     phi = np.arctan2(pts[:, 1], pts[:, 0])
     np.testing.assert_allclose(r, 15.0**2 / (25 - 20 * np.cos(phi)), atol=1e-9)  # vertices on the ellipse
     assert r.max() == pytest.approx(report["gears"][0]["r_max"], abs=1e-9)
+
+
+def test_toothed_outlines_read_back_and_mesh(built):
+    for path in built.glob("*/report.json"):
+        report = json.loads(path.read_text())
+        assert report["pair"]["teeth"]["mesh"]["meshes"], path
+        for gear in report["gears"]:
+            doc = ezdxf.readfile(path.parent / f"{gear['name']}.dxf")
+            cut = [e for e in doc.modelspace().query("LWPOLYLINE") if e.dxf.layer == "CUT"]
+            assert len(cut) == 1 and cut[0].closed
+            pts = np.array([p[:2] for p in cut[0].get_points()])
+            assert len(pts) == gear["teeth"]["vertices"]
+            x, y = pts[:, 0], pts[:, 1]
+            area = 0.5 * (np.dot(x, np.roll(y, -1)) - np.dot(y, np.roll(x, -1)))
+            assert area == pytest.approx(gear["teeth"]["area"], rel=1e-9) and area > 0
+            assert gear["teeth"]["module"] * np.pi * gear["teeth"]["count"] == pytest.approx(
+                gear["perimeter"], rel=1e-9
+            )
+    focus = json.loads((built / "elliptic_focus" / "report.json").read_text())
+    assert [g["teeth"]["count"] for g in focus["gears"]] == [41, 41]
+    assert focus["pair"]["teeth"]["identical_parts"] and focus["pair"]["teeth"]["identical_deviation"] < 1e-9
+    spur = json.loads((built / "spur_pair" / "report.json").read_text())
+    assert [g["teeth"]["count"] for g in spur["gears"]] == [20, 40]
+    assert not any(g["teeth"]["undercut"] for g in spur["gears"])
+
+
+def test_corners_cannot_take_teeth(tmp_path, capsys):
+    out = tmp_path / "out"
+    args = ["build", str(ROOT / "profiles" / "walker.toml"), "--out", str(out), "--set", "gear1.blend_width_deg=0"]
+    assert main(args) == 2
+    err = capsys.readouterr().err
+    assert "corners" in err and "blend" in err and not out.exists()
+
+
+def test_identical_pair_rejects_a_count_that_cannot_mesh(tmp_path, capsys):
+    path = tmp_path / "e.toml"
+    path.write_text((ROOT / "profiles" / "elliptic_focus.toml").read_text().replace("module = 1.0", "count = 40"))
+    assert main(["check", str(path)]) == 2
+    err = capsys.readouterr().err
+    assert "teeth.count = 40" in err and "39, 41" in err
 
 
 def test_build_is_deterministic(built, tmp_path):

@@ -13,7 +13,7 @@ import numpy as np  # noqa: E402
 from ..design import DesignData  # noqa: E402
 from ..pitch.curve import TWO_PI, points  # noqa: E402
 
-__all__ = ["pitch_chart", "kinematics_chart"]
+__all__ = ["pitch_chart", "kinematics_chart", "mesh_chart"]
 
 _META = {"Software": "gearcad"}  # no creation time: the same design gives the same bytes
 
@@ -74,5 +74,41 @@ def kinematics_chart(data: DesignData, path: Path) -> None:
     a2.set_xticks(range(0, 361, 45))
     a2.grid(alpha=0.3)
     a1.set_title(f"{follower} driven by {driver} at {p.driver_rpm:g} rpm ({k.driver_speed:.4g} rad/s)")
+    fig.tight_layout()
+    _save(fig, path)
+
+
+def mesh_chart(data: DesignData, teeth, path: Path) -> None:
+    """The toothed pair in mesh at driver angle 0: whole, and the mesh zone close up."""
+    fig, (ax, zoom) = plt.subplots(1, 2, figsize=(12, 5.6), gridspec_kw={"width_ratios": [1.3, 1]})
+    colours = ("tab:blue", "tab:orange")
+    for gear, toothed, colour in zip(data.gears, teeth.gears, colours):
+        ring = np.vstack([toothed.outline.outer, toothed.outline.outer[:1]]) + np.asarray(gear.pivot)
+        for a in (ax, zoom):
+            a.fill(ring[:, 0], ring[:, 1], color=colour, alpha=0.25, lw=0)
+            a.plot(
+                ring[:, 0],
+                ring[:, 1],
+                color=colour,
+                lw=0.7,
+                label=f"{gear.name}: {toothed.teeth} teeth" if a is ax else None,
+            )
+            a.plot(*gear.pivot, "+", color=colour, ms=9)
+    contact = data.gears[0].curve.r(np.array([0.0]))[0]
+    m = teeth.plan.module
+    zoom.set_xlim(contact - 5 * m, contact + 5 * m)
+    zoom.set_ylim(-5 * m, 5 * m)
+    for a in (ax, zoom):
+        a.set_aspect("equal")
+        a.grid(alpha=0.3)
+    mesh = teeth.mesh
+    ax.set_title(f"module {m:.4f} mm, E = {data.pair.center_distance:.4f} mm")
+    ax.legend(loc="upper right", fontsize=8)
+    zoom.set_title(
+        f"mesh zone: max overlap {mesh.max_overlap:.2g} mm² over {mesh.positions} positions "
+        f"({'meshes' if mesh.meshes else 'INTERFERES'})",
+        fontsize=9,
+    )
+    fig.suptitle(data.params.title or data.params.name)
     fig.tight_layout()
     _save(fig, path)

@@ -45,7 +45,29 @@ def _finite(value):
     return value
 
 
-def report(data: DesignData, files: dict[str, dict]) -> dict:
+def _teeth(t, i: int) -> dict:
+    gear, plan = t.gears[i], t.plan
+    folded = gear.undercut_depth > 0
+    return {
+        "count": gear.teeth,
+        "module": plan.module,
+        "requested_module": plan.requested_module,
+        "pressure_angle": gear.rack.params.pressure_angle,
+        "profile_shift": gear.rack.params.profile_shift,
+        "undercut": gear.undercut,
+        "undercut_flanks": int(np.count_nonzero(folded)),
+        "undercut_depth": float(max(np.max(gear.undercut_depth), 0.0)),
+        "undercut_phi": [float(a) for a in gear.flank_phi[folded]],
+        "trimmed_spaces": int(np.count_nonzero(gear.space_loops)),
+        "min_tip_thickness": float(np.min(gear.tip_thickness)),
+        "pointed_teeth": int(len(gear.pointed)),
+        "module_limit_undercut": t.module_limits[i],
+        "vertices": gear.outline.vertex_count,
+        "area": gear.outline.area,
+    }
+
+
+def report(data: DesignData, teeth, files: dict[str, dict]) -> dict:
     """The report as a JSON-ready dict (see README, "report.json")."""
     p, pair, kin = data.params, data.pair, data.kinematics
     n1, n2 = pair.lobes
@@ -76,9 +98,30 @@ def report(data: DesignData, files: dict[str, dict]) -> dict:
             "follower_acceleration_min": float(np.min(kin.acceleration)),
             "follower_acceleration_max": float(np.max(kin.acceleration)),
         },
-        "warnings": [f.as_dict() for f in data.findings],
+        "warnings": [f.as_dict() for f in data.findings + (teeth.findings if teeth else ())],
         "files": files,
     }
+    if teeth is not None:
+        for i in range(2):
+            out["gears"][i]["teeth"] = _teeth(teeth, i)
+        mesh = teeth.mesh
+        out["pair"]["teeth"] = {
+            "identical_parts": teeth.plan.identical,
+            "identical_deviation": teeth.identical_deviation,
+            "backlash_design": data.params.teeth.backlash,
+            "clearance": data.params.teeth.clearance,
+            "backlash_min": teeth.backlash_range[0],
+            "backlash_max": teeth.backlash_range[1],
+            "mesh": {
+                "meshes": mesh.meshes,
+                "positions": mesh.positions,
+                "max_overlap": mesh.max_overlap,
+                "allowed_overlap": mesh.allowed_overlap,
+                "worst_phi": mesh.worst_phi,
+                "nudge": mesh.nudge,
+                "nudged_min_overlap": mesh.nudged_min_overlap,
+            },
+        }
     if data.claim is not None:
         c = data.claim
         out["claim"] = {
@@ -94,5 +137,5 @@ def report(data: DesignData, files: dict[str, dict]) -> dict:
     return _finite(out)
 
 
-def write_report(data: DesignData, files: dict[str, dict], path: Path) -> None:
-    path.write_text(json.dumps(report(data, files), indent=2, ensure_ascii=False) + "\n", encoding="utf-8")
+def write_report(data: DesignData, teeth, files: dict[str, dict], path: Path) -> None:
+    path.write_text(json.dumps(report(data, teeth, files), indent=2, ensure_ascii=False) + "\n", encoding="utf-8")

@@ -50,8 +50,8 @@ class ToothedGear:
     """(teeth,) chord across each tooth's tip land, mm; ≤ 0 where the flanks cross below it."""
     tooth_phi: np.ndarray
     """(teeth,) polar angle of each tooth centre, rad."""
-    loops_removed: int
-    """How many undercut loops were trimmed from the outline."""
+    space_loops: np.ndarray
+    """(teeth,) how many loops the rack's path made in each tooth space (trimmed away)."""
     space_root: np.ndarray
     """(teeth,) index in the outline ring of the vertex nearest each space's root centre."""
     under_root: np.ndarray
@@ -59,7 +59,7 @@ class ToothedGear:
 
     @property
     def undercut(self) -> bool:
-        return self.loops_removed > 0 or bool(np.any(self.undercut_depth > 0))
+        return bool(np.any(self.space_loops > 0) or np.any(self.undercut_depth > 0))
 
     @property
     def pointed(self) -> np.ndarray:
@@ -96,6 +96,32 @@ class _Generator:
     def tip(self, ids, s):
         c, _, n = self.f.frame(s)
         return c + self.k.v_tip * n
+
+    def meet_tip(self, ids, side, iterations: int = 12):
+        """(v, s) where each flank crosses the tip curve: Newton with the envelope's exact
+        derivative dP/dv = side·(tan α + vκ/(sin α cos α))·T + (1 + vκ/sin²α)·N and
+        dQ/ds = (1 + h·κ)·T for the tip curve Q = C + h·N."""
+        k = self.k
+        sa, ca = math.sin(k.params.pressure_angle), math.cos(k.params.pressure_angle)
+        v = np.full(len(ids), k.v_tip)
+        s = self.U[ids] + side * (k.half_width + k.v_tip * k.tan_a)
+        for _ in range(iterations):
+            u = self.U[ids] + side * (k.half_width + v * k.tan_a)
+            star = u + side * v * k.cot_a
+            c, t, n = self.f.frame(star)
+            p = c + (u - star)[:, None] * t + v[:, None] * n
+            kappa = self.f.curvature(star)
+            dp = side * (k.tan_a + v * kappa / (sa * ca))[:, None] * t + (1 + v * kappa / sa**2)[:, None] * n
+            cq, tq, nq = self.f.frame(s)
+            dq = (1 + k.v_tip * self.f.curvature(s))[:, None] * tq
+            f = p - (cq + k.v_tip * nq)
+            det = dp[:, 0] * (-dq[:, 1]) - dp[:, 1] * (-dq[:, 0])
+            dv = (f[:, 0] * (-dq[:, 1]) - f[:, 1] * (-dq[:, 0])) / det
+            ds = (dp[:, 0] * f[:, 1] - dp[:, 1] * f[:, 0]) / det
+            v, s = v - dv, s - ds
+            if np.max(np.abs(dv) + np.abs(ds)) < 1e-12:
+                break
+        return v, s
 
 
 def _newton2(residual, x, y, *, h=1e-7, iterations=30):
@@ -135,7 +161,7 @@ def remove_loops(points: np.ndarray) -> tuple[np.ndarray, int]:
         first = np.nonzero(hit)[0]
         k = first[np.lexsort((-j[first], i[first]))[0]]  # earliest segment, outermost loop
         cross = a[i[k]] + t[k] * d[i[k]]
-        points = np.vstack([points[: i[k] + 1], cross, points[j[k] + 1:]])
+        points = np.vstack([points[: i[k] + 1], cross, points[j[k] + 1 :]])
         removed += 1
     return points, removed
 
@@ -154,17 +180,9 @@ def cut_teeth(frame: ArcFrame, rack: Rack, teeth: int, phase: float, *, toleranc
     nxt = (ids + 1) % teeth
     wrap = np.where(nxt == 0, frame.perimeter, 0.0)  # space k+1 seen from tooth k, unwrapped
 
-    # Where each tooth's flanks meet its tip curve (Newton on flank(v) = tip(s)).
-    def meet_tip(side, space):
-        def residual(v, s):
-            return gen.flank(space, v, side) - gen.tip(space, s)
-
-        v0 = np.full(teeth, rack.v_tip)
-        s0 = centres[space] + side * (rack.half_width + rack.v_tip * rack.tan_a)
-        return _newton2(residual, v0, s0)
-
-    v_start, s_start = meet_tip(+1, ids)  # tooth k begins on space k's right flank
-    v_end, s_end = meet_tip(-1, nxt)  # and ends on space k+1's left flank
+    # Where each tooth's flanks meet its tip curve.
+    v_start, s_start = gen.meet_tip(ids, +1)  # tooth k begins on space k's right flank
+    v_end, s_end = gen.meet_tip(nxt, -1)  # and ends on space k+1's left flank
     s_end = s_end + wrap
     a_pt, b_pt = gen.tip(ids, s_start), gen.tip(ids, s_end)
     thickness = np.hypot(*(b_pt - a_pt).T) * np.sign(s_end - s_start)
@@ -194,11 +212,11 @@ def cut_teeth(frame: ArcFrame, rack: Rack, teeth: int, phase: float, *, toleranc
     tip_of = dict(zip(np.nonzero(land)[0], tips))
 
     root_centre = gen.root(ids, centres)
-    parts, loops, start, space_root = [], 0, 0, np.empty(teeth, dtype=int)
+    parts, start, space_root = [], 0, np.empty(teeth, dtype=int)
+    loops = np.zeros(teeth, dtype=int)
     for k in range(teeth):
         space = np.vstack([left[k], lfil[k][1:], root[k][1:], rfil[k][1:], right[k][1:]])
-        space, n = remove_loops(space)
-        loops += n
+        space, loops[k] = remove_loops(space)
         parts.append(space[:-1])
         space_root[k] = start + int(np.argmin(np.hypot(*(space[:-1] - root_centre[k]).T)))
         start += len(space) - 1
@@ -210,8 +228,13 @@ def cut_teeth(frame: ArcFrame, rack: Rack, teeth: int, phase: float, *, toleranc
 
     # Undercut by the fold criterion at the lowest straight-flank point of every flank.
     fold = math.sin(rack.params.pressure_angle) ** 2
-    s_low = np.stack([centres - rack.half_width - rack.v_low * (rack.tan_a + rack.cot_a),
-                      centres + rack.half_width + rack.v_low * (rack.tan_a + rack.cot_a)], axis=1).ravel()
+    s_low = np.stack(
+        [
+            centres - rack.half_width - rack.v_low * (rack.tan_a + rack.cot_a),
+            centres + rack.half_width + rack.v_low * (rack.tan_a + rack.cot_a),
+        ],
+        axis=1,
+    ).ravel()
     kappa = frame.curvature(s_low)
     depth = np.where(kappa > 0, -rack.v_low - fold / np.where(kappa > 0, kappa, 1.0), -np.inf)
     flank_s = np.stack([centres - rack.half_width, centres + rack.half_width], axis=1).ravel()
@@ -224,7 +247,7 @@ def cut_teeth(frame: ArcFrame, rack: Rack, teeth: int, phase: float, *, toleranc
         flank_phi=frame.angle(flank_s) % (2 * np.pi),
         tip_thickness=thickness,
         tooth_phi=frame.angle(centres + p / 2) % (2 * np.pi),
-        loops_removed=loops,
+        space_loops=loops,
         space_root=space_root,
         under_root=gen._point(centres, np.full(teeth, rack.v_root - rack.params.module), centres),
     )

@@ -53,7 +53,7 @@ def _windows(gear: ToothedGear) -> list[np.ndarray]:
     for k in range(z):
         a = gear.space_root[(k - _REACH) % z]
         b = gear.space_root[(k + _REACH) % z]
-        run = ring[a:b + 1] if b > a else np.vstack([ring[a:], ring[:b + 1]])
+        run = ring[a : b + 1] if b > a else np.vstack([ring[a:], ring[: b + 1]])
         if len(run) > n // 2 and z > 2 * _REACH + 1:  # wrapped the wrong way round: cannot happen
             raise ValueError("mesh window spans half the gear")
         inner = gear.under_root[[(k + j) % z for j in range(_REACH, -_REACH - 1, -1)]]
@@ -67,46 +67,86 @@ def _space_at(frame: ArcFrame, gear: ToothedGear, phi: np.ndarray) -> np.ndarray
     return np.round((s - gear.phase) / gear.rack.pitch).astype(int) % gear.teeth
 
 
-def mesh_check(
-    pair: PairData, gears: tuple[ToothedGear, ToothedGear], frames: tuple[ArcFrame, ArcFrame], *,
-    tolerance: float, backlash: float = 0.0, positions: int = 360,
-) -> MeshData:
-    """Overlap of the pair's outlines at ``positions`` driver angles over one full cycle.
-
-    Everything is measured in gear 1's frame: gear 1 turned by −φ1 and gear 2 by +φ2 about
-    (E, 0) is, relative to gear 1, gear 2 turned by φ1 + φ2 about the origin after moving it.
-    """
+def _overlap_function(pair: PairData, gears, frames, phi1: np.ndarray):
+    """overlap(turn) -> (positions,) area for gear 2 turned ``turn`` (rad, scalar or per
+    position) beyond its assembled angle at each driver angle φ1, in gear 1's frame: gear 1
+    turned by −φ1 and gear 2 by +φ2 about (E, 0) is, relative to gear 1, gear 2 turned by φ2,
+    moved to (E, 0) and turned back by φ1."""
     if min(g.teeth for g in gears) <= 2 * _REACH + 1:
         raise DesignError("the mesh check needs more than 5 teeth on each gear")
     e = pair.center_distance
-    m = gears[0].rack.params.module
-    phi1 = np.linspace(0.0, pair.cycle, positions, endpoint=False)
     phi2 = pair.angle_map(phi1)
     w1 = np.array([shapely.Polygon(w) for w in _windows(gears[0])], dtype=object)
     w2 = _windows(gears[1])
     g1 = w1[_space_at(frames[0], gears[0], phi1 % (2 * np.pi))]
     pick = _space_at(frames[1], gears[1], (np.pi - phi2) % (2 * np.pi))
-    sizes = np.array([len(w2[k]) for k in pick])
     coords = np.vstack([w2[k] for k in pick])
-    which = np.repeat(np.arange(positions), sizes)
-    # tolerance-level overlap: each of the two flanks in contact may stray by the tolerance
-    # over its working depth (ha + hf ≈ 2.25 m)
-    allowed = 2 * tolerance * 2.25 * m
-    nudge = (backlash + 40 * tolerance) / float(np.min(e - pair.gear1.r(phi1)))
+    which = np.repeat(np.arange(len(phi1)), [len(w2[k]) for k in pick])
+    shapely.prepare(g1)
 
     def overlap(turn):
-        a2 = (phi2 + turn)[which]
+        a2 = (phi2 + turn * np.ones_like(phi2))[which]
         x = np.cos(a2) * coords[:, 0] - np.sin(a2) * coords[:, 1] + e
         y = np.sin(a2) * coords[:, 0] + np.cos(a2) * coords[:, 1]
-        a1 = phi1[which]  # undo gear 1's turn of −φ1
+        a1 = phi1[which]
         xy = np.column_stack([np.cos(a1) * x - np.sin(a1) * y, np.sin(a1) * x + np.cos(a1) * y])
         placed = shapely.polygons(shapely.linearrings(xy, indices=which))
         return shapely.area(shapely.intersection(g1, placed))
 
-    assembled = overlap(0.0)
-    nudged = np.maximum(overlap(nudge), overlap(-nudge))
+    return overlap
+
+
+def mesh_check(
+    pair: PairData,
+    gears: tuple[ToothedGear, ToothedGear],
+    frames: tuple[ArcFrame, ArcFrame],
+    *,
+    tolerance: float,
+    play: float = 0.0,
+    positions: int = 360,
+) -> MeshData:
+    """Overlap of the pair's outlines at ``positions`` driver angles over one full cycle, and
+    at every fourth of them with gear 2 nudged either way by more than the designed ``play``
+    (mm on the pitch curve)."""
+    m = gears[0].rack.params.module
+    phi1 = np.linspace(0.0, pair.cycle, positions, endpoint=False)
+    # tolerance-level overlap: each of the two flanks in contact may stray by the tolerance
+    # over its working depth (ha + hf ≈ 2.25 m)
+    allowed = 2 * tolerance * 2.25 * m
+    # a nudge whose overlap dwarfs the allowance (~0.44·δ/tol times it), capped for coarse tolerances
+    nudge = (play + min(200 * tolerance, 0.5 * m)) / float(np.min(pair.center_distance - pair.gear1.r(phi1)))
+    assembled = _overlap_function(pair, gears, frames, phi1)(0.0)
+    nudged_at = _overlap_function(pair, gears, frames, phi1[::4])
+    nudged = np.maximum(nudged_at(nudge), nudged_at(-nudge))
     worst = int(np.argmax(assembled))
     return MeshData(
-        positions=positions, max_overlap=float(assembled[worst]), allowed_overlap=allowed,
-        nudge=float(nudge), nudged_min_overlap=float(np.min(nudged)), worst_phi=float(phi1[worst]),
+        positions=positions,
+        max_overlap=float(assembled[worst]),
+        allowed_overlap=allowed,
+        nudge=float(nudge),
+        nudged_min_overlap=float(np.min(nudged)),
+        worst_phi=float(phi1[worst]),
     )
+
+
+def backlash_range(
+    pair: PairData, gears, frames, *, limit: float, positions: int = 24, steps: int = 8
+) -> tuple[float, float]:
+    """Smallest and largest free play of the pair, measured on gear 2's pitch curve (mm).
+
+    At each of ``positions`` driver angles, gear 2 is turned each way until it first overlaps
+    gear 1 (bisection up to ``limit`` rad); the two free turns add up to the play.
+    """
+    phi1 = np.linspace(0.0, pair.cycle, positions, endpoint=False)
+    overlap = _overlap_function(pair, gears, frames, phi1)
+    touching = 1e-9 * gears[0].rack.pitch ** 2
+    total = np.zeros(positions)
+    for sign in (1.0, -1.0):
+        lo, hi = np.zeros(positions), np.full(positions, limit)
+        for _ in range(steps):
+            mid = 0.5 * (lo + hi)
+            hit = overlap(sign * mid) > touching
+            hi, lo = np.where(hit, mid, hi), np.where(hit, lo, mid)
+        total += lo
+    arc = total * (pair.center_distance - pair.gear1.r(phi1))
+    return float(arc.min()), float(arc.max())

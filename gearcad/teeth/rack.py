@@ -75,9 +75,17 @@ class Rack:
                 f"at most {max(limit, 0):.3f} fits"
             )
         return cls(
-            params=p, pitch=pitch, half_width=w0, tan_a=math.tan(a), cot_a=1 / math.tan(a),
-            v_tip=(p.profile_shift + p.addendum) * m, v_root=v_root, v_low=v_c - rho * math.sin(a),
-            fillet_u=max(u_c, 0.0), fillet_v=v_c, radius=rho,
+            params=p,
+            pitch=pitch,
+            half_width=w0,
+            tan_a=math.tan(a),
+            cot_a=1 / math.tan(a),
+            v_tip=(p.profile_shift + p.addendum) * m,
+            v_root=v_root,
+            v_low=v_c - rho * math.sin(a),
+            fillet_u=max(u_c, 0.0),
+            fillet_v=v_c,
+            radius=rho,
         )
 
     @property
@@ -86,21 +94,26 @@ class Rack:
         return -self.params.pressure_angle
 
 
-def rack_polygon(rack: Rack, teeth: int, *, samples: int = 12, top: float | None = None) -> np.ndarray:
-    """One rack as a closed (n, 2) polygon in (u, v), teeth centred at u = k·p, k = 0…teeth−1,
-    body up to ``top`` (default 3 m above the rolling line): for drawings and the boolean
-    reference method."""
-    top = 3 * rack.params.module if top is None else top
+def rack_polygon(rack: Rack, teeth: int, *, samples: int = 12) -> np.ndarray:
+    """One rack as a closed (n, 2) polygon in (u, v), teeth centred at u = k·p, k = 0…teeth−1:
+    flanks up to the rack's root land a quarter module above the gear's tip, a body above
+    that.  For drawings and the boolean reference method."""
+    m = rack.params.module
+    land = rack.v_tip + 0.25 * m
     beta = np.linspace(-math.pi / 2, rack.fillet_start, samples)
     pts = []
     for k in range(teeth):
         c = k * rack.pitch
-        left = [(c - rack.half_width - top * rack.tan_a, top)]
-        left += list(zip(c - rack.fillet_u - rack.radius * np.cos(beta[::-1]),
-                         rack.fillet_v + rack.radius * np.sin(beta[::-1])))
-        right = list(zip(c + rack.fillet_u + rack.radius * np.cos(beta),
-                         rack.fillet_v + rack.radius * np.sin(beta)))
-        right += [(c + rack.half_width + top * rack.tan_a, top)]
-        pts += left + right
-    pts += [(pts[-1][0], top + rack.params.module), (pts[0][0], top + rack.params.module)]
+        pts.append((c - rack.half_width - land * rack.tan_a, land))
+        pts += list(
+            zip(c - rack.fillet_u - rack.radius * np.cos(beta[::-1]), rack.fillet_v + rack.radius * np.sin(beta[::-1]))
+        )
+        pts += list(zip(c + rack.fillet_u + rack.radius * np.cos(beta), rack.fillet_v + rack.radius * np.sin(beta)))
+        pts.append((c + rack.half_width + land * rack.tan_a, land))
+    pts += [
+        (pts[-1][0] + rack.pitch / 2, land),
+        (pts[-1][0] + rack.pitch / 2, land + 2 * m),
+        (pts[0][0] - rack.pitch / 2, land + 2 * m),
+        (pts[0][0] - rack.pitch / 2, land),
+    ]
     return np.array(pts)

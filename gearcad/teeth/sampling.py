@@ -7,7 +7,7 @@ rest.  The result has no more vertices than the tolerance needs, wherever the cu
 
 from __future__ import annotations
 
-from typing import Callable
+from collections.abc import Callable
 
 import numpy as np
 
@@ -65,4 +65,4 @@ def sample_curves(func: Curves, t0, t1, tolerance: float, *, start: int = 4, max
     ids, p = ids[order], p[order]
     ends = func(np.arange(n), t1)
     cuts = np.searchsorted(ids, np.arange(n + 1))
-    return [np.vstack([p[cuts[i]:cuts[i + 1]], ends[i:i + 1]]) for i in range(n)]
+    return [np.vstack([p[cuts[i] : cuts[i + 1]], ends[i : i + 1]]) for i in range(n)]

@@ -1,0 +1,180 @@
+"""The teeth stage for a pair: plan, cut both gears, prove the mesh, measure the play."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, replace
+
+import numpy as np
+import shapely
+from scipy.spatial import cKDTree
+
+from ..design import DesignData
+from ..diagnostics import Finding, finding
+from ..errors import DesignError
+from ..outline import Outline, rotate
+from ..profiles import TeethParams
+from ..tolerances import DEFAULT, Tolerances
+from .frame import ArcFrame, arc_frame
+from .gear import ToothedGear, cut_teeth
+from .mesh import MeshData, backlash_range, mesh_check
+from .plan import ToothPlan, plan_teeth
+from .rack import Rack, RackParams
+
+__all__ = ["ToothedPairData", "cut_pair", "undercut_free_module"]
+
+
+@dataclass(frozen=True)
+class ToothedPairData:
+    plan: ToothPlan
+    gears: tuple[ToothedGear, ToothedGear]
+    frames: tuple[ArcFrame, ArcFrame]
+    mesh: MeshData
+    backlash_range: tuple[float, float]
+    """Smallest and largest measured play on the pitch curve over a cycle, mm."""
+    module_limits: tuple[float, float]
+    """Largest module that cuts each gear without undercut (∞ if no convex stretch)."""
+    identical_deviation: float | None
+    """Largest distance between gear 2 and gear 1 turned onto it, mm (identical pairs)."""
+    findings: tuple[Finding, ...]
+
+
+def undercut_free_module(min_curvature_radius: float, rack: RackParams) -> float:
+    """m such that the straight rack flank never reaches below its fold point ρ·sin²α.
+
+    The flank ends (m·(h_f − ρ_f(1 − sin α) − x)) below the pitch curve; the envelope folds at
+    ρ_c·sin²α, so m ≤ ρ_c·sin²α/(h_f − ρ_f(1 − sin α) − x).  For a circle ρ_c = z·m/2 gives the
+    textbook z ≥ 2/sin²α ≈ 17.1 at 20°.
+    """
+    depth = rack.dedendum - rack.tip_radius * (1 - math.sin(rack.pressure_angle)) - rack.profile_shift
+    if depth <= 0 or not math.isfinite(min_curvature_radius):
+        return math.inf
+    return min_curvature_radius * math.sin(rack.pressure_angle) ** 2 / depth
+
+
+def _with_clearance(gear: ToothedGear, clearance: float, tolerance: float) -> ToothedGear:
+    """The outline offset inwards by ``clearance`` (round joins sampled from the tolerance)."""
+    if clearance <= 0:
+        return gear
+    segments = max(2, int(math.ceil(math.pi / 2 / math.acos(max(1 - tolerance / clearance, 0.0)))))
+    shrunk = shapely.Polygon(gear.outline.outer).buffer(-clearance, join_style="round", quad_segs=segments)
+    if shrunk.geom_type != "Polygon" or shrunk.is_empty:
+        raise DesignError(f"teeth.clearance = {clearance:g}: the offset teeth fall apart; use a smaller clearance")
+    ring = np.asarray(shapely.geometry.polygon.orient(shrunk, 1.0).exterior.coords)[:-1]
+    roots = gear.outline.outer[gear.space_root]
+    nearest = np.argmin(np.hypot(ring[None, :, 0] - roots[:, None, 0], ring[None, :, 1] - roots[:, None, 1]), axis=1)
+    return replace(gear, outline=Outline((ring,)), space_root=nearest)
+
+
+def _rack(params: TeethParams, module: float, shift: float) -> Rack:
+    return Rack.from_params(
+        RackParams(
+            module=module,
+            pressure_angle=params.pressure_angle,
+            addendum=params.addendum,
+            dedendum=params.dedendum,
+            tip_radius=params.tip_radius,
+            profile_shift=shift,
+            thinning=params.backlash / 2,
+        )
+    )
+
+
+def cut_pair(data: DesignData, params: TeethParams, *, tol: Tolerances = DEFAULT) -> ToothedPairData:
+    """Teeth on both gears of a designed pair, proven to mesh."""
+    for gear in data.gears:
+        if gear.shape.corners:
+            where = ", ".join(f"{math.degrees(c.phi):.2f}°" for c in gear.shape.corners)
+            raise DesignError(
+                f"{gear.name} has corners (at φ = {where}): a rack cannot roll round a corner, so "
+                "teeth need a smooth pitch curve — blend the corners (e.g. gear1.blend_width_deg)"
+            )
+    pair = data.pair
+    frames = (arc_frame(pair.gear1, tol=tol), arc_frame(pair.gear2, tol=tol))
+    identical = (
+        data.mate_rotation if data.mate_shape_difference is not None and data.mate_shape_difference < 1e-6 else None
+    )
+    plan = plan_teeth(
+        frames[0], frames[1], pair.lobes, module=params.module, count=params.count, identical_rotation=identical
+    )
+    shifts = (params.profile_shift, -params.profile_shift)
+    gears = tuple(
+        _with_clearance(
+            cut_teeth(frame, _rack(params, plan.module, shift), z, phase, tolerance=tol.outline_mm),
+            params.clearance,
+            tol.outline_mm,
+        )
+        for frame, z, phase, shift in zip(frames, plan.teeth, plan.phases, shifts)
+    )
+    play = params.backlash + 4 * params.clearance / math.cos(params.pressure_angle)
+    mesh = mesh_check(pair, gears, frames, tolerance=tol.outline_mm, play=play)
+    play_range = backlash_range(pair, gears, frames, limit=2 * mesh.nudge)
+    limits = tuple(
+        undercut_free_module(g.shape.min_curvature_radius, gears[i].rack.params) for i, g in enumerate(data.gears)
+    )
+    deviation = None
+    if plan.identical:
+        # both gears are cut by the same code from the same curve, so their vertices coincide
+        # when they are the same part: the largest vertex-to-nearest-vertex distance says so
+        turned = rotate(gears[0].outline.outer, -identical)
+        deviation = float(np.max(cKDTree(turned).query(gears[1].outline.outer)[0]))
+    return ToothedPairData(
+        plan=plan,
+        gears=gears,
+        frames=frames,
+        mesh=mesh,
+        backlash_range=play_range,
+        module_limits=limits,
+        identical_deviation=deviation,
+        findings=tuple(_findings(data, plan, gears, mesh, limits)),
+    )
+
+
+def _findings(data, plan, gears, mesh, limits) -> list[Finding]:
+    out = []
+    for gear_data, gear, limit in zip(data.gears, gears, limits):
+        name = gear_data.name
+        if gear.undercut:
+            folded = gear.undercut_depth > 0
+            parts = []
+            if np.any(folded):
+                k = int(np.argmax(gear.undercut_depth))
+                parts.append(
+                    f"{int(np.count_nonzero(folded))} of {2 * gear.teeth} flanks reach up to "
+                    f"{gear.undercut_depth[k]:.3f} mm below their fold point (worst at φ = "
+                    f"{math.degrees(gear.flank_phi[k]):.1f}°; no undercut needs a module ≤ {limit:.3f} mm)"
+                )
+            looped = np.nonzero(gear.space_loops)[0]
+            if len(looped):
+                where = ", ".join(f"{math.degrees(a):.1f}°" for a in gear.tooth_phi[looped[:4]] - np.pi / gear.teeth)
+                parts.append(
+                    f"the rack's path crosses itself in {len(looped)} tooth spaces (near φ = {where}"
+                    f"{', …' if len(looped) > 4 else ''}); the outline keeps what the rack leaves"
+                )
+            out.append(finding("undercut", f"{name}: " + "; ".join(parts), name))
+        thinnest = float(np.min(gear.tip_thickness))
+        if thinnest < 0.2 * plan.module:
+            pointed = len(gear.pointed)
+            out.append(
+                finding(
+                    "pointed",
+                    f"{name}: {pointed} pointed teeth, thinnest tip land {max(thinnest, 0):.3f} mm "
+                    f"(under 0.2·m = {0.2 * plan.module:.3f} mm); use a smaller addendum, a profile shift "
+                    "or more teeth"
+                    if pointed
+                    else f"{name}: thinnest tip land {thinnest:.3f} mm, under 0.2·m = {0.2 * plan.module:.3f} mm",
+                    name,
+                )
+            )
+    if not mesh.meshes:
+        out.append(
+            finding(
+                "interference",
+                f"the toothed pair overlaps by up to {mesh.max_overlap:.4g} mm² in mesh (allowed "
+                f"{mesh.allowed_overlap:.4g} mm², at driver angle {math.degrees(mesh.worst_phi):.1f}°)"
+                if mesh.max_overlap > mesh.allowed_overlap
+                else f"the nudged mesh test found a position without contact ({mesh.nudged_min_overlap:.3g} mm²)",
+                "pair",
+            )
+        )
+    return out

@@ -1,0 +1,226 @@
+"""Teeth: the rack envelope against the involute, the undercut limit, a boolean reference
+method, tooth planning, and the mesh proof (which must be able to fail)."""
+
+import math
+
+import numpy as np
+import pytest
+import shapely
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from gearcad.errors import DesignError
+from gearcad.outline import ring_area
+from gearcad.pitch import shapes
+from gearcad.pitch.pair import conjugate_pair
+from gearcad.teeth.frame import arc_frame
+from gearcad.teeth.gear import cut_teeth, remove_loops
+from gearcad.teeth.mesh import mesh_check
+from gearcad.teeth.pair import undercut_free_module
+from gearcad.teeth.plan import plan_teeth
+from gearcad.teeth.rack import Rack, RackParams
+from gearcad.teeth.reference import rack_cut
+
+ALPHA = math.radians(20)
+TOL = 0.001
+
+
+def _involute(t):
+    return np.tan(t) - t
+
+
+def spur(z, m=2.0, **rack):
+    frame = arc_frame(shapes.circle(z * m / 2))
+    r = Rack.from_params(RackParams(module=m, **rack))
+    return cut_teeth(frame, r, z, r.pitch / 2, tolerance=TOL), frame
+
+
+@pytest.mark.parametrize("z", [18, 20, 40, 97])
+def test_circular_flanks_are_involutes_of_the_base_circle(z):
+    """Every flank vertex between the form radius and the tip lies on the involute of
+    r·cos α, and so does the curve between vertices (chords within the tolerance)."""
+    m = 2.0
+    gear, _ = spur(z, m)
+    ring = gear.outline.outer
+    r = z * m / 2
+    rb = r * math.cos(ALPHA)
+    rad = np.hypot(ring[:, 0], ring[:, 1])
+    v_low = gear.rack.v_low
+    r_form = math.hypot(r + v_low, v_low / math.tan(ALPHA))  # where the straight flank ends
+    flank = (rad > r_form + 1e-6) & (rad < r + m - 1e-6)
+    polar = np.arctan2(ring[:, 1], ring[:, 0])
+    # tooth centres at 2πk/z; each flank is ±(π/2z + inv α − inv α_R) from its tooth centre
+    roll = _involute(np.arccos(np.clip(rb / rad, -1, 1)))
+    half = math.pi / (2 * z) + _involute(ALPHA) - roll
+    pitch_angle = 2 * math.pi / z
+    offset = (polar + pitch_angle / 2) % pitch_angle - pitch_angle / 2  # from the nearest tooth centre
+    deviation = rb * np.abs(np.abs(offset) - half)  # normal distance to the involute
+    assert np.count_nonzero(flank) > 4 * z
+    assert deviation[flank].max() < 1e-9
+    # between vertices: chord sag of an involute flank is bounded by the sampler's tolerance
+    tip_radius = np.max(rad)
+    assert tip_radius == pytest.approx(r + m, abs=1e-9)
+    assert np.min(rad) == pytest.approx(r - 1.25 * m, abs=1e-9)
+
+
+def test_tip_land_of_a_spur_gear_matches_the_textbook():
+    z, m = 20, 2.0
+    gear, _ = spur(z, m)
+    ra, r = z * m / 2 + m, z * m / 2
+    alpha_a = math.acos(r * math.cos(ALPHA) / ra)
+    half_angle = math.pi / (2 * z) + _involute(ALPHA) - _involute(alpha_a)
+    chord = 2 * ra * math.sin(half_angle)
+    np.testing.assert_allclose(gear.tip_thickness, chord, rtol=1e-9)
+
+
+def test_undercut_free_limit_of_a_20_degree_rack():
+    """Closed form: no undercut iff r·sin²α ≥ (h_f − ρ_f(1 − sin α))·m, i.e. z ≥ 17.097."""
+    z_min = 2 * (1.25 - 0.38 * (1 - math.sin(ALPHA))) / math.sin(ALPHA) ** 2
+    assert z_min == pytest.approx(17.097, abs=1e-3)
+    for z in (8, 12, 16):
+        gear, _ = spur(z)
+        assert gear.undercut and np.all(gear.undercut_depth > 0)
+    for z in (18, 25, 60):
+        gear, _ = spur(z)
+        assert not gear.undercut and np.all(gear.space_loops == 0)
+    gear, _ = spur(17)  # just below the limit: a sliver of undercut
+    assert 0 < gear.undercut_depth.max() < 0.01 * 2.0
+    m_limit = undercut_free_module(17 * 2.0 / 2, RackParams(module=2.0))
+    assert m_limit * z_min / 2 == pytest.approx(17 * 2.0 / 2, rel=1e-12)
+
+
+@pytest.mark.parametrize("z", [12, 20])
+def test_envelope_matches_boolean_rack_cut_reference(z):
+    """Independent method: blank minus 48 rack copies per pitch, what a rack cutter does —
+    including the undercut at z = 12, which the envelope trims by loop removal."""
+    gear, frame = spur(z)
+    reference = rack_cut(frame, gear.rack, z, gear.phase, steps_per_pitch=48)
+    distance = shapely.hausdorff_distance(reference.exterior, shapely.Polygon(gear.outline.outer).exterior)
+    assert distance < 0.002
+
+
+def test_elliptic_gear_against_the_reference_and_its_own_perimeter():
+    frame = arc_frame(shapes.ellipse_focus(25, 15))
+    z = 41
+    rack = Rack.from_params(RackParams(module=frame.perimeter / (z * math.pi)))
+    gear = cut_teeth(frame, rack, z, rack.pitch / 2, tolerance=TOL)
+    reference = rack_cut(frame, rack, z, gear.phase, steps_per_pitch=48)
+    assert shapely.hausdorff_distance(reference.exterior, shapely.Polygon(gear.outline.outer).exterior) < 0.002
+    with pytest.raises(DesignError, match="is not 40"):
+        cut_teeth(frame, rack, 40, 0.0, tolerance=TOL)
+
+
+def test_vertices_fall_as_the_tolerance_loosens():
+    frame = arc_frame(shapes.ellipse_focus(25, 15))
+    rack = Rack.from_params(RackParams(module=frame.perimeter / (41 * math.pi)))
+    counts = [cut_teeth(frame, rack, 41, rack.pitch / 2, tolerance=t).outline.vertex_count for t in (1e-4, 1e-3, 1e-2)]
+    assert counts[0] > counts[1] > counts[2]
+
+
+def test_pointed_teeth_are_found():
+    gear, _ = spur(10, addendum=1.6, dedendum=1.9, tip_radius=0.1)
+    assert len(gear.pointed) == 10 and np.all(gear.tip_thickness <= 0)
+    assert shapely.Polygon(gear.outline.outer).is_valid  # trimmed at the flank crossing
+
+
+def test_module_too_large_for_the_curve_is_an_error():
+    """Teeth 6 mm deep at an apex whose radius of curvature is 1.44 mm cannot be cut."""
+    frame = arc_frame(shapes.ellipse_focus(25, 6))
+    rack = Rack.from_params(RackParams(module=frame.perimeter / (14 * math.pi)))
+    with pytest.raises(DesignError, match="smaller module"):
+        cut_teeth(frame, rack, 14, rack.pitch / 2, tolerance=TOL)
+
+
+def test_remove_loops_cuts_a_figure_of_eight():
+    pts = np.array([[0, 0], [2, 0], [2, 1], [1, -1], [1, -2], [3, -2]], dtype=float)
+    out, n = remove_loops(pts)
+    assert n == 1
+    np.testing.assert_allclose(out, [[0, 0], [1.5, 0], [1, -1], [1, -2], [3, -2]])
+
+
+def _pair_and_plan(curve, mate_lobes, **kw):
+    pair = conjugate_pair(curve, mate_lobes=mate_lobes)
+    frames = (arc_frame(pair.gear1), arc_frame(pair.gear2))
+    return pair, frames, plan_teeth(frames[0], frames[1], pair.lobes, **kw)
+
+
+def test_identical_focus_ellipses_need_an_odd_count():
+    curve = shapes.ellipse_focus(25, 15)
+    _, _, plan = _pair_and_plan(curve, 1, module=1.0, identical_rotation=0.0)
+    assert plan.teeth == (41, 41) and plan.identical
+    assert plan.module * math.pi * 41 == pytest.approx(arc_frame(curve).perimeter, rel=1e-12)
+    with pytest.raises(DesignError, match="nearest counts that can: 39, 41"):
+        _pair_and_plan(curve, 1, count=40, identical_rotation=0.0)
+
+
+def test_identical_ovals_need_an_odd_count_per_lobe():
+    _, _, plan = _pair_and_plan(shapes.oval(25, 15), 2, module=1.0, identical_rotation=math.pi / 2)
+    assert plan.teeth[0] % 4 == 2
+
+
+def test_counts_follow_the_lobe_ratio():
+    _, _, plan = _pair_and_plan(shapes.circle(20.0), 2, count=20)
+    assert plan.teeth == (20, 40) and plan.module == pytest.approx(2.0)
+    law = shapes.harmonic_ratio(4.0, [(4, 0.4, 0.0)])
+    wheel = shapes.from_ratio("law", *law, 75.0, lobes=4)
+    pair = conjugate_pair(wheel, mate_lobes=1, center_distance=75.0)
+    frames = (arc_frame(pair.gear1), arc_frame(pair.gear2))
+    with pytest.raises(DesignError, match="multiple of 4"):
+        plan_teeth(*frames, pair.lobes, count=82)
+    assert plan_teeth(*frames, pair.lobes, count=80).teeth == (80, 20)
+
+
+def _cut_pair(curve, mate_lobes, shift_phase=0.0, **kw):
+    pair, frames, plan = _pair_and_plan(curve, mate_lobes, **kw)
+    racks = [Rack.from_params(RackParams(module=plan.module)) for _ in range(2)]
+    phases = (plan.phases[0], plan.phases[1] + shift_phase)
+    gears = tuple(cut_teeth(f, r, z, ph, tolerance=TOL) for f, r, z, ph in zip(frames, racks, plan.teeth, phases))
+    return pair, gears, frames
+
+
+@pytest.mark.parametrize(
+    "curve,lobes,kw",
+    [
+        (shapes.ellipse_focus(25, 15), 1, {"module": 1.0, "identical_rotation": 0.0}),
+        (shapes.ellipse_centre(25, 15), 2, {"module": 1.25}),
+        (shapes.circle(20.0), 2, {"count": 20}),
+    ],
+)
+def test_pairs_mesh_and_the_check_can_fail(curve, lobes, kw):
+    pair, gears, frames = _cut_pair(curve, lobes, **kw)
+    mesh = mesh_check(pair, gears, frames, tolerance=TOL)
+    assert mesh.max_overlap <= mesh.allowed_overlap
+    assert mesh.nudged_min_overlap > 10 * mesh.allowed_overlap
+    assert mesh.meshes
+    # the same pair with gear 2's teeth a tenth of a pitch out of phase interferes
+    _, wrong, _ = _cut_pair(curve, lobes, shift_phase=gears[0].rack.pitch / 10, **kw)
+    bad = mesh_check(pair, wrong, frames, tolerance=TOL)
+    assert bad.max_overlap > 100 * bad.allowed_overlap and not bad.meshes
+
+
+FAST = settings(max_examples=15, deadline=None)
+
+
+@FAST
+@given(a=st.floats(10, 60), ecc=st.floats(0.0, 0.7), z=st.integers(20, 60), pivot=st.sampled_from(["focus", "centre"]))
+def test_random_toothed_outlines_are_simple_ccw_rings(a, ecc, z, pivot):
+    curve = (shapes.ellipse_focus if pivot == "focus" else shapes.ellipse_centre)(a, a * math.sqrt(1 - ecc**2))
+    frame = arc_frame(curve)
+    m = frame.perimeter / (z * math.pi)
+    rack = Rack.from_params(RackParams(module=m))
+    try:
+        gear = cut_teeth(frame, rack, z, rack.pitch / 2, tolerance=TOL)
+    except DesignError as exc:  # a clear refusal is allowed, a wrong outline is not
+        assert "smaller module" in str(exc)
+        return
+    ring = gear.outline.outer
+    polygon = shapely.Polygon(ring)
+    assert polygon.is_valid and ring_area(ring) > 0
+    # the gear lies between its root and tip offset curves
+    s = np.linspace(0, frame.perimeter, 20000, endpoint=False)
+    c, _, n = frame.frame(s)
+    tip, root = shapely.Polygon(c + rack.v_tip * n), shapely.Polygon(c + rack.v_root * n)
+    assert root.area - 1e-6 <= polygon.area <= tip.area + 1e-6
+    assert polygon.buffer(1e-4).contains(root.buffer(-1e-3)) and tip.buffer(1e-4).contains(
+        polygon
+    )  # chord sag of the 20000-gons
