@@ -14,6 +14,7 @@ from pathlib import Path
 from typing import Any
 
 from .errors import ProfileError
+from .parts import BoreParams
 
 __all__ = [
     "EllipseParams",
@@ -103,10 +104,22 @@ class TeethParams:
     clearance: float = 0.0  # mm, every toothed outline offset inwards by this
 
 
+DXF_FLAVOURS = ("polyline", "lines-arcs", "polyline-flat")
+FORMATS = ("dxf", "stl", "3mf")
+
+
 @dataclass(frozen=True)
 class OutputParams:
     tolerance: float = 0.001
     charts: bool = True
+    animation: bool = True
+    formats: tuple[str, ...] = FORMATS
+    dxf: str = "polyline"
+    thickness: float = 5.0
+    chamfer: float = 0.0
+    kerf: float = 0.0
+    cut_layer: str = "CUT"
+    mark_layer: str = "MARK"
 
 
 CurveParams = EllipseParams | OvalParams | CircleParams | RatioParams | WalkerParams | SamplesParams
@@ -125,6 +138,7 @@ class GearPairParams:
     driver_rpm: float
     claim: ClaimParams | None = None
     teeth: TeethParams | None = None
+    bore: BoreParams = field(default_factory=BoreParams)
     output: OutputParams = field(default_factory=OutputParams)
 
 
@@ -138,7 +152,8 @@ _CURVE_KEYS = {
     "samples": {"radii", "lobes"},
 }
 _TABLE_KEYS = {
-    "": {"name", "title", "gear1", "gear2", "pair", "claim", "teeth", "output"},
+    "": {"name", "title", "gear1", "gear2", "pair", "claim", "teeth", "bore", "output"},
+    "bore": {"diameter", "keyway_width", "keyway_depth", "flat"},
     "teeth": {
         "module",
         "count",
@@ -153,7 +168,18 @@ _TABLE_KEYS = {
     "gear2": {"name", "lobes"},
     "pair": {"center_distance", "driver", "driver_rpm"},
     "claim": {"center_distance", "source"},
-    "output": {"tolerance", "charts"},
+    "output": {
+        "tolerance",
+        "charts",
+        "animation",
+        "formats",
+        "dxf",
+        "thickness",
+        "chamfer",
+        "kerf",
+        "cut_layer",
+        "mark_layer",
+    },
 }
 
 
@@ -388,12 +414,8 @@ def parse_profile(data: dict, *, default_name: str = "profile") -> GearPairParam
     to = _table(data, "output", errors, required=False)
     o = _Reader(to, "output.", errors)
     o.unknown(_TABLE_KEYS["output"])
-    output = OutputParams(
-        tolerance=o.number("tolerance", 0.001, positive=True, what="a length in mm"),
-        charts=o.boolean("charts", True),
-    )
-    if math.isfinite(output.tolerance) and output.tolerance > 0.5:
-        o.fail("tolerance", output.tolerance, "must be ≤ 0.5 mm (coarser outlines would not mesh)")
+    output = _output(o, to, errors)
+    bore = _bore(_table(data, "bore", errors, required=False), errors)
 
     if errors:
         raise ProfileError("\n".join(errors))
@@ -409,8 +431,60 @@ def parse_profile(data: dict, *, default_name: str = "profile") -> GearPairParam
         driver_rpm=rpm,
         claim=claim,
         teeth=teeth,
+        bore=bore,
         output=output,
     )
+
+
+def _output(o: _Reader, t: dict, errors: list[str]) -> OutputParams:
+    tolerance = o.number("tolerance", 0.001, positive=True, what="a length in mm")
+    if math.isfinite(tolerance) and tolerance > 0.5:
+        o.fail("tolerance", tolerance, "must be ≤ 0.5 mm (coarser outlines would not mesh)")
+    formats = t.get("formats", list(FORMATS))
+    if not isinstance(formats, list) or not all(f in FORMATS for f in formats):
+        o.fail("formats", formats, "must be a list drawn from " + ", ".join(repr(f) for f in FORMATS))
+        formats = list(FORMATS)
+    cut = o.text("cut_layer", "CUT")
+    mark = o.text("mark_layer", "MARK")
+    for key, layer in (("cut_layer", cut), ("mark_layer", mark)):
+        if not layer or not all(ch.isalnum() or ch in "-_$" for ch in layer):
+            o.fail(key, layer, "must be a DXF layer name: letters, digits, '-', '_' or '$'")
+    if cut == mark:
+        o.fail("mark_layer", mark, "must differ from output.cut_layer")
+    return OutputParams(
+        tolerance=tolerance,
+        charts=o.boolean("charts", True),
+        animation=o.boolean("animation", True),
+        formats=tuple(formats),
+        dxf=o.text("dxf", "polyline", choices=DXF_FLAVOURS),
+        thickness=o.number("thickness", 5.0, positive=True, what="a thickness in mm"),
+        chamfer=o.number("chamfer", 0.0, minimum=0, what="a length in mm"),
+        kerf=o.number("kerf", 0.0, minimum=0, maximum=2, what="a kerf width in mm"),
+        cut_layer=cut,
+        mark_layer=mark,
+    )
+
+
+def _bore(t: dict, errors: list[str]) -> BoreParams:
+    r = _Reader(t, "bore.", errors)
+    r.unknown(_TABLE_KEYS["bore"])
+    bore = BoreParams(
+        diameter=r.number("diameter", 0.0, minimum=0, what="a diameter in mm"),
+        keyway_width=r.number("keyway_width", 0.0, minimum=0, what="a length in mm"),
+        keyway_depth=r.number("keyway_depth", 0.0, minimum=0, what="a length in mm"),
+        flat=r.number("flat", 0.0, minimum=0, what="a length in mm"),
+    )
+    if (bore.keyway_width > 0) != (bore.keyway_depth > 0):
+        errors.append("bore.keyway_width: a keyway needs both bore.keyway_width and bore.keyway_depth > 0")
+    if bore.flat > 0 and bore.keyway_width > 0:
+        errors.append("bore.flat: give a keyway or a flat, not both")
+    if bore.flat > 0 and not bore.flat < bore.diameter / 2:
+        r.fail("flat", bore.flat, f"must be under the bore radius {bore.diameter / 2:g} mm (distance from the centre)")
+    if (bore.keyway_width > 0 or bore.flat > 0) and bore.diameter <= 0:
+        errors.append("bore.diameter: a keyway or flat needs a bore (bore.diameter > 0)")
+    if bore.keyway_width > 0 and bore.keyway_width >= bore.diameter:
+        r.fail("keyway_width", bore.keyway_width, f"must be under the bore diameter {bore.diameter:g} mm")
+    return bore
 
 
 def _teeth(t: dict, errors: list[str]) -> TeethParams | None:

@@ -27,6 +27,10 @@ class Tolerances:
     corner_rad: float = 1e-6
     """A jump of the tangent direction larger than this at a seam is a corner."""
 
+    fine_fraction: float = 0.25
+    """Outlines are cut at this fraction of ``outline_mm``; DXF arcs fitted to them, and the
+    chords of the thinned outline used for meshes, may stray by the rest of the tolerance."""
+
     convex_rel: float = 1e-12
     """Convexity is judged on r² + 2r'² − r·r'' relative to r²: round-off allowance."""
 

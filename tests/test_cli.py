@@ -5,6 +5,7 @@ import shutil
 from pathlib import Path
 
 import ezdxf
+import ezdxf.path
 import numpy as np
 import pytest
 
@@ -14,6 +15,15 @@ from gearcad.diagnostics import CODES
 from .conftest import PROFILES
 
 ROOT = Path(__file__).parent.parent
+
+
+def _flatten(entity) -> np.ndarray:
+    return np.array([(v.x, v.y) for v in ezdxf.path.make_path(entity).flattening(1e-5)])[:-1]
+
+
+def _area(pts: np.ndarray) -> float:
+    x, y = pts[:, 0], pts[:, 1]
+    return 0.5 * float(np.dot(x, np.roll(y, -1)) - np.dot(y, np.roll(x, -1)))
 
 
 def _tree(folder: Path) -> dict:
@@ -34,9 +44,17 @@ def test_every_profile_builds_its_files(built):
         report = json.loads((built / name / "report.json").read_text())
         for f in report["files"]:
             assert (built / name / f).is_file(), f
-        assert {"pitch_curves.png", "kinematics.png", "kinematics.csv", "pair.dxf"} <= set(report["files"])
+        assert {
+            "pitch_curves.png",
+            "kinematics.png",
+            "mesh.png",
+            "kinematics.csv",
+            "assembly.dxf",
+            "assembly.3mf",
+            "animation.gif",
+        } <= set(report["files"])
         for gear in report["gears"]:
-            assert f"{gear['name']}.dxf" in report["files"]
+            assert {f"{gear['name']}.{ext}" for ext in ("dxf", "stl", "3mf")} <= set(report["files"])
 
 
 def test_report_schema_and_residuals(built):
@@ -98,12 +116,11 @@ def test_toothed_outlines_read_back_and_mesh(built):
         for gear in report["gears"]:
             doc = ezdxf.readfile(path.parent / f"{gear['name']}.dxf")
             cut = [e for e in doc.modelspace().query("LWPOLYLINE") if e.dxf.layer == "CUT"]
-            assert len(cut) == 1 and cut[0].closed
-            pts = np.array([p[:2] for p in cut[0].get_points()])
-            assert len(pts) == gear["teeth"]["vertices"]
-            x, y = pts[:, 0], pts[:, 1]
-            area = 0.5 * (np.dot(x, np.roll(y, -1)) - np.dot(y, np.roll(x, -1)))
-            assert area == pytest.approx(gear["teeth"]["area"], rel=1e-9) and area > 0
+            assert len(cut) == 1 + gear["part"]["holes"] and all(e.closed for e in cut)
+            outer = max(cut, key=lambda e: abs(_area(_flatten(e))))
+            area = _area(_flatten(outer))
+            # arcs flattened finely: the area of the cut shape within tolerance × perimeter
+            assert area == pytest.approx(gear["teeth"]["area"], abs=0.001 * 2 * gear["perimeter"]) and area > 0
             assert gear["teeth"]["module"] * np.pi * gear["teeth"]["count"] == pytest.approx(
                 gear["perimeter"], rel=1e-9
             )
@@ -134,7 +151,16 @@ def test_identical_pair_rejects_a_count_that_cannot_mesh(tmp_path, capsys):
 def test_build_is_deterministic(built, tmp_path):
     again = tmp_path / "again"
     assert main(["build", str(ROOT / "profiles" / "walker.toml"), "--out", str(again)]) == 0
-    for name in ("wheel.dxf", "pinion.dxf", "pair.dxf", "kinematics.csv", "report.json"):
+    for name in (
+        "wheel.dxf",
+        "pinion.dxf",
+        "assembly.dxf",
+        "wheel.stl",
+        "wheel.3mf",
+        "assembly.3mf",
+        "kinematics.csv",
+        "report.json",
+    ):
         assert (again / "walker" / name).read_bytes() == (built / "walker" / name).read_bytes(), name
 
 

@@ -67,7 +67,7 @@ def _teeth(t, i: int) -> dict:
     }
 
 
-def report(data: DesignData, teeth, files: dict[str, dict]) -> dict:
+def report(data: DesignData, teeth, parts, files: dict[str, dict]) -> dict:
     """The report as a JSON-ready dict (see README, "report.json")."""
     p, pair, kin = data.params, data.pair, data.kinematics
     n1, n2 = pair.lobes
@@ -100,6 +100,20 @@ def report(data: DesignData, teeth, files: dict[str, dict]) -> dict:
         },
         "warnings": [f.as_dict() for f in data.findings + (teeth.findings if teeth else ())],
         "files": files,
+    }
+    for gear, part in zip(out["gears"], parts):
+        gear["part"] = {
+            "area": part.outline.area,
+            "vertices": part.outline.vertex_count,
+            "holes": len(part.outline.rings) - 1,
+        }
+    out["output"] = {
+        "thickness": p.output.thickness,
+        "chamfer": p.output.chamfer,
+        "kerf": p.output.kerf,
+        "dxf": p.output.dxf,
+        "layers": {"cut": p.output.cut_layer, "mark": p.output.mark_layer},
+        "bore": asdict(p.bore),
     }
     if teeth is not None:
         for i in range(2):
@@ -137,5 +151,6 @@ def report(data: DesignData, teeth, files: dict[str, dict]) -> dict:
     return _finite(out)
 
 
-def write_report(data: DesignData, teeth, files: dict[str, dict], path: Path) -> None:
-    path.write_text(json.dumps(report(data, teeth, files), indent=2, ensure_ascii=False) + "\n", encoding="utf-8")
+def write_report(data: DesignData, teeth, parts, files: dict[str, dict], path: Path) -> None:
+    text = json.dumps(report(data, teeth, parts, files), indent=2, ensure_ascii=False)
+    path.write_text(text + "\n", encoding="utf-8")

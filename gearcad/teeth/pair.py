@@ -9,6 +9,7 @@ import numpy as np
 import shapely
 from scipy.spatial import cKDTree
 
+from ..arcfit import decimate
 from ..design import DesignData
 from ..diagnostics import Finding, finding
 from ..errors import DesignError
@@ -28,6 +29,9 @@ __all__ = ["ToothedPairData", "cut_pair", "undercut_free_module"]
 class ToothedPairData:
     plan: ToothPlan
     gears: tuple[ToothedGear, ToothedGear]
+    """Outlines within the tolerance (thinned from the fine cut): meshes, checks, flat DXF."""
+    fine: tuple[np.ndarray, np.ndarray]
+    """The outer rings cut at tolerance × fine_fraction, for fitting DXF arcs."""
     frames: tuple[ArcFrame, ArcFrame]
     mesh: MeshData
     backlash_range: tuple[float, float]
@@ -52,6 +56,17 @@ def undercut_free_module(min_curvature_radius: float, rack: RackParams) -> float
     return min_curvature_radius * math.sin(rack.pressure_angle) ** 2 / depth
 
 
+def _thinned(gear: ToothedGear, tolerance: float) -> ToothedGear:
+    """The same gear with its outline thinned to ``tolerance`` (and its root indices moved)."""
+    ring = decimate(gear.outline.outer, tolerance)
+    roots = gear.outline.outer[gear.space_root]
+    return replace(gear, outline=Outline((ring,)), space_root=_nearest(ring, roots))
+
+
+def _nearest(ring: np.ndarray, points: np.ndarray) -> np.ndarray:
+    return cKDTree(ring).query(points)[1]
+
+
 def _with_clearance(gear: ToothedGear, clearance: float, tolerance: float) -> ToothedGear:
     """The outline offset inwards by ``clearance`` (round joins sampled from the tolerance)."""
     if clearance <= 0:
@@ -61,9 +76,7 @@ def _with_clearance(gear: ToothedGear, clearance: float, tolerance: float) -> To
     if shrunk.geom_type != "Polygon" or shrunk.is_empty:
         raise DesignError(f"teeth.clearance = {clearance:g}: the offset teeth fall apart; use a smaller clearance")
     ring = np.asarray(shapely.geometry.polygon.orient(shrunk, 1.0).exterior.coords)[:-1]
-    roots = gear.outline.outer[gear.space_root]
-    nearest = np.argmin(np.hypot(ring[None, :, 0] - roots[:, None, 0], ring[None, :, 1] - roots[:, None, 1]), axis=1)
-    return replace(gear, outline=Outline((ring,)), space_root=nearest)
+    return replace(gear, outline=Outline((ring,)), space_root=_nearest(ring, gear.outline.outer[gear.space_root]))
 
 
 def _rack(params: TeethParams, module: float, shift: float) -> Rack:
@@ -98,14 +111,16 @@ def cut_pair(data: DesignData, params: TeethParams, *, tol: Tolerances = DEFAULT
         frames[0], frames[1], pair.lobes, module=params.module, count=params.count, identical_rotation=identical
     )
     shifts = (params.profile_shift, -params.profile_shift)
-    gears = tuple(
+    fine_tol = tol.outline_mm * tol.fine_fraction
+    fine = tuple(
         _with_clearance(
-            cut_teeth(frame, _rack(params, plan.module, shift), z, phase, tolerance=tol.outline_mm),
+            cut_teeth(frame, _rack(params, plan.module, shift), z, phase, tolerance=fine_tol),
             params.clearance,
-            tol.outline_mm,
+            fine_tol,
         )
         for frame, z, phase, shift in zip(frames, plan.teeth, plan.phases, shifts)
     )
+    gears = tuple(_thinned(g, tol.outline_mm - fine_tol) for g in fine)
     play = params.backlash + 4 * params.clearance / math.cos(params.pressure_angle)
     mesh = mesh_check(pair, gears, frames, tolerance=tol.outline_mm, play=play)
     play_range = backlash_range(pair, gears, frames, limit=2 * mesh.nudge)
@@ -116,11 +131,12 @@ def cut_pair(data: DesignData, params: TeethParams, *, tol: Tolerances = DEFAULT
     if plan.identical:
         # both gears are cut by the same code from the same curve, so their vertices coincide
         # when they are the same part: the largest vertex-to-nearest-vertex distance says so
-        turned = rotate(gears[0].outline.outer, -identical)
-        deviation = float(np.max(cKDTree(turned).query(gears[1].outline.outer)[0]))
+        turned = rotate(fine[0].outline.outer, -identical)
+        deviation = float(np.max(cKDTree(turned).query(fine[1].outline.outer)[0]))
     return ToothedPairData(
         plan=plan,
         gears=gears,
+        fine=tuple(g.outline.outer for g in fine),
         frames=frames,
         mesh=mesh,
         backlash_range=play_range,
@@ -146,7 +162,8 @@ def _findings(data, plan, gears, mesh, limits) -> list[Finding]:
                 )
             looped = np.nonzero(gear.space_loops)[0]
             if len(looped):
-                where = ", ".join(f"{math.degrees(a):.1f}°" for a in gear.tooth_phi[looped[:4]] - np.pi / gear.teeth)
+                angles = (gear.tooth_phi[looped[:4]] - np.pi / gear.teeth) % (2 * np.pi)
+                where = ", ".join(f"{math.degrees(a):.1f}°" for a in angles)
                 parts.append(
                     f"the rack's path crosses itself in {len(looped)} tooth spaces (near φ = {where}"
                     f"{', …' if len(looped) > 4 else ''}); the outline keeps what the rack leaves"

@@ -1,0 +1,49 @@
+"""An animated GIF of the pair turning through one full cycle (drawn with Pillow)."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+from PIL import Image, ImageDraw
+
+from ..outline import rotate
+
+__all__ = ["write_gif"]
+
+_COLOURS = ((31, 119, 180), (255, 127, 14), (44, 160, 44), (214, 39, 40))
+
+
+def write_gif(
+    path: Path, rings: list[np.ndarray], pivots: list, angles: np.ndarray, *, size=(640, 400), frame_ms: int = 60
+) -> int:
+    """One frame per row of ``angles`` (frames, parts): each part's ring turned by its angle
+    about its pivot.  Returns the number of frames."""
+    reach = [float(np.max(np.hypot(*r.T))) for r in rings]
+    lo = np.min([np.asarray(p) - q for p, q in zip(pivots, reach)], axis=0)
+    hi = np.max([np.asarray(p) + q for p, q in zip(pivots, reach)], axis=0)
+    margin = 10
+    scale = min((size[0] - 2 * margin) / (hi[0] - lo[0]), (size[1] - 2 * margin) / (hi[1] - lo[1]))
+    frames = []
+    for row in angles:
+        image = Image.new("P", size, 255)
+        image.putpalette([255, 255, 255, *sum((list(c) for c in _COLOURS), [])] + [255, 255, 255] * 250)
+        draw = ImageDraw.Draw(image)
+        for k, (ring, pivot, angle) in enumerate(zip(rings, pivots, row)):
+            pts = rotate(ring, float(angle)) + np.asarray(pivot)
+            xy = np.column_stack(
+                [(pts[:, 0] - lo[0]) * scale + margin, size[1] - ((pts[:, 1] - lo[1]) * scale + margin)]
+            )
+            draw.polygon([tuple(p) for p in xy.round(1)], fill=1 + k % len(_COLOURS), outline=0)
+            cx, cy = (pivot[0] - lo[0]) * scale + margin, size[1] - ((pivot[1] - lo[1]) * scale + margin)
+            draw.ellipse([cx - 2, cy - 2, cx + 2, cy + 2], fill=0)
+        frames.append(image)
+    frames[0].save(path, save_all=True, append_images=frames[1:], duration=frame_ms, loop=0, optimize=False)
+    return len(frames)
+
+
+def frames_for(cycle: float, teeth: int | None) -> int:
+    """Enough frames that the driver turns at most ~1/3 of a tooth (or 5°) per frame, ≤ 180."""
+    step = (2 * math.pi / teeth / 3) if teeth else math.radians(5)
+    return int(min(180, max(24, math.ceil(cycle / step))))

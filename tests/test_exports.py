@@ -1,0 +1,294 @@
+"""Files for making things, read back by independent readers (ezdxf, trimesh, Pillow)."""
+
+import json
+from pathlib import Path
+
+import ezdxf
+import ezdxf.path
+import numpy as np
+import pytest
+import shapely
+import trimesh
+from PIL import Image
+
+from gearcad.cli import main
+from gearcad.errors import DesignError
+from gearcad.export.mesh import extrude
+from gearcad.outline import Outline
+
+ROOT = Path(__file__).parent.parent
+
+SMALL = """
+name = "small"
+[gear1]
+name = "a"
+curve = "ellipse"
+pivot = "focus"
+a = 20.0
+b = 16.0
+[gear2]
+name = "b"
+lobes = 1
+[teeth]
+count = 25
+[output]
+tolerance = {tol}
+charts = false
+animation = {animation}
+thickness = 4.0
+chamfer = {chamfer}
+kerf = {kerf}
+dxf = "{dxf}"
+[bore]
+diameter = {bore}
+{bore_extra}
+"""
+
+
+def build(
+    tmp_path,
+    *,
+    tol=0.001,
+    chamfer=0.0,
+    kerf=0.0,
+    dxf="polyline",
+    bore=3.0,
+    bore_extra="",
+    animation="false",
+    name="out",
+):
+    path = tmp_path / f"{name}.toml"
+    path.write_text(
+        SMALL.format(
+            tol=tol, chamfer=chamfer, kerf=kerf, dxf=dxf, bore=bore, bore_extra=bore_extra, animation=animation
+        )
+    )
+    out = tmp_path / name
+    assert main(["build", str(path), "--out", str(out)]) == 0
+    folder = out / "small"
+    return folder, json.loads((folder / "report.json").read_text())
+
+
+def flattened(entity, distance=1e-5) -> np.ndarray:
+    return np.array([(v.x, v.y) for v in ezdxf.path.make_path(entity).flattening(distance)])[:-1]
+
+
+def cut_polygon(path: Path) -> shapely.Polygon:
+    doc = ezdxf.readfile(path)
+    rings = [flattened(e) for e in doc.modelspace().query("LWPOLYLINE") if e.dxf.layer == "CUT"]
+    rings.sort(key=lambda r: -shapely.Polygon(r).area)
+    return shapely.Polygon(rings[0], rings[1:])
+
+
+def test_dxf_reads_back_as_the_outline_within_tolerance(tmp_path):
+    folder, report = build(tmp_path)
+    for gear in report["gears"]:
+        doc = ezdxf.readfile(folder / f"{gear['name']}.dxf")
+        assert not doc.audit().has_errors and doc.units == 4
+        assert {layer.dxf.name for layer in doc.layers} >= {"CUT", "MARK"}
+        cut = [e for e in doc.modelspace().query("LWPOLYLINE") if e.dxf.layer == "CUT"]
+        assert len(cut) == 2 and all(e.closed for e in cut)  # outline and bore
+        assert any(b != 0 for e in cut for *_, b in e.get_points("xyb"))  # arcs as bulges
+        # the same outline: flattened arcs against a fine reference cut of the same teeth
+        polygon = cut_polygon(folder / f"{gear['name']}.dxf")
+        reference = shapely.Polygon(*_reference_rings(report, gear))
+        # reference chords stray ≤ 1e-4 mm from the exact teeth: allow for that
+        assert _distance(polygon.exterior, reference.exterior) <= 0.001 + 1e-4
+        assert polygon.area == pytest.approx(gear["part"]["area"], abs=0.001 * gear["perimeter"])
+
+
+def _distance(a: shapely.LinearRing, b: shapely.LinearRing) -> float:
+    """Largest distance from either ring's vertices to the other ring (a one-sided Hausdorff
+    distance each way, to the continuous ring)."""
+    pa, pb = shapely.points(np.asarray(a.coords)), shapely.points(np.asarray(b.coords))
+    return float(max(shapely.distance(pa, b).max(), shapely.distance(pb, a).max()))
+
+
+def _reference_rings(report, gear):
+    """gearcad's own cut of the part at a tenth of the tolerance (chords within 1e-4 mm)."""
+    from dataclasses import replace
+
+    from gearcad.build import make_parts
+    from gearcad.design import design
+    from gearcad.profiles import parse_profile
+    from gearcad.teeth.pair import cut_pair
+    from gearcad.tolerances import DEFAULT
+
+    data_dict = {
+        "name": "r",
+        "gear1": {"name": "a", "curve": "ellipse", "pivot": "focus", "a": 20.0, "b": 16.0},
+        "gear2": {"name": "b", "lobes": 1},
+        "teeth": {"count": 25},
+        "output": {"tolerance": 1e-4},
+        "bore": {"diameter": 3.0},
+    }
+    params = parse_profile(data_dict)
+    data = design(params, tol=replace(DEFAULT, outline_mm=1e-4))
+    teeth = cut_pair(data, params.teeth, tol=replace(DEFAULT, outline_mm=1e-4))
+    part = make_parts(data, teeth, params)[0 if gear["name"] == "a" else 1]
+    return part.outline.rings[0], part.outline.rings[1:]
+
+
+def test_dxf_needs_far_fewer_vertices_than_chords(tmp_path):
+    folder, report = build(tmp_path)
+    for gear in report["gears"]:
+        dxf = report["files"][f"{gear['name']}.dxf"]["vertices"]
+        assert dxf * 4 < gear["part"]["vertices"]
+
+
+def test_stl_and_3mf_are_watertight_with_the_right_volume(tmp_path):
+    folder, report = build(tmp_path)
+    for gear in report["gears"]:
+        area, name = gear["part"]["area"], gear["name"]
+        stl = trimesh.load(folder / f"{name}.stl")
+        assert stl.is_watertight and stl.is_winding_consistent and stl.volume > 0
+        assert stl.volume == pytest.approx(area * 4.0, rel=1e-6)  # float32 vertices
+        triangles = report["files"][f"{name}.stl"]["triangles"]
+        assert (folder / f"{name}.stl").stat().st_size == 84 + 50 * triangles  # binary STL
+        scene = trimesh.load(folder / f"{name}.3mf")
+        (mesh,) = scene.geometry.values()
+        assert mesh.is_watertight and mesh.volume == pytest.approx(area * 4.0, rel=1e-7)  # 6-decimal text
+        assert report["files"][f"{name}.3mf"]["triangles"] == len(mesh.faces)
+    assembly = trimesh.load(folder / "assembly.3mf")
+    assert len(assembly.geometry) == 2
+    centres = sorted(assembly.graph[n][0][:3, 3][0] for n in assembly.graph.nodes_geometry)
+    assert centres == pytest.approx([0.0, report["pair"]["center_distance"]], abs=1e-6)
+    doc = ezdxf.readfile(folder / "assembly.dxf")
+    assert not doc.audit().has_errors
+    assert len([e for e in doc.modelspace().query("LWPOLYLINE") if e.dxf.layer == "CUT"]) == 4
+
+
+def test_counts_fall_as_the_tolerance_loosens(tmp_path):
+    _, fine = build(tmp_path, tol=0.001, name="fine")
+    _, coarse = build(tmp_path, tol=0.02, name="coarse")
+    for kind in ("a.dxf", "a.stl", "b.3mf"):
+        key = "vertices" if kind.endswith("dxf") else "triangles"
+        assert coarse["files"][kind][key] < fine["files"][kind][key]
+
+
+def test_chamfer_removes_a_45_degree_edge(tmp_path):
+    """On a friction wheel (pitch curve part, no teeth) every edge takes the 45° chamfer."""
+    path = tmp_path / "wheel.toml"
+    text = SMALL.format(tol=0.001, chamfer=0.3, kerf=0, dxf="polyline", bore=3.0, bore_extra="", animation="false")
+    path.write_text(text.replace("[teeth]\ncount = 25\n", ""))
+    assert main(["build", str(path), "--out", str(tmp_path / "out")]) == 0
+    folder = tmp_path / "out" / "small"
+    report = json.loads((folder / "report.json").read_text())
+    for gear in report["gears"]:
+        mesh = trimesh.load(folder / f"{gear['name']}.stl")
+        assert mesh.is_watertight and mesh.is_winding_consistent
+        outline = cut_polygon(folder / f"{gear['name']}.dxf")
+        edge = outline.exterior.length + sum(r.length for r in outline.interiors)
+        # two 45° chamfers along every boundary remove c²/2 × length each (curvature adds
+        # a term of order c³/radius)
+        expected = gear["part"]["area"] * 4.0 - edge * 0.3**2
+        assert mesh.volume == pytest.approx(expected, rel=5e-4)
+        assert mesh.bounds[:, 2] == pytest.approx([0.0, 4.0])
+
+
+def test_chamfer_the_outline_cannot_take_is_refused(tmp_path, capsys):
+    path = tmp_path / "p.toml"
+    path.write_text(
+        SMALL.format(tol=0.001, chamfer=0.2, kerf=0, dxf="polyline", bore=3.0, bore_extra="", animation="false")
+    )
+    assert main(["build", str(path), "--out", str(tmp_path / "out")]) == 2
+    assert "output.chamfer = 0.2" in capsys.readouterr().err
+    assert not (tmp_path / "out").exists()
+
+
+def test_kerf_grows_the_cut_path_by_half_the_kerf(tmp_path):
+    folder, report = build(tmp_path, kerf=0.2)
+    doc = ezdxf.readfile(folder / "a.dxf")
+    assert "kerf" in doc.layers.get("CUT").description
+    polygon = cut_polygon(folder / "a.dxf")
+    designed = shapely.Polygon(*_reference_rings(report, report["gears"][0]))
+    # the path runs 0.1 mm outside the part everywhere, the bore 0.1 mm inside it
+    assert _distance(polygon.exterior, designed.exterior) == pytest.approx(0.1, abs=0.002)
+    assert polygon.interiors[0].distance(shapely.Point(0, 0)) == pytest.approx(1.5 - 0.1, abs=0.002)
+    assert report["output"]["kerf"] == 0.2
+
+
+def test_keyway_and_flat(tmp_path):
+    folder, _ = build(tmp_path, bore_extra="keyway_width = 1.0\nkeyway_depth = 0.5", name="key")
+    hole = cut_polygon(folder / "a.dxf").interiors[0]
+    xs = np.asarray(hole.coords)[:, 0]
+    assert xs.max() == pytest.approx(1.5 + 0.5, abs=1e-6)
+    folder, _ = build(tmp_path, bore_extra="flat = 1.0", name="flat")
+    hole = cut_polygon(folder / "a.dxf").interiors[0]
+    assert np.asarray(hole.coords)[:, 0].max() == pytest.approx(1.0, abs=1e-6)
+
+
+def test_bore_that_leaves_no_wall_is_refused(tmp_path, capsys):
+    path = tmp_path / "p.toml"
+    # the near apex of a focus-pivoted ellipse a = 20, b = 16 is 8 mm from the pivot, its root
+    # about 6.2 mm: an 11 mm bore leaves 0.7 mm, under one module
+    path.write_text(
+        SMALL.format(tol=0.001, chamfer=0, kerf=0, dxf="polyline", bore=11.0, bore_extra="", animation="false")
+    )
+    assert main(["build", str(path), "--out", str(tmp_path / "out")]) == 2
+    err = capsys.readouterr().err
+    assert "bore.diameter = 11" in err and "leave at least" in err
+    assert not (tmp_path / "out").exists()
+
+
+def test_animation_has_a_frame_per_step(tmp_path):
+    folder, report = build(tmp_path, animation="true")
+    with Image.open(folder / "animation.gif") as gif:
+        assert gif.n_frames == report["files"]["animation.gif"]["frames"] >= 24
+
+
+def test_a_manifold_error_is_a_clear_error():
+    flat = Outline((np.array([[0.0, 0.0], [1.0, 0.0], [2.0, 0.0]]),))
+    with pytest.raises(DesignError, match="empty|not a valid"):
+        extrude(flat, 1.0, name="sliver")
+
+
+def test_every_flavour_describes_the_same_outline(tmp_path):
+    shapes = {}
+    for flavour in ("polyline", "lines-arcs", "polyline-flat"):
+        folder, _ = build(tmp_path, dxf=flavour, name=flavour.replace("-", "_"))
+        doc = ezdxf.readfile(folder / "a.dxf")
+        assert not doc.audit().has_errors
+        if flavour == "lines-arcs":
+            entities = [e for e in doc.modelspace() if e.dxf.layer == "CUT"]
+            assert {e.dxftype() for e in entities} == {"LINE", "ARC"}
+            shapes[flavour] = _chain(entities)
+        else:
+            shapes[flavour] = cut_polygon(folder / "a.dxf")
+            if flavour == "polyline-flat":
+                bulges = [b for e in doc.modelspace().query("LWPOLYLINE") for *_, b in e.get_points("xyb")]
+                assert not any(bulges)
+    for flavour in ("lines-arcs", "polyline-flat"):
+        assert _distance(shapes[flavour].exterior, shapes["polyline"].exterior) <= 0.002
+
+
+def _chain(entities) -> shapely.Polygon:
+    """LINE and ARC entities chained end to end into closed loops (they must meet exactly)."""
+    pieces = []
+    for e in entities:
+        if e.dxftype() == "ARC":
+            pts = np.array([(v.x, v.y) for v in ezdxf.path.make_path(e).flattening(1e-5)])
+        else:
+            pts = np.array([(e.dxf.start.x, e.dxf.start.y), (e.dxf.end.x, e.dxf.end.y)])
+        pieces.append(pts)
+    loops = []
+    remaining = pieces[:]
+    while remaining:
+        loop = [remaining.pop(0)]
+        while True:
+            end = loop[-1][-1]
+            if np.hypot(*(end - loop[0][0])) < 1e-9 and len(loop) > 1:
+                break
+            for k, piece in enumerate(remaining):
+                if np.hypot(*(piece[0] - end)) < 1e-9:
+                    loop.append(remaining.pop(k))
+                    break
+                if np.hypot(*(piece[-1] - end)) < 1e-9:
+                    loop.append(remaining.pop(k)[::-1])
+                    break
+            else:
+                raise AssertionError(f"open chain at {end}")
+        loops.append(np.vstack([p[:-1] for p in loop]))
+    loops.sort(key=lambda r: -shapely.Polygon(r).area)
+    assert len(loops) == 2  # outline and bore, both closed
+    return shapely.Polygon(loops[0], loops[1:])
