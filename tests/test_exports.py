@@ -292,3 +292,46 @@ def _chain(entities) -> shapely.Polygon:
     loops.sort(key=lambda r: -shapely.Polygon(r).area)
     assert len(loops) == 2  # outline and bore, both closed
     return shapely.Polygon(loops[0], loops[1:])
+
+
+def _openscad_area(openscad: str, dxf: Path, tmp_path: Path) -> float:
+    """Import the CUT layer into OpenSCAD with fine arc tessellation, extrude 1 mm, export STL
+    and read its volume back with trimesh: the imported area."""
+    import subprocess
+
+    scad = tmp_path / f"{dxf.parent.parent.name}.scad"
+    scad.write_text(f'$fa = 0.5; $fs = 0.005;\nlinear_extrude(height = 1) import("{dxf}", layer = "CUT");\n')
+    stl = scad.with_suffix(".stl")
+    run = subprocess.run(
+        [openscad, "-o", str(stl), str(scad)],
+        capture_output=True,
+        text=True,
+        timeout=300,
+        env={"PATH": "/usr/bin:/bin", "HOME": str(tmp_path)},
+    )
+    assert run.returncode == 0, run.stderr
+    return float(trimesh.load(stl).volume)
+
+
+def test_openscad_imports_the_lines_arcs_file_at_the_right_area(tmp_path):
+    """OpenSCAD drops LWPOLYLINE bulges (it draws each arc as its chord): the polyline flavour
+    comes in as its chord polygon, the lines-arcs flavour at the designed area."""
+    import shutil
+
+    openscad = shutil.which("openscad")
+    if openscad is None:
+        pytest.skip("openscad is not installed on this machine (apt-get install openscad to run this check)")
+    folder, report = build(tmp_path, dxf="lines-arcs", name="scad_arcs")
+    designed = report["gears"][0]["part"]["area"]
+    assert _openscad_area(openscad, folder / "a.dxf", tmp_path) == pytest.approx(designed, rel=2e-4)
+    folder, _ = build(tmp_path, dxf="polyline", name="scad_bulges")
+    doc = ezdxf.readfile(folder / "a.dxf")
+    rings = [
+        np.array([q[:2] for q in e.get_points()]) for e in doc.modelspace().query("LWPOLYLINE") if e.dxf.layer == "CUT"
+    ]
+    chords = shapely.Polygon(
+        max(rings, key=lambda r: shapely.Polygon(r).area), [r for r in rings if shapely.Polygon(r).area < 50]
+    ).area
+    imported = _openscad_area(openscad, folder / "a.dxf", tmp_path)
+    assert imported == pytest.approx(chords, rel=2e-4)  # the bulges were ignored
+    assert abs(imported - designed) > 10 * 2e-4 * designed  # ... which the lines-arcs file avoids
