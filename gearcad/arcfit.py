@@ -73,7 +73,7 @@ def _runs_fit(pts: np.ndarray, starts: np.ndarray, lengths: np.ndarray, tol: flo
     return line_ok | arc_ok, bulge
 
 
-def _reach(pts: np.ndarray, n: int, tol: float, arcs: bool, longest: int = 256) -> np.ndarray:
+def _reach(pts: np.ndarray, n: int, tol: float, arcs: bool, longest: int = 128) -> np.ndarray:
     """For every start vertex, the longest run (in segments, ≥ 1) that one line or arc fits:
     doubling on all starts at once, then bisection between the last fit and the first miss."""
     starts = np.arange(n)

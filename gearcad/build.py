@@ -34,7 +34,7 @@ from .profiles import GearPairParams
 from .teeth.pair import ToothedPairData, cut_pair
 from .tolerances import DEFAULT
 
-__all__ = ["Part", "BuildResult", "build_profile", "build_all"]
+__all__ = ["Part", "BuildResult", "build_profile", "build_any", "build_all"]
 
 
 @dataclass(frozen=True)
@@ -204,6 +204,21 @@ def build_profile(params: GearPairParams, folder: Path) -> BuildResult:
     return BuildResult(params.name, data, teeth, parts, files, time.perf_counter() - start)
 
 
+def build_any(params, folder: Path | None):
+    """Build (or, with ``folder=None``, only check) a profile of any mechanism."""
+    from . import build_more
+    from .profiles import CarrierTrainParams, RollerBodyParams, RollingWheelParams
+
+    if isinstance(params, GearPairParams):
+        return build_profile(params, folder)
+    builder = {
+        RollerBodyParams: build_more.build_roller_body,
+        RollingWheelParams: build_more.build_rolling_wheel,
+        CarrierTrainParams: build_more.build_carrier_train,
+    }[type(params)]
+    return builder(params, folder)
+
+
 def build_all(
     profiles: list[GearPairParams], out: Path, progress: Callable[[int, int, BuildResult], None] = None
 ) -> list[BuildResult]:
@@ -221,7 +236,7 @@ def build_all(
             folder = staging / params.name
             folder.mkdir()
             try:
-                result = build_profile(params, folder)
+                result = build_any(params, folder)
             except GearcadError as exc:
                 raise type(exc)(f"{params.name}: {exc}") from None
             results.append(result)

@@ -8,10 +8,10 @@ import math
 import sys
 from pathlib import Path
 
-from .build import BuildResult, build_all
+from .build import build_all, build_any
 from .design import design
 from .errors import GearcadError
-from .profiles import load_profile
+from .profiles import GearPairParams, load_profile
 from .teeth.pair import cut_pair
 
 __all__ = ["main"]
@@ -62,14 +62,18 @@ def _summary(data, teeth=None) -> str:
     return f"{text}, {warnings} warning(s)"
 
 
-def _progress(n: int, total: int, result: BuildResult) -> None:
-    print(
-        f"[{n}/{total}] {result.name}: {_summary(result.data, result.teeth)} ({1000 * result.seconds:.0f} ms)",
-        flush=True,
-    )
+def _progress(n: int, total: int, result) -> None:
+    text = result.summary if hasattr(result, "summary") else _summary(result.data, result.teeth)
+    print(f"[{n}/{total}] {result.name}: {text} ({1000 * result.seconds:.0f} ms)", flush=True)
 
 
 def _check(params) -> None:
+    if not isinstance(params, GearPairParams):
+        result = build_any(params, None)
+        print(f"{params.name}: {result.summary}")
+        for f in result.findings:
+            print(f"  warning [{f.code}] {f.message}")
+        return
     data = design(params)
     teeth = cut_pair(data, params.teeth) if params.teeth is not None else None
     print(f"{params.name}: {_summary(data, teeth)}")

@@ -143,6 +143,55 @@ class GearPairParams:
 
 
 CURVES = ("ellipse", "oval", "circle", "ratio", "walker", "samples")
+MECHANISMS = ("gear-pair", "roller-body", "rolling-wheel", "carrier-train")
+
+
+@dataclass(frozen=True)
+class RollerBodyParams:
+    name: str
+    title: str
+    scale: float  # mm per unit of R
+    roller_radius: float  # units of R
+    direction: str  # "horizontal" | "vertical" | "series"
+    amplitude: float
+    m: int
+    f: tuple[tuple[int, float, float], ...]
+    g: tuple[tuple[int, float, float], ...]
+    rpm: float
+    bore: BoreParams
+    output: OutputParams
+
+
+@dataclass(frozen=True)
+class RollingWheelParams:
+    name: str
+    title: str
+    r: float
+    R: float
+    L: float
+    H: float
+    driver_rpm: float
+    travel: float  # mm rolled by wheel 2
+    output: OutputParams
+
+
+@dataclass(frozen=True)
+class CarrierTrainParams:
+    name: str
+    title: str
+    module: float
+    teeth: tuple[int, ...]
+    meshes: tuple[str, ...]
+    names: tuple[str, ...]
+    gear1_rpm: float
+    carrier_rpm: float
+    gear1_eps: float  # rad/s²
+    carrier_eps: float
+    pressure_angle: float
+    bore: BoreParams
+    output: OutputParams
+
+
 _CURVE_KEYS = {
     "ellipse": {"a", "b", "eccentricity", "pivot"},
     "oval": {"a", "b"},
@@ -152,7 +201,7 @@ _CURVE_KEYS = {
     "samples": {"radii", "lobes"},
 }
 _TABLE_KEYS = {
-    "": {"name", "title", "gear1", "gear2", "pair", "claim", "teeth", "bore", "output"},
+    "": {"name", "title", "mechanism", "gear1", "gear2", "pair", "claim", "teeth", "bore", "output"},
     "bore": {"diameter", "keyway_width", "keyway_depth", "flat"},
     "teeth": {
         "module",
@@ -355,8 +404,13 @@ def _curve(t: dict, errors: list[str]) -> tuple[CurveParams | None, str]:
     return None, name
 
 
-def parse_profile(data: dict, *, default_name: str = "profile") -> GearPairParams:
+def parse_profile(data: dict, *, default_name: str = "profile"):
     """Validate a profile's TOML data; raise :class:`ProfileError` with one line per bad value."""
+    mechanism = data.get("mechanism", "gear-pair")
+    if mechanism not in MECHANISMS:
+        raise ProfileError(f"mechanism = {_show(mechanism)}: must be one of " + ", ".join(repr(m) for m in MECHANISMS))
+    if mechanism != "gear-pair":
+        return _other(mechanism, data, default_name)
     errors: list[str] = []
     top = _Reader(data, "", errors)
     top.unknown(_TABLE_KEYS[""])
@@ -573,7 +627,7 @@ def _deep_copy(data):
     return data
 
 
-def load_profile(path: str | Path, overrides: list[str] = ()) -> GearPairParams:
+def load_profile(path: str | Path, overrides: list[str] = ()):
     """Read, override and validate one profile file."""
     path = Path(path)
     try:
@@ -589,3 +643,174 @@ def load_profile(path: str | Path, overrides: list[str] = ()) -> GearPairParams:
         return parse_profile(data, default_name=path.stem)
     except ProfileError as exc:
         raise ProfileError("\n".join(f"{path}: {line}" for line in str(exc).splitlines())) from None
+
+
+_OTHER_KEYS = {
+    "roller-body": (
+        {"name", "title", "mechanism", "body", "kinematics", "bore", "output"},
+        {"scale", "roller_radius", "direction", "amplitude", "m", "f", "g"},
+    ),
+    "rolling-wheel": ({"name", "title", "mechanism", "drive", "output"}, {"r", "R", "L", "H", "driver_rpm", "travel"}),
+    "carrier-train": (
+        {"name", "title", "mechanism", "train", "bore", "output"},
+        {
+            "module",
+            "teeth",
+            "meshes",
+            "names",
+            "gear1_rpm",
+            "carrier_rpm",
+            "gear1_eps",
+            "carrier_eps",
+            "pressure_angle_deg",
+        },
+    ),
+}
+
+
+def _terms(r: _Reader, key: str, t: dict) -> tuple[tuple[int, float, float], ...]:
+    raw = t.get(key, [])
+    out = []
+    if not isinstance(raw, list):
+        r.fail(key, raw, "must be a list of [order, cos, sin] triples")
+        return ()
+    for n, term in enumerate(raw):
+        if not (
+            isinstance(term, list)
+            and len(term) == 3
+            and isinstance(term[0], int)
+            and term[0] >= 1
+            and all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in term[1:])
+        ):
+            r.errors.append(f"{r.key(key)}[{n}] = {_show(term)}: must be [order, cos, sin], order an integer ≥ 1")
+        elif term[0] % 3:
+            r.errors.append(
+                f"{r.key(key)}[{n}] = {_show(term)}: the order must be a multiple of 3 — the three "
+                "rollers touch the body together only if the oscillation repeats every 120°"
+            )
+        else:
+            out.append((int(term[0]), float(term[1]), float(term[2])))
+    return tuple(out)
+
+
+def _other(mechanism: str, data: dict, default_name: str):
+    errors: list[str] = []
+    top = _Reader(data, "", errors)
+    top_keys, main_keys = _OTHER_KEYS[mechanism]
+    top.unknown(top_keys)
+    name = top.text("name", default_name)
+    if name and not all(ch.isalnum() or ch in "-_" for ch in name):
+        top.fail("name", name, "must use only letters, digits, '-' and '_' (it names a folder)")
+    title = top.text("title", "")
+    table = {"roller-body": "body", "rolling-wheel": "drive", "carrier-train": "train"}[mechanism]
+    t = _table(data, table, errors)
+    r = _Reader(t, f"{table}.", errors)
+    r.unknown(main_keys)
+    to = _table(data, "output", errors, required=False)
+    o = _Reader(to, "output.", errors)
+    o.unknown(_TABLE_KEYS["output"])
+    output = _output(o, to, errors)
+    length = "a length in mm"
+    if mechanism == "roller-body":
+        direction = r.text("direction", "vertical", choices=("horizontal", "vertical", "series"))
+        m = r.integer("m", 3) if direction != "series" else 3
+        if direction != "series" and m % 3:
+            r.fail(
+                "m",
+                m,
+                "must be a multiple of 3: the three rollers touch the body together only if the "
+                "oscillation repeats every 120°",
+            )
+        kin = _Reader(_table(data, "kinematics", errors, required=False), "kinematics.", errors)
+        kin.unknown({"rpm"})
+        params = RollerBodyParams(
+            name=name,
+            title=title,
+            scale=r.number("scale", 100.0, positive=True, what="mm per unit of R"),
+            roller_radius=r.number("roller_radius", 0.1, minimum=0, below=1, what="a radius in units of R"),
+            direction=direction,
+            amplitude=r.number("amplitude", 0.1, minimum=0, what="an amplitude in units of R")
+            if direction != "series"
+            else 0.0,
+            m=m,
+            f=_terms(r, "f", t),
+            g=_terms(r, "g", t),
+            rpm=kin.number("rpm", 90.0, positive=True, what="a speed in rev/min"),
+            bore=_bore(_table(data, "bore", errors, required=False), errors),
+            output=output,
+        )
+    elif mechanism == "rolling-wheel":
+        params = RollingWheelParams(
+            name=name,
+            title=title,
+            r=r.number("r", what=length, positive=True),
+            R=r.number("R", what=length, positive=True),
+            L=r.number("L", what=length, positive=True),
+            H=r.number("H", what=length, minimum=0),
+            driver_rpm=r.number("driver_rpm", 30.0, positive=True, what="a speed in rev/min"),
+            travel=r.number("travel", 100.0, positive=True, what=length),
+            output=output,
+        )
+        if all(map(math.isfinite, (params.r, params.R, params.L, params.H))) and params.H < params.R - params.r:
+            r.fail(
+                "H",
+                params.H,
+                f"must be ≥ R − r = {params.R - params.r:g} mm: the rack slopes up to wheel 1 "
+                "(H = R − r is the horizontal case)",
+            )
+        if all(map(math.isfinite, (params.L, params.travel))) and params.travel >= params.L:
+            r.fail("travel", params.travel, f"must be under drive.L = {params.L:g} mm (wheel 2 would pass wheel 1)")
+    else:
+        teeth = t.get("teeth")
+        if not (
+            isinstance(teeth, list)
+            and len(teeth) >= 2
+            and all(isinstance(z, int) and not isinstance(z, bool) and z >= 8 for z in teeth)
+        ):
+            r.fail("teeth", teeth, "must be a list of at least two tooth counts, each an integer ≥ 8")
+            teeth = [20, 20]
+        meshes = t.get("meshes", ["external"] * (len(teeth) - 1))
+        if not (
+            isinstance(meshes, list)
+            and len(meshes) == len(teeth) - 1
+            and all(x in ("external", "internal") for x in meshes)
+        ):
+            r.fail("meshes", meshes, f"must be a list of {len(teeth) - 1} entries, each 'external' or 'internal'")
+            meshes = ["external"] * (len(teeth) - 1)
+        for k, mesh in enumerate(meshes):
+            if mesh == "internal" and abs(teeth[k] - teeth[k + 1]) < 12:
+                r.fail(
+                    "teeth",
+                    teeth,
+                    f"an internal mesh needs the ring at least 12 teeth larger than its pinion "
+                    f"(gears {k + 1} and {k + 2})",
+                )
+        names = t.get("names", [f"gear{k + 1}" for k in range(len(teeth))])
+        if not (
+            isinstance(names, list)
+            and len(names) == len(teeth)
+            and len(set(names)) == len(names)
+            and all(isinstance(x, str) and x and all(ch.isalnum() or ch in "-_" for ch in x) for x in names)
+        ):
+            r.fail("names", names, f"must be {len(teeth)} distinct names of letters, digits, '-' or '_'")
+            names = [f"gear{k + 1}" for k in range(len(teeth))]
+        params = CarrierTrainParams(
+            name=name,
+            title=title,
+            module=r.number("module", what="a module in mm", positive=True),
+            teeth=tuple(teeth),
+            meshes=tuple(meshes),
+            names=tuple(names),
+            gear1_rpm=r.number("gear1_rpm", 0.0, what="a speed in rev/min"),
+            carrier_rpm=r.number("carrier_rpm", 0.0, what="a speed in rev/min"),
+            gear1_eps=r.number("gear1_eps", 0.0, what="an angular acceleration in rad/s²"),
+            carrier_eps=r.number("carrier_eps", 0.0, what="an angular acceleration in rad/s²"),
+            pressure_angle=math.radians(
+                r.number("pressure_angle_deg", 20.0, minimum=10, maximum=35, what="an angle in degrees")
+            ),
+            bore=_bore(_table(data, "bore", errors, required=False), errors),
+            output=output,
+        )
+    if errors:
+        raise ProfileError("\n".join(errors))
+    return params

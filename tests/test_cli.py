@@ -37,11 +37,22 @@ def built(tmp_path_factory):
     return out
 
 
+def _pair_reports(built):
+    reports = [json.loads(p.read_text()) for p in sorted(built.glob("*/report.json"))]
+    pairs = [r for r in reports if r["mechanism"] == "gear-pair"]
+    assert len(pairs) == 5
+    return pairs
+
+
 def test_every_profile_builds_its_files(built):
     names = {p.stem for p in PROFILES}
     assert {p.name for p in built.iterdir()} == names
     for name in names:
         report = json.loads((built / name / "report.json").read_text())
+        for f in report["files"]:
+            assert (built / name / f).is_file(), f
+    for report in _pair_reports(built):
+        name = report["name"]
         for f in report["files"]:
             assert (built / name / f).is_file(), f
         assert {
@@ -58,8 +69,7 @@ def test_every_profile_builds_its_files(built):
 
 
 def test_report_schema_and_residuals(built):
-    for path in built.glob("*/report.json"):
-        report = json.loads(path.read_text())
+    for report in _pair_reports(built):
         assert {"name", "gears", "pair", "warnings", "files", "kinematics"} <= set(report)
         for gear in report["gears"]:
             assert {"name", "pivot", "lobes", "r_min", "r_max", "perimeter", "convex"} <= set(gear)
@@ -110,8 +120,8 @@ def test_pitch_dxf_matches_the_curve(built):
 
 
 def test_toothed_outlines_read_back_and_mesh(built):
-    for path in built.glob("*/report.json"):
-        report = json.loads(path.read_text())
+    for report in _pair_reports(built):
+        path = built / report["name"] / "report.json"
         assert report["pair"]["teeth"]["mesh"]["meshes"], path
         for gear in report["gears"]:
             doc = ezdxf.readfile(path.parent / f"{gear['name']}.dxf")
@@ -192,7 +202,7 @@ def test_check_prints_without_writing(tmp_path, capsys, monkeypatch):
 def test_build_without_arguments_builds_every_profile(tmp_path, monkeypatch, capsys):
     shutil.copytree(ROOT / "profiles", tmp_path / "profiles")
     monkeypatch.chdir(tmp_path)
-    assert main(["build"]) == 0
+    assert main(["build", "--set", "output.charts=false", "--set", "output.animation=false"]) == 0
     lines = capsys.readouterr().out.splitlines()
     assert [ln.split("]")[0] for ln in lines[:-1]] == [f"[{n}/{len(PROFILES)}" for n in range(1, len(PROFILES) + 1)]
     assert {p.name for p in (tmp_path / "out").iterdir()} == {p.stem for p in PROFILES}

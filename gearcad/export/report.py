@@ -74,6 +74,7 @@ def report(data: DesignData, teeth, parts, files: dict[str, dict]) -> dict:
     out = {
         "schema": SCHEMA_VERSION,
         "name": p.name,
+        "mechanism": "gear-pair",
         "title": p.title,
         "units": {"length": "mm", "angle": "rad", "speed": "rad/s", "acceleration": "rad/s^2"},
         "tolerance": p.output.tolerance,

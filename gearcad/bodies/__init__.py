@@ -1,0 +1,1 @@
+"""Bodies that turn and oscillate while touching three rollers (seed 003)."""
