@@ -33,6 +33,9 @@ def _parser() -> argparse.ArgumentParser:
         metavar="KEY=VALUE",
         help="override a profile value by dotted key, e.g. --set gear1.a=30",
     )
+    bench = sub.add_parser("bench", help="measure speed against accuracy; charts, CSV and markdown")
+    bench.add_argument("--out", type=Path, default=Path("out/bench"), help="output folder (default: out/bench)")
+    bench.add_argument("--quick", action="store_true", help="fewer points: a smoke run")
     c = sub.add_parser("check", help="print the checks of profiles without writing anything")
     c.add_argument("profiles", nargs="+", type=Path)
     c.add_argument("--set", dest="overrides", action="append", default=[], metavar="KEY=VALUE")
@@ -109,6 +112,12 @@ def _check(params) -> None:
 def main(argv: list[str] | None = None) -> int:
     args = _parser().parse_args(argv)
     logging.basicConfig(level=logging.ERROR, format="%(levelname)s: %(message)s")
+    if args.command == "bench":
+        from .bench import run_bench
+
+        rows = run_bench(args.out, quick=args.quick)
+        print(f"{len(rows)} measurements written to {args.out}/ (results.md, results.csv, *.png)")
+        return 0
     try:
         paths = _profile_paths(args.profiles)
         profiles, errors = [], []

@@ -12,7 +12,6 @@ from dataclasses import dataclass
 import numpy as np
 import shapely
 
-from ..errors import DesignError
 from ..pitch.pair import PairData
 from .frame import ArcFrame
 from .gear import ToothedGear
@@ -54,8 +53,9 @@ def _windows(gear: ToothedGear) -> list[np.ndarray]:
         a = gear.space_root[(k - _REACH) % z]
         b = gear.space_root[(k + _REACH) % z]
         run = ring[a : b + 1] if b > a else np.vstack([ring[a:], ring[: b + 1]])
-        if len(run) > n // 2 and z > 2 * _REACH + 1:  # wrapped the wrong way round: cannot happen
-            raise ValueError("mesh window spans half the gear")
+        if z <= 4 * _REACH or len(run) > n // 2:
+            out.append(ring)  # few teeth: the window would be most of the gear, so take all of it
+            continue
         inner = gear.under_root[[(k + j) % z for j in range(_REACH, -_REACH - 1, -1)]]
         out.append(np.vstack([run, inner]))
     return out
@@ -72,8 +72,6 @@ def _overlap_function(pair: PairData, gears, frames, phi1: np.ndarray):
     position) beyond its assembled angle at each driver angle φ1, in gear 1's frame: gear 1
     turned by −φ1 and gear 2 by +φ2 about (E, 0) is, relative to gear 1, gear 2 turned by φ2,
     moved to (E, 0) and turned back by φ1."""
-    if min(g.teeth for g in gears) <= 2 * _REACH + 1:
-        raise DesignError("the mesh check needs more than 5 teeth on each gear")
     e = pair.center_distance
     phi2 = pair.angle_map(phi1)
     w1 = np.array([shapely.Polygon(w) for w in _windows(gears[0])], dtype=object)

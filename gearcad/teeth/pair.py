@@ -104,9 +104,11 @@ def cut_pair(data: DesignData, params: TeethParams, *, tol: Tolerances = DEFAULT
             )
     pair = data.pair
     frames = (arc_frame(pair.gear1, tol=tol), arc_frame(pair.gear2, tol=tol))
-    identical = (
-        data.mate_rotation if data.mate_shape_difference is not None and data.mate_shape_difference < 1e-6 else None
-    )
+    # a self-conjugate noncircular pair: gear 2 is gear 1 turned, and the count must make the
+    # toothed gears one part too (a circle's mate is the same part at any count and turn)
+    round_ = data.gears[0].r_max - data.gears[0].r_min < 1e-9 * data.gears[0].r_max
+    alike = data.mate_shape_difference is not None and data.mate_shape_difference < 1e-6 and not round_
+    identical = data.mate_rotation if alike else None
     plan = plan_teeth(
         frames[0], frames[1], pair.lobes, module=params.module, count=params.count, identical_rotation=identical
     )

@@ -33,13 +33,16 @@ class ToothPlan:
     """The two toothed gears are the same part (gear 2 = gear 1 turned)."""
 
 
-def _space_fraction(frame1: ArcFrame, rotation: float) -> float:
-    """Where gear 1's point at π + δ falls, as a fraction of the perimeter."""
-    return float(frame1.arc(np.array([np.pi + rotation]))[0]) / frame1.perimeter
+def _space_fractions(frame1: ArcFrame, rotation: float, lobes: int) -> np.ndarray:
+    """Where gear 1's point at π + δ falls, as fractions of the perimeter, for δ and every
+    rotation by a whole lobe (all of them turn gear 1 onto gear 2)."""
+    angles = np.pi + rotation + 2 * np.pi * np.arange(lobes) / lobes
+    return frame1.arc(angles) / frame1.perimeter
 
 
-def _identical_ok(z: int, fraction: float) -> bool:
-    return abs((z * fraction - 0.5) - round(z * fraction - 0.5)) < 1e-6
+def _identical_ok(z: int, fractions: np.ndarray) -> bool:
+    x = z * fractions - 0.5
+    return bool(np.any(np.abs(x - np.round(x)) < 1e-6))
 
 
 def plan_teeth(
@@ -57,7 +60,7 @@ def plan_teeth(
     """
     n1, n2 = lobes
     step = n1 // math.gcd(n1, n2)  # z1 must be a multiple of this for z2 = z1·n2/n1 to be whole
-    fraction = _space_fraction(frame1, identical_rotation) if identical_rotation is not None else None
+    fraction = _space_fractions(frame1, identical_rotation, n1) if identical_rotation is not None else None
 
     def valid(z: int) -> bool:
         return z >= 3 and z % step == 0 and (fraction is None or _identical_ok(z, fraction))

@@ -1,0 +1,98 @@
+"""Charts of ``gearcad bench``: speed against accuracy, output size, builds, stability."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+__all__ = ["speed_accuracy", "output_size", "builds", "stability"]
+
+
+def _save(fig, path: Path) -> None:
+    fig.tight_layout()
+    fig.savefig(path, dpi=110, metadata={"Software": "gearcad"})
+    plt.close(fig)
+
+
+def speed_accuracy(rows: list[dict], path: Path) -> None:
+    studies = [s for s in dict.fromkeys(r["study"] for r in rows) if s == "quadrature" or s.startswith("envelope")]
+    fig, axes = plt.subplots(1, len(studies), figsize=(5.2 * len(studies), 4.6))
+    for ax, study in zip(np.atleast_1d(axes), studies):
+        chosen = [r for r in rows if r["study"] == study]
+        for k, method in enumerate(dict.fromkeys(r["method"] for r in chosen)):
+            pts = sorted((r["seconds"] * 1000, max(r["error"], 1e-17)) for r in chosen if r["method"] == method)
+            x, y = zip(*pts)
+            ax.loglog(x, y, "o-" if len(pts) > 1 else "*", ms=5 if len(pts) > 1 else 14, label=method, color=f"C{k}")
+        ax.set_xlabel("time, ms")
+        ax.set_ylabel("error (rad)" if study == "quadrature" else "largest deviation, mm")
+        ax.set_title(study)
+        ax.grid(alpha=0.3, which="both")
+        ax.legend(fontsize=7)
+    fig.suptitle("speed against accuracy (lower left is better)")
+    _save(fig, path)
+
+
+def output_size(rows: list[dict], path: Path) -> None:
+    chosen = [r for r in rows if r["study"] == "output"]
+    fig, (a, b) = plt.subplots(1, 2, figsize=(11, 4.4))
+    for k, method in enumerate(dict.fromkeys(r["method"] for r in chosen)):
+        pts = sorted(
+            (r["n"], r.get("vertices", r.get("triangles")), r["bytes"]) for r in chosen if r["method"] == method
+        )
+        tol, count, size = zip(*pts)
+        a.loglog(tol, count, "o-", label=f"{method} ({'triangles' if method == 'STL' else 'vertices'})", color=f"C{k}")
+        b.loglog(tol, np.array(size) / 1024, "o-", label=method, color=f"C{k}")
+    a.set_ylabel("count")
+    b.set_ylabel("file size, KiB")
+    for ax in (a, b):
+        ax.set_xlabel("tolerance, mm")
+        ax.invert_xaxis()
+        ax.grid(alpha=0.3, which="both")
+        ax.legend(fontsize=8)
+    fig.suptitle("output size of one 41-tooth elliptic gear against tolerance")
+    _save(fig, path)
+
+
+def builds(rows: list[dict], path: Path) -> None:
+    chosen = [r for r in rows if r["study"] == "build"]
+    scaling = sorted((r["n"], r["seconds"], r["peak_mb"]) for r in rows if r["study"] == "teeth-scaling")
+    fig, (a, b) = plt.subplots(1, 2, figsize=(12, 4.6))
+    names = [r["method"] for r in chosen]
+    a.barh(names, [r["seconds"] for r in chosen], color="C0")
+    for k, r in enumerate(chosen):
+        a.text(r["seconds"], k, f" {r['peak_mb']:.0f} MB", va="center", fontsize=7)
+    a.set_xlabel("build time without charts, s (peak memory beside)")
+    z, t, mb = zip(*scaling)
+    b.plot(z, t, "o-", label="time, s")
+    slope = np.polyfit(z, t, 1)
+    b.plot(z, np.polyval(slope, z), "--", color="0.5", label=f"linear fit: {1000 * slope[0]:.1f} ms per tooth")
+    b.set_xlabel("teeth on the pinion (1:1 spur pair)")
+    b.set_ylabel("build time, s")
+    b2 = b.twinx()
+    b2.plot(z, mb, "s:", color="C3", label="peak memory, MB")
+    b2.set_ylabel("MB")
+    b.legend(loc="upper left", fontsize=8)
+    b2.legend(loc="lower right", fontsize=8)
+    for ax in (a, b):
+        ax.grid(alpha=0.3)
+    _save(fig, path)
+
+
+def stability(rows: list[dict], path: Path) -> None:
+    fig, ax = plt.subplots(figsize=(11, 0.32 * len(rows) + 1.2))
+    colours = {"ok": "C2", "warning": "C1", "error": "C3"}
+    for k, r in enumerate(rows):
+        kind = r["outcome"].split(":")[0]
+        ax.barh(k, 1, color=colours[kind])
+        text = f"{r['case']} = {r['value']:g}: {r['outcome']}"
+        ax.text(0.01, k, text if len(text) < 150 else text[:147] + "…", va="center", fontsize=7)
+    ax.set_yticks([])
+    ax.set_xticks([])
+    ax.invert_yaxis()
+    ax.set_title("stability map: ok (green), warning (orange), clear error (red)")
+    _save(fig, path)
