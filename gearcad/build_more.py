@@ -215,6 +215,20 @@ def build_roller_body(p: RollerBodyParams, folder: Path | None) -> OtherResult:
         + (f"amplitude limits convex {limits[p.m][0]:.5f} / simple {limits[p.m][1]:.5f} R, " if limits else "")
         + f"centre Vmax {vmax:.4g} mm/s"
     )
+    teeth = _toothed_body(osc, p) if p.roller_teeth else None
+    if teeth is not None:
+        report["teeth"] = {k: v for k, v in teeth.items() if not k.startswith("_")}
+        summary += f", {teeth['body_teeth']}/{teeth['roller_teeth']} teeth m = {teeth['module']:.4f}"
+        if teeth["roller_radius"] != r:
+            findings.append(
+                finding(
+                    "teeth-fit",
+                    f"roller radius {r:g} R adjusted to {teeth['roller_radius']:.6f} R so that the body carries a whole "
+                    f"number of teeth ({teeth['body_teeth']}) of the rollers' module",
+                    "body",
+                )
+            )
+        r = teeth["roller_radius"]
     if folder is not None:
         # enough samples that chords sag at most a quarter of the tolerance where the contour
         # (or the roller path) bends most: sag ≈ κ·ds²/8
@@ -225,20 +239,44 @@ def build_roller_body(p: RollerBodyParams, folder: Path | None) -> OtherResult:
         tau = np.linspace(0, TWO_PI, max(256, int(math.ceil(2 * length / ds))), endpoint=False)
         body = RB.contour(osc, tau, r=r)[::-1] * p.scale  # τ runs clockwise: reverse for CCW
         path = np.column_stack([np.sin(tau) + RB._series(osc.f, tau), np.cos(tau) + RB._series(osc.g, tau)])[::-1]
-        parts = [
-            _part("body", body, path * p.scale, tol, p.bore),
-            _part(
-                "roller",
-                _circle(r * p.scale, tol * DEFAULT.fine_fraction),
-                _circle(r * p.scale, tol * DEFAULT.fine_fraction),
-                tol,
-                _no_bore(),
-            ),
-        ]
         centres = [(p.scale * math.sin(a), p.scale * math.cos(a)) for a in (0.0, TWO_PI / 3, 2 * TWO_PI / 3)]
-        _write_parts(
-            folder, parts, [(parts[0], 0.0, (0.0, 0.0))] + [(parts[1], 0.0, c) for c in centres], p.output, files
+        fine = tol * DEFAULT.fine_fraction
+        if teeth is None:
+            parts = [
+                _part("body", body, path * p.scale, tol, p.bore),
+                _part("roller", _circle(r * p.scale, fine), _circle(r * p.scale, fine), tol, _no_bore()),
+            ]
+            turns = [0.0, 0.0, 0.0]
+        else:
+            parts = [
+                _part("body", teeth["_body_ring"], body, tol, p.bore, module=teeth["module"]),
+                _part("roller", teeth["_roller_ring"], _circle(r * p.scale, fine), tol, _no_bore()),
+            ]
+            turns = teeth["_roller_turns"]
+        placements = [(parts[0], 0.0, (0.0, 0.0))] + [(parts[1], a, c) for a, c in zip(turns, centres)]
+        body_polygon = _placed_polygon_xy(parts[0], 0.0, (0.0, 0.0))
+        overlap = max(
+            float(body_polygon.intersection(_placed_polygon_xy(parts[1], a, c)).area) for a, c in zip(turns, centres)
         )
+        report["assembly_overlap"] = overlap
+        if teeth is not None:
+            # turned a little either way, every roller must bite into the body: they do touch
+            nudge = 200 * tol / (r * p.scale)
+            report["assembly_nudged_overlap"] = min(
+                max(
+                    float(body_polygon.intersection(_placed_polygon_xy(parts[1], a + d, c)).area)
+                    for d in (-nudge, nudge)
+                )
+                for a, c in zip(turns, centres)
+            )
+        if teeth is not None and (
+            overlap > 2 * tol * 2.25 * teeth["module"]
+            or report["assembly_nudged_overlap"] <= 2 * tol * 2.25 * teeth["module"]
+        ):
+            findings.append(
+                finding("interference", f"the body and a roller overlap by {overlap:.4g} mm² as assembled", "body")
+            )
+        _write_parts(folder, parts, placements, p.output, files)
         if p.output.charts:
             if limits:
                 charts_more.limits_chart(report["limits"], p, folder / "amplitude_limits.png")
@@ -246,6 +284,67 @@ def build_roller_body(p: RollerBodyParams, folder: Path | None) -> OtherResult:
             charts_more.field_chart(osc, p, folder / "velocity_field.png")
             files["velocity_field.png"] = {"kind": "png"}
     return _finish(folder, p.name, report, findings, files, start, summary)
+
+
+def _placed_polygon_xy(part, angle: float, centre) -> shapely.Polygon:
+    rings = [rotate(r, angle) + np.asarray(centre) for r in part.outline.rings]
+    return shapely.Polygon(rings[0], rings[1:])
+
+
+def _toothed_body(osc: RB.Oscillation, p: RollerBodyParams) -> dict:
+    """Teeth on the body, the rollers as pinions of pitch radius r (one generating rack).
+
+    The rollers' count fixes the module (m = 2r/z_r); the body's contour is the roller path P
+    moved in by r, so its perimeter is P_path − 2πr, and a whole body count z_b needs
+    r = P_path·z_r / (2π(z_r + z_b)) — the roller radius is adjusted to it.
+    """
+    from .teeth.frame import ParametricFrame
+
+    z_r = p.roller_teeth
+    u = np.linspace(0, TWO_PI, 2048, endpoint=False)
+
+    def path_points(tau):
+        return np.column_stack([np.sin(tau) + RB._series(osc.f, tau), np.cos(tau) + RB._series(osc.g, tau)])
+
+    path = ParametricFrame(path_points(-u))  # τ runs clockwise; u = −τ counter-clockwise
+    body0 = path.perimeter - TWO_PI * p.roller_radius
+    m0 = 2 * p.roller_radius / z_r
+    z_b = max(3, int(round(body0 / (math.pi * m0))))
+    r = path.perimeter * z_r / (TWO_PI * (z_r + z_b))
+    if not RB.is_simple(osc, r=r):
+        raise DesignError(f"teeth.roller_count = {z_r}: the roller radius it needs ({r:.4f} R) breaks the contour")
+    module = 2 * r * p.scale / z_r
+    frame = ParametricFrame(RB.contour(osc, -u, r=r) * p.scale)
+    if not math.isclose(frame.perimeter, z_b * math.pi * module, rel_tol=1e-9):
+        raise DesignError("the body's perimeter does not fit its teeth (the contour is not a parallel of its path)")
+    fine = p.output.tolerance * DEFAULT.fine_fraction
+    rack = Rack.from_params(RackParams(module=module, pressure_angle=p.pressure_angle))
+    body = cut_teeth(frame, rack, z_b, rack.pitch / 2, tolerance=fine)
+    roller = cut_teeth(arc_frame(shapes.circle(r * p.scale)), rack, z_r, rack.pitch / 2, tolerance=fine)
+    turns = []
+    for k in range(3):
+        tau = TWO_PI * k / 3
+        s_k = float(frame.arc_at(np.array([-tau]))[0])
+        space = ((s_k - rack.pitch / 2) / rack.pitch) % 1.0  # 0 where a body space is centred
+        centre = path_points(np.array([tau]))[0] * p.scale
+        contact = RB.contour(osc, np.array([tau]), r=r)[0] * p.scale
+        theta = math.atan2(*(contact - centre)[::-1])
+        # the two curves run opposite ways at the contact, so the tooth pattern is mirrored: a
+        # body space centre `space` pitches behind the contact needs a roller tooth centre as far
+        # ahead; the roller's spaces sit at arc r·(angle − turn) = pitch/2 + j·pitch
+        turns.append(theta - (rack.pitch / 2 + ((0.5 - space) % 1.0) * rack.pitch) / (r * p.scale))
+    return {
+        "body_teeth": z_b,
+        "roller_teeth": z_r,
+        "module": module,
+        "roller_radius": r,
+        "requested_roller_radius": p.roller_radius,
+        "body_undercut": body.undercut,
+        "roller_undercut": roller.undercut,
+        "_body_ring": body.outline.outer,
+        "_roller_ring": roller.outline.outer,
+        "_roller_turns": turns,
+    }
 
 
 def _no_bore():
@@ -461,7 +560,8 @@ def build_carrier_train(p: CarrierTrainParams, folder: Path | None) -> OtherResu
         for k, mesh in enumerate(p.meshes):
             feature = ((0.0 - angles[k]) / pitch_angle[k]) % 1.0  # 0 tooth (or ring space) at angle 0
             if mesh == "external":
-                angles.append(math.pi - ((feature + 0.5) % 1.0) * pitch_angle[k + 1])
+                # opposite senses at the contact: the pattern is mirrored (tooth meets space)
+                angles.append(math.pi - ((0.5 - feature) % 1.0) * pitch_angle[k + 1])
             else:  # contact at angle 0 on both; a tooth enters a ring space (the hole gear's tooth)
                 angles.append(-feature * pitch_angle[k + 1])
         placements = [(part, a, (c, 0.0)) for part, a, c in zip(parts, angles, centres)]

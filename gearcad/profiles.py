@@ -160,6 +160,8 @@ class RollerBodyParams:
     rpm: float
     bore: BoreParams
     output: OutputParams
+    roller_teeth: int | None = None  # teeth on each roller (then the body is toothed too)
+    pressure_angle: float = math.radians(20)
 
 
 @dataclass(frozen=True)
@@ -647,7 +649,7 @@ def load_profile(path: str | Path, overrides: list[str] = ()):
 
 _OTHER_KEYS = {
     "roller-body": (
-        {"name", "title", "mechanism", "body", "kinematics", "bore", "output"},
+        {"name", "title", "mechanism", "body", "kinematics", "teeth", "bore", "output"},
         {"scale", "roller_radius", "direction", "amplitude", "m", "f", "g"},
     ),
     "rolling-wheel": ({"name", "title", "mechanism", "drive", "output"}, {"r", "R", "L", "H", "driver_rpm", "travel"}),
@@ -723,6 +725,11 @@ def _other(mechanism: str, data: dict, default_name: str):
             )
         kin = _Reader(_table(data, "kinematics", errors, required=False), "kinematics.", errors)
         kin.unknown({"rpm"})
+        tt = _table(data, "teeth", errors, required=False)
+        tr = _Reader(tt, "teeth.", errors)
+        tr.unknown({"roller_count", "pressure_angle_deg"})
+        roller_teeth = tr.integer("roller_count", minimum=8) if "roller_count" in tt else None
+        angle = tr.number("pressure_angle_deg", 20.0, minimum=10, maximum=35, what="an angle in degrees")
         params = RollerBodyParams(
             name=name,
             title=title,
@@ -738,6 +745,8 @@ def _other(mechanism: str, data: dict, default_name: str):
             rpm=kin.number("rpm", 90.0, positive=True, what="a speed in rev/min"),
             bore=_bore(_table(data, "bore", errors, required=False), errors),
             output=output,
+            roller_teeth=roller_teeth,
+            pressure_angle=math.radians(angle) if math.isfinite(angle) else math.nan,
         )
     elif mechanism == "rolling-wheel":
         params = RollingWheelParams(

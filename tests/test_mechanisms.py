@@ -91,6 +91,29 @@ def test_roller_body_profile_builds(tmp_path):
     assembly = trimesh.load(folder / "assembly.3mf")
     assert len(assembly.graph.nodes_geometry) == 4  # the body and three rollers
     assert {"amplitude_limits.png", "velocity_field.png", "assembly.dxf"} <= set(report["files"])
+    # teeth: the rollers are 12-tooth pinions of pitch radius r, the body cut by the same rack
+    teeth = report["teeth"]
+    assert teeth["roller_teeth"] == 12 and teeth["body_teeth"] > 3 * 12
+    r, scale = teeth["roller_radius"], report["body"]["scale"]
+    assert teeth["module"] == pytest.approx(2 * r * scale / 12, rel=1e-12)
+    assert abs(r - 0.1) < 0.1 * 2 / teeth["body_teeth"]  # nudged by less than a tooth's worth
+    assert [w["code"] for w in report["warnings"]] == ["teeth-fit"]
+    # as assembled every roller meshes: no overlap, and turned slightly either way it bites
+    allowed = 2 * 0.001 * 2.25 * teeth["module"]
+    assert report["assembly_overlap"] <= allowed < report["assembly_nudged_overlap"]
+
+
+def test_body_perimeter_is_a_whole_number_of_teeth():
+    """The contour is the roller path moved in by r, so its perimeter is P_path − 2πr (Steiner):
+    the closed form that fixes the adjusted roller radius."""
+    from gearcad.teeth.frame import ParametricFrame
+
+    osc = RB.harmonic("vertical", 0.1, 3)
+    u = np.linspace(0, 2 * math.pi, 2048, endpoint=False)
+    path = np.column_stack([np.sin(-u), np.cos(-u) + 0.1 * np.sin(-3 * u)])
+    for r in (0.05, 0.1, 0.2):
+        body = ParametricFrame(RB.contour(osc, -u, r=r))
+        assert body.perimeter == pytest.approx(ParametricFrame(path).perimeter - 2 * math.pi * r, rel=1e-12)
 
 
 def test_amplitude_past_the_simple_limit_is_refused(tmp_path, capsys):

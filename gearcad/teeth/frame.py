@@ -6,11 +6,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..pitch import chebyshev
 from ..pitch.chebyshev import Piecewise
 from ..pitch.curve import TWO_PI, PitchCurve, arc_length_map, curvature
 from ..tolerances import DEFAULT, Tolerances
 
-__all__ = ["ArcFrame", "arc_frame"]
+__all__ = ["ArcFrame", "arc_frame", "ParametricFrame"]
 
 
 @dataclass(frozen=True)
@@ -53,3 +54,52 @@ class ArcFrame:
 def arc_frame(curve: PitchCurve, *, tol: Tolerances = DEFAULT) -> ArcFrame:
     s_map = arc_length_map(curve, tol=tol)
     return ArcFrame(curve, s_map, s_map.inverse(rel_tol=tol.fit_rel), s_map.hi_value)
+
+
+class ParametricFrame:
+    """Arc-length view of a smooth closed curve given by samples at equal parameter steps
+    (counter-clockwise), held as a truncated Fourier series: spectrally accurate for a smooth
+    periodic curve, with exact derivatives.  Same interface as :class:`ArcFrame` for cutting
+    teeth on pitch curves that are not polar about a pivot (a body on rollers)."""
+
+    def __init__(self, samples: np.ndarray, *, tol: Tolerances = DEFAULT):
+        n = len(samples)
+        coeff = np.stack([np.fft.fft(samples[:, 0]), np.fft.fft(samples[:, 1])]) / n
+        orders = np.fft.fftfreq(n, 1.0 / n)
+        keep = np.max(np.abs(coeff), axis=0) > 1e-15 * np.max(np.abs(coeff))
+        self._c, self._k = coeff[:, keep], orders[keep]
+        speed = chebyshev.fit(lambda u: np.hypot(*self._derivative(u, 1)), [0.0, TWO_PI], rel_tol=tol.fit_rel)
+        self._s = speed.integral()
+        self._u = self._s.inverse(rel_tol=tol.fit_rel)
+        self.perimeter = self._s.hi_value
+
+    def _derivative(self, u, order: int) -> np.ndarray:
+        u = np.asarray(u, dtype=float)
+        phase = np.exp(1j * np.multiply.outer(u, self._k)) * (1j * self._k) ** order
+        return np.real(phase @ self._c.T).T  # (2, …)
+
+    def _param(self, s) -> np.ndarray:
+        s = np.asarray(s, dtype=float)
+        turns = np.floor(s / self.perimeter)
+        return self._u(s - turns * self.perimeter) + turns * TWO_PI
+
+    def frame(self, s):
+        u = self._param(s)
+        point = np.moveaxis(self._derivative(u, 0), 0, -1)
+        d = np.moveaxis(self._derivative(u, 1), 0, -1)
+        t = d / np.linalg.norm(d, axis=-1, keepdims=True)
+        return point, t, np.stack([t[..., 1], -t[..., 0]], axis=-1)
+
+    def curvature(self, s) -> np.ndarray:
+        u = self._param(s)
+        (x1, y1), (x2, y2) = self._derivative(u, 1), self._derivative(u, 2)
+        return (x1 * y2 - y1 * x2) / np.hypot(x1, y1) ** 3
+
+    def angle(self, s) -> np.ndarray:
+        """Polar angle of the curve point at s about the origin (for reports)."""
+        p, _, _ = self.frame(s)
+        return np.arctan2(p[..., 1], p[..., 0])
+
+    def arc_at(self, u) -> np.ndarray:
+        """Arc length at curve parameter u."""
+        return self._s(np.asarray(u, dtype=float) % TWO_PI)
