@@ -223,8 +223,8 @@ def build_roller_body(p: RollerBodyParams, folder: Path | None) -> OtherResult:
             findings.append(
                 finding(
                     "teeth-fit",
-                    f"roller radius {r:g} R adjusted to {teeth['roller_radius']:.6f} R so that the body carries a whole "
-                    f"number of teeth ({teeth['body_teeth']}) of the rollers' module",
+                    f"roller radius {r:g} R adjusted to {teeth['roller_radius']:.6f} R so that the body carries "
+                    f"a whole number of teeth ({teeth['body_teeth']}) of the rollers' module",
                     "body",
                 )
             )
