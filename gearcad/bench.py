@@ -249,19 +249,19 @@ try:  # this process's own high-water mark (ru_maxrss would include the parent's
     hwm = next(int(l.split()[1]) for l in open("/proc/self/status") if l.startswith("VmHWM"))
 except (OSError, StopIteration):
     hwm = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
-print(seconds, hwm)
+Path(sys.argv[2], "measure.txt").write_text(f"{seconds} {hwm}")
 """
 
 
 def _child_build(profile: Path, folder: Path, overrides: list[str]) -> tuple[float, float]:
     folder.mkdir(parents=True, exist_ok=True)
-    out = subprocess.run(
+    subprocess.run(
         [sys.executable, "-c", _CHILD, str(profile), str(folder), *overrides],
         capture_output=True,
         text=True,
         check=True,
     )
-    seconds, rss_kb = out.stdout.split()
+    seconds, rss_kb = (folder / "measure.txt").read_text().split()
     return float(seconds), float(rss_kb) / 1024
 
 

@@ -140,10 +140,6 @@ class Piecewise:
             start = float(C.chebval(1.0, ci))
         return Piecewise(self.breaks, tuple(coefs))
 
-    def total(self) -> float:
-        """Definite integral over [lo, hi] (Clenshaw–Curtis on each piece)."""
-        return float(self.integral()(np.array([self.hi]))[0])
-
     def inverse(self, *, rel_tol: float) -> Piecewise:
         """The inverse of a strictly increasing function, fitted piece by piece."""
         slope = self.derivative()

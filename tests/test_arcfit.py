@@ -1,0 +1,46 @@
+"""Arc fitting and thinning against closed forms: circles and ellipses sampled finely."""
+
+import math
+
+import numpy as np
+import pytest
+
+from gearcad.arcfit import arc_points, decimate, fit_arcs
+from gearcad.pitch import shapes
+from gearcad.pitch.discretize import polyline
+
+
+def _ellipse(a, b, n):
+    t = np.linspace(0, 2 * math.pi, n, endpoint=False)
+    return np.column_stack([a * np.cos(t), b * np.sin(t)])
+
+
+def _ellipse_distance(points, a, b):
+    """Distance of points from the ellipse x²/a² + y²/b² = 1 (by dense sampling of it)."""
+    dense = _ellipse(a, b, 200000)
+    d = np.hypot(points[:, None, 0] - dense[None, ::50, 0], points[:, None, 1] - dense[None, ::50, 1])
+    near = np.argmin(d, axis=1) * 50
+    idx = (near[:, None] + np.arange(-50, 51)[None, :]) % len(dense)
+    return np.min(np.hypot(points[:, None, 0] - dense[idx, 0], points[:, None, 1] - dense[idx, 1]), axis=1)
+
+
+def test_a_circle_needs_only_a_few_arcs():
+    t = np.linspace(0, 2 * math.pi, 4000, endpoint=False)
+    ring = 10 * np.column_stack([np.cos(t), np.sin(t)])
+    arcs = fit_arcs(ring, 1e-4)
+    assert len(arcs.vertices) <= 40 and arcs.arcs == len(arcs.vertices) - np.count_nonzero(arcs.bulges == 0)
+    back = arc_points(arcs, 1e-7)
+    assert np.abs(np.hypot(*back.T) - 10).max() < 1e-9  # the arcs are the circle itself
+
+
+@pytest.mark.parametrize("tol", [1e-2, 1e-3])
+def test_arcs_and_thinning_stay_within_tolerance_of_an_ellipse(tol):
+    # as the product does: the curve sampled with chords within a quarter of the tolerance
+    ring = polyline(shapes.ellipse_centre(25, 15), tol / 4)
+    arcs = fit_arcs(ring, 0.75 * tol)
+    back = arc_points(arcs, tol / 100)
+    assert _ellipse_distance(back, 25, 15).max() <= tol
+    thin = decimate(ring, 0.75 * tol)
+    mids = 0.5 * (thin + np.roll(thin, -1, axis=0))
+    assert _ellipse_distance(mids, 25, 15).max() <= tol
+    assert len(thin) <= len(ring) and len(arcs.vertices) * 4 < len(ring)
