@@ -24,7 +24,7 @@ from .export import charts_more
 from .export.dxf import write_dxf
 from .export.mesh import SolidItem, extrude, write_3mf, write_stl
 from .outline import Outline, rotate
-from .parts import with_bore
+from .parts import circle_ring, with_bore
 from .pitch import shapes
 from .profiles import CarrierTrainParams, RollerBodyParams, RollingWheelParams
 from .teeth.frame import arc_frame
@@ -47,13 +47,6 @@ class OtherResult:
     findings: tuple[Finding, ...]
     files: dict
     seconds: float
-
-
-def _circle(radius: float, tolerance: float) -> np.ndarray:
-    """Vertices on the circle whose chords stray at most ``tolerance`` from it."""
-    steps = max(16, int(math.ceil(math.pi / math.acos(max(1 - tolerance / radius, -1.0)))))
-    t = np.linspace(0, TWO_PI, steps, endpoint=False)
-    return radius * np.column_stack([np.cos(t), np.sin(t)])
 
 
 def _write_parts(folder: Path, parts: list, placements: list, out, report_files: dict) -> None:
@@ -244,19 +237,19 @@ def build_roller_body(p: RollerBodyParams, folder: Path | None) -> OtherResult:
         if teeth is None:
             parts = [
                 _part("body", body, path * p.scale, tol, p.bore),
-                _part("roller", _circle(r * p.scale, fine), _circle(r * p.scale, fine), tol, _no_bore()),
+                _part("roller", circle_ring(r * p.scale, fine), circle_ring(r * p.scale, fine), tol, _no_bore()),
             ]
             turns = [0.0, 0.0, 0.0]
         else:
             parts = [
                 _part("body", teeth["_body_ring"], body, tol, p.bore, module=teeth["module"]),
-                _part("roller", teeth["_roller_ring"], _circle(r * p.scale, fine), tol, _no_bore()),
+                _part("roller", teeth["_roller_ring"], circle_ring(r * p.scale, fine), tol, _no_bore()),
             ]
             turns = teeth["_roller_turns"]
         placements = [(parts[0], 0.0, (0.0, 0.0))] + [(parts[1], a, c) for a, c in zip(turns, centres)]
-        body_polygon = _placed_polygon_xy(parts[0], 0.0, (0.0, 0.0))
+        body_polygon = _placed_polygon(parts[0], 0.0, (0.0, 0.0))
         overlap = max(
-            float(body_polygon.intersection(_placed_polygon_xy(parts[1], a, c)).area) for a, c in zip(turns, centres)
+            float(body_polygon.intersection(_placed_polygon(parts[1], a, c)).area) for a, c in zip(turns, centres)
         )
         report["assembly_overlap"] = overlap
         if teeth is not None:
@@ -264,7 +257,7 @@ def build_roller_body(p: RollerBodyParams, folder: Path | None) -> OtherResult:
             nudge = 200 * tol / (r * p.scale)
             report["assembly_nudged_overlap"] = min(
                 max(
-                    float(body_polygon.intersection(_placed_polygon_xy(parts[1], a + d, c)).area)
+                    float(body_polygon.intersection(_placed_polygon(parts[1], a + d, c)).area)
                     for d in (-nudge, nudge)
                 )
                 for a, c in zip(turns, centres)
@@ -286,7 +279,7 @@ def build_roller_body(p: RollerBodyParams, folder: Path | None) -> OtherResult:
     return _finish(folder, p.name, report, findings, files, start, summary)
 
 
-def _placed_polygon_xy(part, angle: float, centre) -> shapely.Polygon:
+def _placed_polygon(part, angle: float, centre) -> shapely.Polygon:
     rings = [rotate(r, angle) + np.asarray(centre) for r in part.outline.rings]
     return shapely.Polygon(rings[0], rings[1:])
 
@@ -429,8 +422,8 @@ def build_rolling_wheel(p: RollingWheelParams, folder: Path | None) -> OtherResu
         tol = p.output.tolerance
         ft = tol * DEFAULT.fine_fraction
         parts = [
-            _part("wheel1", _circle(p.r, ft), _circle(p.r, ft), tol, _no_bore()),
-            _part("wheel2", _circle(p.R, ft), _circle(p.R, ft), tol, _no_bore()),
+            _part("wheel1", circle_ring(p.r, ft), circle_ring(p.r, ft), tol, _no_bore()),
+            _part("wheel2", circle_ring(p.R, ft), circle_ring(p.R, ft), tol, _no_bore()),
         ]
         _write_parts(folder, parts, [(parts[0], 0.0, (p.L, p.H)), (parts[1], 0.0, (0.0, 0.0))], p.output, files)
         if p.output.charts:
@@ -480,7 +473,7 @@ def _gear_rings(p: CarrierTrainParams, k: int, ring: bool, tol: float):
     else:
         rack = Rack.from_params(RackParams(module=m, pressure_angle=p.pressure_angle))
     gear = cut_teeth(frame, rack, z, rack.pitch / 2, tolerance=tol)  # a tooth (or ring space) at angle 0
-    return gear, _circle(r, tol)
+    return gear, circle_ring(r, tol)
 
 
 def build_carrier_train(p: CarrierTrainParams, folder: Path | None) -> OtherResult:
@@ -538,7 +531,7 @@ def build_carrier_train(p: CarrierTrainParams, folder: Path | None) -> OtherResu
             gear, pitch = _gear_rings(p, k, ring[k], ft)
             gears.append(gear)
             if ring[k]:
-                rim = _circle(radii[k] + 3.75 * p.module, ft)
+                rim = circle_ring(radii[k] + 3.75 * p.module, ft)
                 outer = rim
                 hole = gear.outline.outer[::-1]
                 from .build import Part
@@ -567,8 +560,8 @@ def build_carrier_train(p: CarrierTrainParams, folder: Path | None) -> OtherResu
         placements = [(part, a, (c, 0.0)) for part, a, c in zip(parts, angles, centres)]
         overlap = 0.0
         for k in range(len(parts) - 1):
-            a = _placed_polygon(parts[k], angles[k], centres[k])
-            b = _placed_polygon(parts[k + 1], angles[k + 1], centres[k + 1])
+            a = _placed_polygon(parts[k], angles[k], (centres[k], 0.0))
+            b = _placed_polygon(parts[k + 1], angles[k + 1], (centres[k + 1], 0.0))
             overlap = max(overlap, float(a.intersection(b).area))
         report["train"]["assembly_overlap"] = overlap
         if overlap > 2 * tol * 2.25 * p.module:
@@ -582,8 +575,3 @@ def build_carrier_train(p: CarrierTrainParams, folder: Path | None) -> OtherResu
     summary = ", ".join(f"{g['name']} {g['omega_rpm']:.4g} rpm" for g in report["gears"])
     summary += f"; stopping vs velocities {difference:.1e} rad/s"
     return _finish(folder, p.name, report, findings, files, start, summary)
-
-
-def _placed_polygon(part, angle: float, centre: float) -> shapely.Polygon:
-    rings = [rotate(r, angle) + np.array([centre, 0.0]) for r in part.outline.rings]
-    return shapely.Polygon(rings[0], rings[1:])

@@ -12,7 +12,7 @@ import shapely.geometry
 from .errors import DesignError
 from .outline import Outline
 
-__all__ = ["BoreParams", "bore_ring", "with_bore"]
+__all__ = ["BoreParams", "bore_ring", "circle_ring", "with_bore"]
 
 
 @dataclass(frozen=True)
@@ -27,8 +27,9 @@ class BoreParams:
     """Distance from the centre to a D-flat (the shaft's flat), at the +x side; 0 for none."""
 
 
-def _circle(radius: float, tolerance: float) -> np.ndarray:
-    steps = max(8, int(math.ceil(math.pi / math.acos(max(1 - tolerance / radius, -1.0)))))
+def circle_ring(radius: float, tolerance: float) -> np.ndarray:
+    """Counter-clockwise vertices on a circle whose chords stray at most ``tolerance`` from it."""
+    steps = max(16, int(math.ceil(math.pi / math.acos(max(1 - tolerance / radius, -1.0)))))
     t = np.linspace(0.0, 2 * math.pi, steps, endpoint=False)
     return radius * np.column_stack([np.cos(t), np.sin(t)])
 
@@ -38,7 +39,7 @@ def bore_ring(bore: BoreParams, tolerance: float) -> np.ndarray | None:
     if bore.diameter <= 0:
         return None
     r = bore.diameter / 2
-    hole = shapely.Polygon(_circle(r, tolerance))
+    hole = shapely.Polygon(circle_ring(r, tolerance))
     if bore.keyway_width > 0 and bore.keyway_depth > 0:
         half = bore.keyway_width / 2
         hole = hole.union(shapely.box(0.0, -half, r + bore.keyway_depth, half))
