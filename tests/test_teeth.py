@@ -224,3 +224,21 @@ def test_random_toothed_outlines_are_simple_ccw_rings(a, ecc, z, pivot):
     assert polygon.buffer(1e-4).contains(root.buffer(-1e-3)) and tip.buffer(1e-4).contains(
         polygon
     )  # chord sag of the 20000-gons
+
+
+@pytest.mark.parametrize("backlash,clearance", [(0.1, 0.0), (0.0, 0.1)])
+def test_measured_play_matches_the_designed_one(backlash, clearance):
+    """Backlash b thins each tooth by b/2: the pair plays b on the pitch circle.  A clearance c
+    moves every flank in by c along its normal: 2c between flanks on each side, so 4c/cos α of
+    play in all — both measured by turning gear 2 until it touches gear 1."""
+    from gearcad.design import design
+    from gearcad.profiles import parse_profile
+    from gearcad.teeth.pair import cut_pair
+
+    params = parse_profile({"gear1": {"curve": "circle", "radius": 20.0}, "gear2": {"lobes": 2},
+                            "teeth": {"count": 20, "backlash": backlash, "clearance": clearance}})
+    teeth = cut_pair(design(params), params.teeth)
+    expected = backlash + 4 * clearance / math.cos(ALPHA)
+    low, high = teeth.backlash_range
+    assert low == pytest.approx(expected, abs=0.002) and high == pytest.approx(expected, abs=0.002)
+    assert teeth.mesh.max_overlap == 0 and teeth.mesh.meshes

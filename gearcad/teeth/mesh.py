@@ -128,7 +128,7 @@ def mesh_check(
 
 
 def backlash_range(
-    pair: PairData, gears, frames, *, limit: float, positions: int = 12, steps: int = 8
+    pair: PairData, gears, frames, *, limit: float, positions: int = 12, steps: int = 12
 ) -> tuple[float, float]:
     """Smallest and largest free play of the pair, measured on gear 2's pitch curve (mm).
 
