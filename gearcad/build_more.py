@@ -256,10 +256,7 @@ def build_roller_body(p: RollerBodyParams, folder: Path | None) -> OtherResult:
             # turned a little either way, every roller must bite into the body: they do touch
             nudge = 200 * tol / (r * p.scale)
             report["assembly_nudged_overlap"] = min(
-                max(
-                    float(body_polygon.intersection(_placed_polygon(parts[1], a + d, c)).area)
-                    for d in (-nudge, nudge)
-                )
+                max(float(body_polygon.intersection(_placed_polygon(parts[1], a + d, c)).area) for d in (-nudge, nudge))
                 for a, c in zip(turns, centres)
             )
         if teeth is not None and (

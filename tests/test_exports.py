@@ -186,13 +186,25 @@ def test_chamfer_removes_a_45_degree_edge(tmp_path):
         assert mesh.bounds[:, 2] == pytest.approx([0.0, 4.0])
 
 
-def test_chamfer_the_outline_cannot_take_is_refused(tmp_path, capsys):
+def test_chamfer_on_toothed_gears(tmp_path):
+    """Teeth take the chamfer too: short segments beside sharp tip corners are collapsed in the
+    inset, so the solid stays watertight and its volume is the chamfer's to a few 1e-6."""
+    folder, report = build(tmp_path, chamfer=0.2)
+    for gear in report["gears"]:
+        mesh = trimesh.load(folder / f"{gear['name']}.stl")
+        assert mesh.is_watertight and mesh.is_winding_consistent
+        outline = cut_polygon(folder / f"{gear['name']}.dxf")
+        edge = outline.exterior.length + sum(r.length for r in outline.interiors)
+        assert mesh.volume == pytest.approx(gear["part"]["area"] * 4.0 - edge * 0.2**2, rel=1e-4)
+
+
+def test_chamfer_the_teeth_cannot_take_is_refused(tmp_path, capsys):
     path = tmp_path / "p.toml"
     path.write_text(
-        SMALL.format(tol=0.001, chamfer=0.2, kerf=0, dxf="polyline", bore=3.0, bore_extra="", animation="false")
+        SMALL.format(tol=0.001, chamfer=0.9, kerf=0, dxf="polyline", bore=3.0, bore_extra="", animation="false")
     )
     assert main(["build", str(path), "--out", str(tmp_path / "out")]) == 2
-    assert "output.chamfer = 0.2" in capsys.readouterr().err
+    assert "output.chamfer = 0.9" in capsys.readouterr().err
     assert not (tmp_path / "out").exists()
 
 

@@ -235,8 +235,13 @@ def test_measured_play_matches_the_designed_one(backlash, clearance):
     from gearcad.profiles import parse_profile
     from gearcad.teeth.pair import cut_pair
 
-    params = parse_profile({"gear1": {"curve": "circle", "radius": 20.0}, "gear2": {"lobes": 2},
-                            "teeth": {"count": 20, "backlash": backlash, "clearance": clearance}})
+    params = parse_profile(
+        {
+            "gear1": {"curve": "circle", "radius": 20.0},
+            "gear2": {"lobes": 2},
+            "teeth": {"count": 20, "backlash": backlash, "clearance": clearance},
+        }
+    )
     teeth = cut_pair(design(params), params.teeth)
     expected = backlash + 4 * clearance / math.cos(ALPHA)
     low, high = teeth.backlash_range

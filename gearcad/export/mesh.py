@@ -77,16 +77,30 @@ def extrude(outline: Outline, thickness: float, *, name: str, chamfer: float = 0
 
 def _inset(ring: np.ndarray, distance: float) -> np.ndarray:
     """Each vertex moved ``distance`` into the material along its mitred bisector (material
-    lies left of every ring: outer rings run counter-clockwise, holes clockwise)."""
+    lies left of every ring: outer rings run counter-clockwise, holes clockwise).
+
+    Where a segment is shorter than the inset eats (beside a sharp corner) its inset copy turns
+    round; such inverted segments are collapsed to their midpoint until none is left, as CAD
+    offsetters do, so the ring keeps one inset vertex per vertex for the loft.
+    """
     prev = ring - np.roll(ring, 1, axis=0)
     nxt = np.roll(ring, -1, axis=0) - ring
     n1 = np.column_stack([-prev[:, 1], prev[:, 0]]) / np.linalg.norm(prev, axis=1, keepdims=True)
     n2 = np.column_stack([-nxt[:, 1], nxt[:, 0]]) / np.linalg.norm(nxt, axis=1, keepdims=True)
     bisector = n1 + n2
-    # mitre length 1/cos of the half angle, clamped at 2 (as CAD offsetters do): a sharp notch
-    # left by undercut trimming would otherwise throw its vertex far across the part
+    # mitre length 1/cos of the half angle, clamped at 2 (as CAD offsetters do)
     scale = np.minimum(2.0 / np.maximum(np.einsum("ij,ij->i", bisector, bisector), 1e-12), 4.0)
-    return ring + distance * bisector * scale[:, None]
+    inset = ring + distance * bisector * scale[:, None]
+    for _ in range(50):
+        seg = np.roll(inset, -1, axis=0) - inset
+        inverted = np.einsum("ij,ij->i", seg, nxt) <= 0
+        if not np.any(inverted):
+            break
+        i = np.nonzero(inverted)[0]
+        j = (i + 1) % len(inset)
+        mid = 0.5 * (inset[i] + inset[j])
+        inset[i], inset[j] = mid, mid
+    return inset
 
 
 def _chamfered(section, outline: Outline, thickness: float, chamfer: float, name: str) -> m3d.Manifold:
