@@ -12,6 +12,7 @@ import shutil
 import tempfile
 import time
 from collections.abc import Callable
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, replace
 from pathlib import Path
 
@@ -157,6 +158,10 @@ def build_profile(params: GearPairParams, folder: Path) -> BuildResult:
     parts = make_parts(data, teeth, params)
     files: dict[str, dict] = {}
 
+    if "dxf" in out.formats and out.dxf != "polyline-flat":
+        # fit every part's arcs side by side: numpy's large-array loops release the GIL
+        with ThreadPoolExecutor(max_workers=2) as pool:
+            list(pool.map(lambda part: part.arcs(out.kerf, out.tolerance), parts))
     solids: list[Solid] = []
     for part in parts:
         if "dxf" in out.formats:

@@ -94,6 +94,13 @@ def _overlap_function(pair: PairData, gears, frames, phi1: np.ndarray):
     return overlap
 
 
+def nudge_angle(pair: PairData, *, module: float, tolerance: float, play: float) -> float:
+    """Gear 2's extra turn for the nudged test: more than the designed ``play`` by an overlap
+    that dwarfs the allowance (~0.44·δ/tol times it), capped for coarse tolerances."""
+    phi1 = np.linspace(0.0, pair.cycle, 360, endpoint=False)
+    return (play + min(200 * tolerance, 0.5 * module)) / float(np.min(pair.center_distance - pair.gear1.r(phi1)))
+
+
 def mesh_check(
     pair: PairData,
     gears: tuple[ToothedGear, ToothedGear],
@@ -111,8 +118,7 @@ def mesh_check(
     # tolerance-level overlap: each of the two flanks in contact may stray by the tolerance
     # over its working depth (ha + hf ≈ 2.25 m)
     allowed = 2 * tolerance * 2.25 * m
-    # a nudge whose overlap dwarfs the allowance (~0.44·δ/tol times it), capped for coarse tolerances
-    nudge = (play + min(200 * tolerance, 0.5 * m)) / float(np.min(pair.center_distance - pair.gear1.r(phi1)))
+    nudge = nudge_angle(pair, module=m, tolerance=tolerance, play=play)
     assembled = _overlap_function(pair, gears, frames, phi1)(0.0)
     nudged_at = _overlap_function(pair, gears, frames, phi1[::4])
     nudged = np.maximum(nudged_at(nudge), nudged_at(-nudge))

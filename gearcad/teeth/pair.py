@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -18,7 +19,7 @@ from ..profiles import TeethParams
 from ..tolerances import DEFAULT, Tolerances
 from .frame import ArcFrame, arc_frame
 from .gear import ToothedGear, cut_teeth
-from .mesh import MeshData, backlash_range, mesh_check
+from .mesh import MeshData, backlash_range, mesh_check, nudge_angle
 from .plan import ToothPlan, plan_teeth
 from .rack import Rack, RackParams
 
@@ -124,8 +125,13 @@ def cut_pair(data: DesignData, params: TeethParams, *, tol: Tolerances = DEFAULT
     )
     gears = tuple(_thinned(g, tol.outline_mm - fine_tol) for g in fine)
     play = params.backlash + 4 * params.clearance / math.cos(params.pressure_angle)
-    mesh = mesh_check(pair, gears, frames, tolerance=tol.outline_mm, play=play)
-    play_range = backlash_range(pair, gears, frames, limit=2 * mesh.nudge)
+    # the mesh proof and the play measurement are independent, and shapely's vectorised GEOS
+    # calls release the GIL: run them side by side on the machine's two cores
+    with ThreadPoolExecutor(max_workers=2) as pool:
+        mesh_job = pool.submit(mesh_check, pair, gears, frames, tolerance=tol.outline_mm, play=play)
+        limit = 2 * nudge_angle(pair, module=plan.module, tolerance=tol.outline_mm, play=play)
+        play_job = pool.submit(backlash_range, pair, gears, frames, limit=limit)
+        mesh, play_range = mesh_job.result(), play_job.result()
     limits = tuple(
         undercut_free_module(g.shape.min_curvature_radius, gears[i].rack.params) for i, g in enumerate(data.gears)
     )
