@@ -7,7 +7,6 @@ only when every profile has built; on any error the output folder is left as it 
 from __future__ import annotations
 
 import csv
-import math
 import shutil
 import tempfile
 import time
@@ -28,14 +27,14 @@ from .export.animation import frames_for, write_gif
 from .export.dxf import Drawing, cross, write_dxf
 from .export.mesh import Solid, SolidItem, extrude, write_3mf, write_stl
 from .export.report import write_report
-from .outline import Outline
+from .outline import Outline, arc_steps
 from .parts import with_bore
 from .pitch.discretize import polyline
-from .profiles import GearPairParams
+from .profiles import GearPairParams, OutputParams
 from .teeth.pair import ToothedPairData, cut_pair
 from .tolerances import DEFAULT
 
-__all__ = ["Part", "BuildResult", "build_profile", "build_any", "build_all"]
+__all__ = ["Part", "BuildResult", "build_profile", "build_any", "build_all", "part_drawing", "pair_summary"]
 
 
 @dataclass(frozen=True)
@@ -69,6 +68,25 @@ class BuildResult:
     files: dict[str, dict]
     seconds: float
 
+    @property
+    def summary(self) -> str:
+        return pair_summary(self.data, self.teeth)
+
+
+def pair_summary(data: DesignData, teeth: ToothedPairData | None = None) -> str:
+    """One line for a gear pair: centre distance, residuals, teeth, mesh, warnings."""
+    pair = data.pair
+    text = (
+        f"E = {pair.center_distance:.6f} mm, closure {pair.closure_error:.1e} rad, "
+        f"rolling {pair.rolling_residual:.1e} mm"
+    )
+    warnings = len(data.findings)
+    if teeth is not None:
+        z1, z2 = teeth.plan.teeth
+        text += f", {z1}/{z2} teeth m = {teeth.plan.module:.4f}, {'meshes' if teeth.mesh.meshes else 'INTERFERES'}"
+        warnings += len(teeth.findings)
+    return f"{text}, {warnings} warning(s)"
+
 
 def make_parts(data: DesignData, teeth: ToothedPairData | None, params: GearPairParams) -> tuple[Part, ...]:
     """Each gear's outline with its bore; without teeth the part is its pitch curve."""
@@ -99,16 +117,15 @@ def _kerf(outline: Outline, kerf: float, tolerance: float) -> Outline:
     """Cut paths offset by half the kerf into the waste, so the part comes out at size."""
     if kerf <= 0:
         return outline
-    steps = max(2, int(math.ceil(math.pi / 2 / math.acos(max(1 - tolerance / (kerf / 2), 0.0)))))
+    steps = max(2, arc_steps(kerf / 2, tolerance, np.pi / 2))  # shapely counts segments per quarter
     grown = shapely.Polygon(outline.rings[0], outline.rings[1:]).buffer(kerf / 2, join_style="round", quad_segs=steps)
     grown = shapely.geometry.polygon.orient(grown, 1.0)
     rings = [np.asarray(grown.exterior.coords)[:-1]] + [np.asarray(r.coords)[:-1] for r in grown.interiors]
     return Outline(tuple(rings))
 
 
-def _drawing(parts, params: GearPairParams, *, placed: bool) -> Drawing:
+def part_drawing(parts, out: OutputParams, *, placed: bool) -> Drawing:
     """The DXF content of one part (``placed=False``) or of the assembly."""
-    out = params.output
     tol = out.tolerance
     cut, mark = out.cut_layer, out.mark_layer
     mark_size = 0.05 * min(float(np.min(np.hypot(*p.pitch.T))) for p in parts)
@@ -166,7 +183,7 @@ def build_profile(params: GearPairParams, folder: Path) -> BuildResult:
     for part in parts:
         if "dxf" in out.formats:
             path = folder / f"{part.name}.dxf"
-            n = write_dxf(path, _drawing([part], params, placed=False), flavour=out.dxf)
+            n = write_dxf(path, part_drawing([part], out, placed=False), flavour=out.dxf)
             files[path.name] = _file_entry(path, kind="dxf", part=part.name, vertices=n, flavour=out.dxf)
         if {"stl", "3mf"} & set(out.formats):
             solid = extrude(part.outline, out.thickness, name=part.name, chamfer=out.chamfer)
@@ -178,7 +195,7 @@ def build_profile(params: GearPairParams, folder: Path) -> BuildResult:
                     files[path.name] = _file_entry(path, kind=fmt, part=part.name, triangles=count, volume=solid.volume)
     if "dxf" in out.formats:
         path = folder / "assembly.dxf"
-        n = write_dxf(path, _drawing(parts, params, placed=True), flavour=out.dxf)
+        n = write_dxf(path, part_drawing(parts, out, placed=True), flavour=out.dxf)
         files[path.name] = _file_entry(path, kind="dxf", part="assembly", vertices=n, flavour=out.dxf)
     if "3mf" in out.formats:
         path = folder / "assembly.3mf"

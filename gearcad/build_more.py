@@ -18,6 +18,7 @@ import shapely
 
 from .arcfit import decimate
 from .bodies import rollers as RB
+from .build import Part, part_drawing
 from .diagnostics import Finding, finding
 from .errors import DesignError
 from .export import charts_more
@@ -51,13 +52,11 @@ class OtherResult:
 
 def _write_parts(folder: Path, parts: list, placements: list, out, report_files: dict) -> None:
     """Each part's DXF/STL/3MF, and the assembly (DXF and 3MF) from (part, angle, offset)."""
-    from .build import Part, _drawing  # the gear-pair builder's DXF layout, shared
-
     solids = {}
     for part in parts:
         if "dxf" in out.formats:
             path = folder / f"{part.name}.dxf"
-            n = write_dxf(path, _drawing([part], _Out(out), placed=False), flavour=out.dxf)
+            n = write_dxf(path, part_drawing([part], out, placed=False), flavour=out.dxf)
             report_files[path.name] = {"bytes": path.stat().st_size, "kind": "dxf", "vertices": n}
         if {"stl", "3mf"} & set(out.formats):
             solid = extrude(part.outline, out.thickness, name=part.name, chamfer=out.chamfer)
@@ -87,7 +86,7 @@ def _write_parts(folder: Path, parts: list, placements: list, out, report_files:
         )
     if "dxf" in out.formats:
         path = folder / "assembly.dxf"
-        n = write_dxf(path, _drawing(placed, _Out(out), placed=True), flavour=out.dxf)
+        n = write_dxf(path, part_drawing(placed, out, placed=True), flavour=out.dxf)
         report_files[path.name] = {"bytes": path.stat().st_size, "kind": "dxf", "vertices": n}
     if "3mf" in out.formats:
         path = folder / "assembly.3mf"
@@ -96,16 +95,7 @@ def _write_parts(folder: Path, parts: list, placements: list, out, report_files:
         report_files[path.name] = {"bytes": path.stat().st_size, "kind": "3mf", "triangles": triangles}
 
 
-@dataclass(frozen=True)
-class _Out:
-    """The slice of a profile that the DXF layout reads (``params.output``)."""
-
-    output: object
-
-
 def _part(name: str, ring_fine: np.ndarray, mark_fine: np.ndarray, tol: float, bore, *, module=None):
-    from .build import Part
-
     fine_tol = tol * DEFAULT.fine_fraction
     outer = decimate(ring_fine, tol - fine_tol)
     mark = decimate(mark_fine, tol - fine_tol)
@@ -531,8 +521,6 @@ def build_carrier_train(p: CarrierTrainParams, folder: Path | None) -> OtherResu
                 rim = circle_ring(radii[k] + 3.75 * p.module, ft)
                 outer = rim
                 hole = gear.outline.outer[::-1]
-                from .build import Part
-
                 part = Part(
                     p.names[k],
                     (0.0, 0.0),

@@ -8,7 +8,7 @@ import math
 import sys
 from pathlib import Path
 
-from .build import build_all, build_any
+from .build import build_all, build_any, pair_summary
 from .design import design
 from .errors import GearcadError
 from .profiles import GearPairParams, load_profile
@@ -51,23 +51,8 @@ def _profile_paths(paths: list[Path]) -> list[Path]:
     return found
 
 
-def _summary(data, teeth=None) -> str:
-    pair = data.pair
-    text = (
-        f"E = {pair.center_distance:.6f} mm, closure {pair.closure_error:.1e} rad, "
-        f"rolling {pair.rolling_residual:.1e} mm"
-    )
-    warnings = len(data.findings)
-    if teeth is not None:
-        z1, z2 = teeth.plan.teeth
-        text += f", {z1}/{z2} teeth m = {teeth.plan.module:.4f}, {'meshes' if teeth.mesh.meshes else 'INTERFERES'}"
-        warnings += len(teeth.findings)
-    return f"{text}, {warnings} warning(s)"
-
-
 def _progress(n: int, total: int, result) -> None:
-    text = result.summary if hasattr(result, "summary") else _summary(result.data, result.teeth)
-    print(f"[{n}/{total}] {result.name}: {text} ({1000 * result.seconds:.0f} ms)", flush=True)
+    print(f"[{n}/{total}] {result.name}: {result.summary} ({1000 * result.seconds:.0f} ms)", flush=True)
 
 
 def _check(params) -> None:
@@ -79,7 +64,7 @@ def _check(params) -> None:
         return
     data = design(params)
     teeth = cut_pair(data, params.teeth) if params.teeth is not None else None
-    print(f"{params.name}: {_summary(data, teeth)}")
+    print(f"{params.name}: {pair_summary(data, teeth)}")
     for g in data.gears:
         print(
             f"  {g.name}: r {g.r_min:.4f}…{g.r_max:.4f} mm, perimeter {g.perimeter:.6f} mm, "

@@ -6,7 +6,15 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["Outline", "ring_area", "rotate"]
+__all__ = ["Outline", "ring_area", "rotate", "arc_steps"]
+
+
+def arc_steps(radius: float, tolerance: float, sweep: float = 2 * np.pi) -> int:
+    """How many chords an arc of ``radius`` and ``sweep`` (rad) needs so that none strays more
+    than ``tolerance`` from it: each chord may subtend 2·acos(1 − tol/r)."""
+    if tolerance >= radius:
+        return 1
+    return max(1, int(np.ceil(sweep / (2 * np.arccos(1 - tolerance / radius)))))
 
 
 def ring_area(ring: np.ndarray) -> float:

@@ -10,7 +10,7 @@ import shapely
 import shapely.geometry
 
 from .errors import DesignError
-from .outline import Outline
+from .outline import Outline, arc_steps
 
 __all__ = ["BoreParams", "bore_ring", "circle_ring", "with_bore"]
 
@@ -29,7 +29,7 @@ class BoreParams:
 
 def circle_ring(radius: float, tolerance: float) -> np.ndarray:
     """Counter-clockwise vertices on a circle whose chords stray at most ``tolerance`` from it."""
-    steps = max(16, int(math.ceil(math.pi / math.acos(max(1 - tolerance / radius, -1.0)))))
+    steps = max(16, arc_steps(radius, tolerance))
     t = np.linspace(0.0, 2 * math.pi, steps, endpoint=False)
     return radius * np.column_stack([np.cos(t), np.sin(t)])
 

@@ -13,12 +13,13 @@ import numpy as np  # noqa: E402
 from ..design import DesignData  # noqa: E402
 from ..pitch.curve import TWO_PI, points  # noqa: E402
 
-__all__ = ["pitch_chart", "kinematics_chart", "mesh_chart"]
+__all__ = ["pitch_chart", "kinematics_chart", "mesh_chart", "save_png"]
 
 _META = {"Software": "gearcad"}  # no creation time: the same design gives the same bytes
 
 
-def _save(fig, path: Path) -> None:
+def save_png(fig, path: Path) -> None:
+    """Write a figure without a creation time (the same chart gives the same bytes) and free it."""
     fig.savefig(path, dpi=110, metadata=_META)
     plt.close(fig)
 
@@ -54,7 +55,7 @@ def pitch_chart(data: DesignData, path: Path, rings) -> None:
     ax2.legend(fontsize=8)
     fig.suptitle(data.params.title or data.params.name)
     fig.tight_layout()
-    _save(fig, path)
+    save_png(fig, path)
 
 
 def kinematics_chart(data: DesignData, path: Path) -> None:
@@ -75,7 +76,7 @@ def kinematics_chart(data: DesignData, path: Path) -> None:
     a2.grid(alpha=0.3)
     a1.set_title(f"{follower} driven by {driver} at {p.driver_rpm:g} rpm ({k.driver_speed:.4g} rad/s)")
     fig.tight_layout()
-    _save(fig, path)
+    save_png(fig, path)
 
 
 def mesh_chart(data: DesignData, teeth, path: Path) -> None:
@@ -111,4 +112,4 @@ def mesh_chart(data: DesignData, teeth, path: Path) -> None:
     )
     fig.suptitle(data.params.title or data.params.name)
     fig.tight_layout()
-    _save(fig, path)
+    save_png(fig, path)

@@ -10,13 +10,9 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
+from .charts import save_png  # noqa: E402
+
 __all__ = ["speed_accuracy", "output_size", "builds", "stability"]
-
-
-def _save(fig, path: Path) -> None:
-    fig.tight_layout()
-    fig.savefig(path, dpi=110, metadata={"Software": "gearcad"})
-    plt.close(fig)
 
 
 def speed_accuracy(rows: list[dict], path: Path) -> None:
@@ -34,7 +30,8 @@ def speed_accuracy(rows: list[dict], path: Path) -> None:
         ax.grid(alpha=0.3, which="both")
         ax.legend(fontsize=7)
     fig.suptitle("speed against accuracy (lower left is better)")
-    _save(fig, path)
+    fig.tight_layout()
+    save_png(fig, path)
 
 
 def output_size(rows: list[dict], path: Path) -> None:
@@ -55,7 +52,8 @@ def output_size(rows: list[dict], path: Path) -> None:
         ax.grid(alpha=0.3, which="both")
         ax.legend(fontsize=8)
     fig.suptitle("output size of one 41-tooth elliptic gear against tolerance")
-    _save(fig, path)
+    fig.tight_layout()
+    save_png(fig, path)
 
 
 def builds(rows: list[dict], path: Path) -> None:
@@ -80,7 +78,8 @@ def builds(rows: list[dict], path: Path) -> None:
     b2.legend(loc="lower right", fontsize=8)
     for ax in (a, b):
         ax.grid(alpha=0.3)
-    _save(fig, path)
+    fig.tight_layout()
+    save_png(fig, path)
 
 
 def stability(rows: list[dict], path: Path) -> None:
@@ -95,4 +94,5 @@ def stability(rows: list[dict], path: Path) -> None:
     ax.set_xticks([])
     ax.invert_yaxis()
     ax.set_title("stability map: ok (green), warning (orange), clear error (red)")
-    _save(fig, path)
+    fig.tight_layout()
+    save_png(fig, path)

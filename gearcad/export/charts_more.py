@@ -13,16 +13,9 @@ import numpy as np  # noqa: E402
 
 from ..bodies import rollers as RB  # noqa: E402
 from ..outline import rotate  # noqa: E402
+from .charts import save_png  # noqa: E402
 
 __all__ = ["limits_chart", "field_chart", "rolling_chart", "train_chart"]
-
-_META = {"Software": "gearcad"}
-
-
-def _save(fig, path: Path) -> None:
-    fig.tight_layout()
-    fig.savefig(path, dpi=110, metadata=_META)
-    plt.close(fig)
 
 
 def limits_chart(limits: dict, params, path: Path) -> None:
@@ -49,7 +42,8 @@ def limits_chart(limits: dict, params, path: Path) -> None:
     ax.set_title(f"{params.direction} oscillation, roller radius r = {params.roller_radius:g} R")
     ax.grid(alpha=0.3, which="both")
     ax.legend(fontsize=8)
-    _save(fig, path)
+    fig.tight_layout()
+    save_png(fig, path)
 
 
 def field_chart(osc, params, path: Path) -> None:
@@ -78,7 +72,8 @@ def field_chart(osc, params, path: Path) -> None:
         f"body on three rollers: {params.direction}, m = {params.m}, a = {params.amplitude:g} R, "
         f"{params.rpm:g} rpm (units of R)"
     )
-    _save(fig, path)
+    fig.tight_layout()
+    save_png(fig, path)
 
 
 def rolling_chart(phi1, by_contour, by_rates, w2, e2, w3, params, path: Path) -> None:
@@ -104,7 +99,8 @@ def rolling_chart(phi1, by_contour, by_rates, w2, e2, w3, params, path: Path) ->
         f"wheel driven through an inclined rack: r = {params.r:g}, R = {params.R:g}, L = {params.L:g}, "
         f"H = {params.H:g} mm, {params.driver_rpm:g} rpm"
     )
-    _save(fig, path)
+    fig.tight_layout()
+    save_png(fig, path)
 
 
 def train_chart(report: dict, parts, angles, centres, path: Path) -> None:
@@ -126,4 +122,5 @@ def train_chart(report: dict, parts, angles, centres, path: Path) -> None:
     bar.legend(fontsize=8)
     bar.grid(alpha=0.3)
     bar.set_title("method of stopping")
-    _save(fig, path)
+    fig.tight_layout()
+    save_png(fig, path)

@@ -195,12 +195,8 @@ def mate_curve(driver: PitchCurve, center_distance: float, amap: AngleMap, *, lo
         dr=dr,
         d2r=d2r,
         lobes=lobes,
-        breaks=tuple(float(b) for b in segments(probe)[1:-1]) + ((0.0,) if _near_zero(breaks) else ()),
+        breaks=tuple(float(b) for b in segments(probe)[1:-1]),  # 0 is always a piece edge
     )
-
-
-def _near_zero(angles) -> bool:
-    return any(min(a % TWO_PI, TWO_PI - a % TWO_PI) <= 1e-12 for a in angles)
 
 
 def rolling_residuals(

@@ -14,7 +14,7 @@ from ..arcfit import decimate
 from ..design import DesignData
 from ..diagnostics import Finding, finding
 from ..errors import DesignError
-from ..outline import Outline, rotate
+from ..outline import Outline, arc_steps, rotate
 from ..profiles import TeethParams
 from ..tolerances import DEFAULT, Tolerances
 from .frame import ArcFrame, arc_frame
@@ -72,7 +72,7 @@ def _with_clearance(gear: ToothedGear, clearance: float, tolerance: float) -> To
     """The outline offset inwards by ``clearance`` (round joins sampled from the tolerance)."""
     if clearance <= 0:
         return gear
-    segments = max(2, int(math.ceil(math.pi / 2 / math.acos(max(1 - tolerance / clearance, 0.0)))))
+    segments = max(2, arc_steps(clearance, tolerance, np.pi / 2))  # shapely counts segments per quarter
     shrunk = shapely.Polygon(gear.outline.outer).buffer(-clearance, join_style="round", quad_segs=segments)
     if shrunk.geom_type != "Polygon" or shrunk.is_empty:
         raise DesignError(f"teeth.clearance = {clearance:g}: the offset teeth fall apart; use a smaller clearance")
