@@ -1,8 +1,58 @@
-"""gearcad: noncircular gear pairs from TOML profiles to DXF, charts and a checked report.
+"""gearcad: noncircular gears and the mechanisms around them, from TOML profiles to parts.
 
-The pipeline runs one way: ``profiles`` (TOML → parameters) → ``pitch`` (pitch curves,
-synthesis, closure, kinematics) → ``design`` (checks) → ``export`` (files).
+The pipeline runs one way: ``profiles`` (TOML → validated parameters) → ``mechanisms`` (a pure
+``design(params)`` per mechanism: curves, teeth, parts, checks) → ``export`` (files).
+
+The API (see README, "Python"): :func:`load_profile`, :func:`parse_profile`, :func:`design`,
+:func:`check`, :func:`build`.  Imported on first use, so ``import gearcad`` stays cheap.
 """
 
-__version__ = "0.1.0"
-__all__ = ["__version__"]
+from __future__ import annotations
+
+from importlib import import_module
+from typing import TYPE_CHECKING
+
+__version__ = "0.2.0"
+__all__ = [
+    "__version__",
+    "load_profile",
+    "parse_profile",
+    "design",
+    "check",
+    "build",
+    "profile_schema",
+    "Design",
+    "Part",
+    "Finding",
+    "GearcadError",
+    "ProfileError",
+    "DesignError",
+]
+
+_WHERE = {
+    "load_profile": "api",
+    "parse_profile": "api",
+    "design": "api",
+    "check": "api",
+    "build": "api",
+    "profile_schema": "profiles",
+    "Design": "mechanisms",
+    "Part": "mechanisms",
+    "Finding": "findings",
+    "GearcadError": "errors",
+    "ProfileError": "errors",
+    "DesignError": "errors",
+}
+
+if TYPE_CHECKING:
+    from .api import build, check, design, load_profile, parse_profile
+    from .errors import DesignError, GearcadError, ProfileError
+    from .findings import Finding
+    from .mechanisms import Design, Part
+    from .profiles import profile_schema
+
+
+def __getattr__(name: str):
+    if name in _WHERE:
+        return getattr(import_module(f".{_WHERE[name]}", __name__), name)
+    raise AttributeError(f"module 'gearcad' has no attribute {name!r}")

@@ -191,7 +191,7 @@ def bench_envelope(quick: bool) -> list[dict]:
 
 
 def bench_output(quick: bool, folder: Path) -> list[dict]:
-    from .build import build_profile
+    from .build import build
     from .profiles import load_profile
 
     root = Path(__file__).resolve().parent.parent / "profiles"
@@ -202,9 +202,7 @@ def bench_output(quick: bool, folder: Path) -> list[dict]:
                 root / "elliptic_focus.toml",
                 [f"output.tolerance={tol}", f'output.dxf="{flavour}"', "output.charts=false", "output.animation=false"],
             )
-            target = folder / f"size-{tol}-{flavour}"
-            target.mkdir(parents=True, exist_ok=True)
-            result = build_profile(params, target)
+            result = build([params], folder / f"size-{tol}-{flavour}")[0]
             f = result.files
             rows.append(
                 {
@@ -240,10 +238,10 @@ import resource, sys, time, logging
 logging.disable(logging.WARNING)
 from pathlib import Path
 from gearcad.profiles import load_profile
-from gearcad.build import build_any
+from gearcad.build import build
 p = load_profile(sys.argv[1], sys.argv[3:])
 t = time.perf_counter()
-r = build_any(p, Path(sys.argv[2]))
+r = build([p], Path(sys.argv[2]) / "out")
 seconds = time.perf_counter() - t
 try:  # this process's own high-water mark (ru_maxrss would include the parent's, kept across exec)
     hwm = next(int(l.split()[1]) for l in open("/proc/self/status") if l.startswith("VmHWM"))
@@ -304,31 +302,21 @@ def bench_builds(quick: bool, folder: Path, progress: _Progress | None) -> list[
 def stability_map(quick: bool = False) -> list[dict]:
     """Hard designs and what gearcad does with each: 'ok', a warning code, or a clear error —
     never NaN, a hang or a silently wrong outline."""
-    from .design import design
     from .errors import GearcadError
+    from .mechanisms import design
     from .profiles import parse_profile
-    from .teeth.pair import cut_pair
 
     def attempt(label: str, value, data: dict, teeth: bool = True) -> dict:
         start = time.perf_counter()
         try:
             params = parse_profile(data)
-            if hasattr(params, "gear1"):
-                d = design(params)
-                codes = {f.code for f in d.findings}
-                if teeth and params.teeth is not None:
-                    t = cut_pair(d, params.teeth)
-                    codes |= {f.code for f in t.findings}
-                    finite = all(np.all(np.isfinite(g.outline.outer)) for g in t.gears)
-                    if not finite:
-                        raise AssertionError("NaN in an outline")
-                outcome = "warning: " + ", ".join(sorted(codes)) if codes else "ok"
-            else:
-                from .build import build_any
-
-                result = build_any(params, None)
-                codes = {f.code for f in result.findings}
-                outcome = "warning: " + ", ".join(sorted(codes)) if codes else "ok"
+            if not teeth and getattr(params, "teeth", None) is not None:
+                params = parse_profile({k: v for k, v in data.items() if k != "teeth"})
+            d = design(params)
+            codes = {f.code for f in d.findings}
+            if not all(np.all(np.isfinite(r)) for part in d.parts() for r in part.outline.rings):
+                raise AssertionError("NaN in an outline")
+            outcome = "warning: " + ", ".join(sorted(codes)) if codes else "ok"
         except GearcadError as exc:
             outcome = "error: " + str(exc).splitlines()[0]
         return {"case": label, "value": value, "outcome": outcome, "seconds": time.perf_counter() - start}
@@ -398,7 +386,7 @@ def _markdown(rows: list[dict], stability: list[dict]) -> str:
 
 def run_bench(out: Path, *, quick: bool = False) -> list[dict]:
     """Run every study and write the charts, CSV and markdown into ``out``."""
-    from .export import charts_bench
+    from .export.charts import bench as charts_bench
 
     logging.disable(logging.WARNING)
     out.mkdir(parents=True, exist_ok=True)

@@ -14,7 +14,6 @@ from pathlib import Path
 from typing import Any
 
 from .errors import ProfileError
-from .parts import BoreParams
 
 __all__ = [
     "EllipseParams",
@@ -31,6 +30,14 @@ __all__ = [
     "apply_overrides",
     "CURVES",
 ]
+
+
+@dataclass(frozen=True)
+class BoreParams:
+    diameter: float = 0.0
+    keyway_width: float = 0.0
+    keyway_depth: float = 0.0
+    flat: float = 0.0
 
 
 @dataclass(frozen=True)
@@ -629,7 +636,7 @@ def _deep_copy(data):
     return data
 
 
-def load_profile(path: str | Path, overrides: list[str] = ()):
+def load_profile(path: str | Path, overrides: list[str] = (), *, unset=()):
     """Read, override and validate one profile file."""
     path = Path(path)
     try:
@@ -823,3 +830,6 @@ def _other(mechanism: str, data: dict, default_name: str):
     if errors:
         raise ProfileError("\n".join(errors))
     return params
+
+
+ProfileParams = GearPairParams | RollerBodyParams | RollingWheelParams | CarrierTrainParams

@@ -5,7 +5,7 @@ import math
 import numpy as np
 import pytest
 
-from gearcad.arcfit import arc_points, decimate, fit_arcs
+from gearcad.geometry.arcfit import arc_points, decimate, fit_arcs
 from gearcad.pitch import shapes
 from gearcad.pitch.discretize import polyline
 

@@ -9,7 +9,7 @@ import pytest
 
 from gearcad.bench import stability_map
 from gearcad.cli import main
-from gearcad.diagnostics import CODES
+from gearcad.findings import CODES
 
 
 @pytest.fixture(scope="module")

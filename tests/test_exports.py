@@ -14,7 +14,7 @@ from PIL import Image
 from gearcad.cli import main
 from gearcad.errors import DesignError
 from gearcad.export.mesh import extrude
-from gearcad.outline import Outline
+from gearcad.geometry.outline import Outline
 
 ROOT = Path(__file__).parent.parent
 
@@ -106,13 +106,8 @@ def _distance(a: shapely.LinearRing, b: shapely.LinearRing) -> float:
 
 def _reference_rings(report, gear):
     """gearcad's own cut of the part at a tenth of the tolerance (chords within 1e-4 mm)."""
-    from dataclasses import replace
-
-    from gearcad.build import make_parts
-    from gearcad.design import design
+    from gearcad.mechanisms import design
     from gearcad.profiles import parse_profile
-    from gearcad.teeth.pair import cut_pair
-    from gearcad.tolerances import DEFAULT
 
     data_dict = {
         "name": "r",
@@ -123,9 +118,7 @@ def _reference_rings(report, gear):
         "bore": {"diameter": 3.0},
     }
     params = parse_profile(data_dict)
-    data = design(params, tol=replace(DEFAULT, outline_mm=1e-4))
-    teeth = cut_pair(data, params.teeth, tol=replace(DEFAULT, outline_mm=1e-4))
-    part = make_parts(data, teeth, params)[0 if gear["name"] == "a" else 1]
+    part = design(params).parts()[0 if gear["name"] == "a" else 1]
     return part.outline.rings[0], part.outline.rings[1:]
 
 

@@ -100,7 +100,8 @@ def test_roller_body_profile_builds(tmp_path):
     assert [w["code"] for w in report["warnings"]] == ["teeth-fit"]
     # as assembled every roller meshes: no overlap, and turned slightly either way it bites
     allowed = 2 * 0.001 * 2.25 * teeth["module"]
-    assert report["assembly_overlap"] <= allowed < report["assembly_nudged_overlap"]
+    assembly = report["assembly"]
+    assert assembly["overlap"] <= allowed < assembly["nudged_min_overlap"] and assembly["fits"]
 
 
 def test_body_perimeter_is_a_whole_number_of_teeth():

@@ -10,7 +10,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from gearcad.errors import DesignError
-from gearcad.outline import ring_area
+from gearcad.geometry.outline import ring_area
 from gearcad.pitch import shapes
 from gearcad.pitch.pair import conjugate_pair
 from gearcad.teeth.frame import arc_frame
@@ -231,9 +231,8 @@ def test_measured_play_matches_the_designed_one(backlash, clearance):
     """Backlash b thins each tooth by b/2: the pair plays b on the pitch circle.  A clearance c
     moves every flank in by c along its normal: 2c between flanks on each side, so 4c/cos α of
     play in all — both measured by turning gear 2 until it touches gear 1."""
-    from gearcad.design import design
+    from gearcad.mechanisms import design
     from gearcad.profiles import parse_profile
-    from gearcad.teeth.pair import cut_pair
 
     params = parse_profile(
         {
@@ -242,7 +241,7 @@ def test_measured_play_matches_the_designed_one(backlash, clearance):
             "teeth": {"count": 20, "backlash": backlash, "clearance": clearance},
         }
     )
-    teeth = cut_pair(design(params), params.teeth)
+    teeth = design(params).detail.teeth
     expected = backlash + 4 * clearance / math.cos(ALPHA)
     low, high = teeth.backlash_range
     assert low == pytest.approx(expected, abs=0.002) and high == pytest.approx(expected, abs=0.002)

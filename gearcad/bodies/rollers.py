@@ -22,6 +22,7 @@ __all__ = [
     "Oscillation",
     "harmonic",
     "contour",
+    "roller_path",
     "contour_curvature",
     "is_convex",
     "is_simple",
@@ -67,6 +68,12 @@ def _series(terms, t, derivative: int = 0) -> np.ndarray:
         phase = derivative * math.pi / 2
         out += j**derivative * (c * np.cos(j * t + phase) + s * np.sin(j * t + phase))
     return out
+
+
+def roller_path(osc: Oscillation, tau, *, R: float = 1.0) -> np.ndarray:
+    """The roller centre's path in the body frame, P(τ) = (R·sin τ + f, R·cos τ + g): (n, 2)."""
+    tau = np.asarray(tau, dtype=float)
+    return np.column_stack([R * np.sin(tau) + _series(osc.f, tau), R * np.cos(tau) + _series(osc.g, tau)])
 
 
 def contour(osc: Oscillation, tau, *, r: float, R: float = 1.0) -> np.ndarray:

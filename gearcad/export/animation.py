@@ -2,13 +2,12 @@
 
 from __future__ import annotations
 
-import math
 from pathlib import Path
 
 import numpy as np
 from PIL import Image, ImageDraw
 
-from ..outline import rotate
+from ..geometry.outline import rotate
 
 __all__ = ["write_gif"]
 
@@ -27,23 +26,19 @@ def write_gif(
     scale = min((size[0] - 2 * margin) / (hi[0] - lo[0]), (size[1] - 2 * margin) / (hi[1] - lo[1]))
     frames = []
     for row in angles:
-        image = Image.new("P", size, 255)
-        image.putpalette([255, 255, 255, *sum((list(c) for c in _COLOURS), [])] + [255, 255, 255] * 250)
+        # index 0 white (the background every viewer shows), 1 black (outlines), then the parts'
+        # colours; the palette is complete so that no viewer fills an unset entry with black
+        image = Image.new("P", size, 0)
+        image.putpalette([255, 255, 255, 0, 0, 0, *sum((list(c) for c in _COLOURS), [])] + [255, 255, 255] * 250)
         draw = ImageDraw.Draw(image)
         for k, (ring, pivot, angle) in enumerate(zip(rings, pivots, row)):
             pts = rotate(ring, float(angle)) + np.asarray(pivot)
             xy = np.column_stack(
                 [(pts[:, 0] - lo[0]) * scale + margin, size[1] - ((pts[:, 1] - lo[1]) * scale + margin)]
             )
-            draw.polygon([tuple(p) for p in xy.round(1)], fill=1 + k % len(_COLOURS), outline=0)
+            draw.polygon([tuple(p) for p in xy.round(1)], fill=2 + k % len(_COLOURS), outline=1)
             cx, cy = (pivot[0] - lo[0]) * scale + margin, size[1] - ((pivot[1] - lo[1]) * scale + margin)
-            draw.ellipse([cx - 2, cy - 2, cx + 2, cy + 2], fill=0)
+            draw.ellipse([cx - 2, cy - 2, cx + 2, cy + 2], fill=1)
         frames.append(image)
     frames[0].save(path, save_all=True, append_images=frames[1:], duration=frame_ms, loop=0, optimize=False)
     return len(frames)
-
-
-def frames_for(cycle: float, teeth: int | None) -> int:
-    """Enough frames that the driver turns at most ~1/3 of a tooth (or 5°) per frame, ≤ 180."""
-    step = (2 * math.pi / teeth / 3) if teeth else math.radians(5)
-    return int(min(180, max(24, math.ceil(cycle / step))))

@@ -20,7 +20,7 @@ import ezdxf
 import numpy as np
 from ezdxf import units
 
-from ..arcfit import ArcRing
+from ..geometry.arcfit import ArcRing
 
 __all__ = ["FLAVOURS", "Drawing", "write_dxf", "cross"]
 

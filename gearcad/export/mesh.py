@@ -17,7 +17,8 @@ import manifold3d as m3d
 import numpy as np
 
 from ..errors import DesignError
-from ..outline import Outline
+from ..geometry.inset import check_chamfer, inset_ring
+from ..geometry.outline import Outline
 
 __all__ = ["Solid", "extrude", "write_stl", "write_3mf", "SolidItem"]
 
@@ -60,8 +61,7 @@ def extrude(outline: Outline, thickness: float, *, name: str, chamfer: float = 0
     and bottom edges chamfered by ``chamfer`` mm (45°)."""
     section = m3d.CrossSection([np.asarray(r, dtype=float) for r in outline.rings], m3d.FillRule.EvenOdd)
     if chamfer > 0:
-        if 2 * chamfer >= thickness:
-            raise DesignError(f"output.chamfer = {chamfer:g}: must be under half the thickness {thickness:g}")
+        check_chamfer(outline, thickness, chamfer, name=name)
         solid = _chamfered(section, outline, thickness, chamfer, name)
     else:
         solid = m3d.Manifold.extrude(section, thickness)
@@ -75,44 +75,12 @@ def extrude(outline: Outline, thickness: float, *, name: str, chamfer: float = 0
     )
 
 
-def _inset(ring: np.ndarray, distance: float) -> np.ndarray:
-    """Each vertex moved ``distance`` into the material along its mitred bisector (material
-    lies left of every ring: outer rings run counter-clockwise, holes clockwise).
-
-    Where a segment is shorter than the inset eats (beside a sharp corner) its inset copy turns
-    round; such inverted segments are collapsed to their midpoint until none is left, as CAD
-    offsetters do, so the ring keeps one inset vertex per vertex for the loft.
-    """
-    prev = ring - np.roll(ring, 1, axis=0)
-    nxt = np.roll(ring, -1, axis=0) - ring
-    n1 = np.column_stack([-prev[:, 1], prev[:, 0]]) / np.linalg.norm(prev, axis=1, keepdims=True)
-    n2 = np.column_stack([-nxt[:, 1], nxt[:, 0]]) / np.linalg.norm(nxt, axis=1, keepdims=True)
-    bisector = n1 + n2
-    # mitre length 1/cos of the half angle, clamped at 2 (as CAD offsetters do)
-    scale = np.minimum(2.0 / np.maximum(np.einsum("ij,ij->i", bisector, bisector), 1e-12), 4.0)
-    inset = ring + distance * bisector * scale[:, None]
-    for _ in range(50):
-        seg = np.roll(inset, -1, axis=0) - inset
-        inverted = np.einsum("ij,ij->i", seg, nxt) <= 0
-        if not np.any(inverted):
-            break
-        i = np.nonzero(inverted)[0]
-        j = (i + 1) % len(inset)
-        mid = 0.5 * (inset[i] + inset[j])
-        inset[i], inset[j] = mid, mid
-    return inset
-
-
 def _chamfered(section, outline: Outline, thickness: float, chamfer: float, name: str) -> m3d.Manifold:
     """A 45° chamfer on every top and bottom edge: each ring is lofted from its inset copy at
     z = 0 to itself at z = chamfer, straight up to thickness − chamfer, and in again at the top;
     the caps are the inset rings, triangulated.  manifold3d then checks the mesh."""
-    import shapely
-
     rings = [np.asarray(r, dtype=float) for r in outline.rings]
-    insets = [_inset(r, chamfer) for r in rings]
-    if not shapely.Polygon(insets[0], insets[1:]).is_valid:
-        raise DesignError(f"output.chamfer = {chamfer:g}: too large for the teeth of {name} (the inset crosses itself)")
+    insets = [inset_ring(r, chamfer) for r in rings]
     levels = (0.0, chamfer, thickness - chamfer, thickness)
     verts, tris, base = [], [], 0
     for ring, inset in zip(rings, insets):

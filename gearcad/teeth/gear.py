@@ -24,7 +24,7 @@ import numpy as np
 import shapely
 
 from ..errors import DesignError
-from ..outline import Outline, ring_area
+from ..geometry.outline import Outline, ring_area
 from .frame import ArcFrame
 from .rack import Rack
 from .sampling import sample_curves

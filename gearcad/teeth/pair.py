@@ -3,19 +3,21 @@
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, replace
+from typing import Protocol
 
 import numpy as np
 import shapely
 from scipy.spatial import cKDTree
 
-from ..arcfit import decimate
-from ..design import DesignData
-from ..diagnostics import Finding, finding
 from ..errors import DesignError
-from ..outline import Outline, arc_steps, rotate
-from ..profiles import TeethParams
+from ..findings import Finding, finding
+from ..geometry.arcfit import decimate
+from ..geometry.outline import Outline, arc_steps, rotate
+from ..pitch.gear import GearData
+from ..pitch.pair import PairData
 from ..tolerances import DEFAULT, Tolerances
 from .frame import ArcFrame, arc_frame
 from .gear import ToothedGear, cut_teeth
@@ -23,7 +25,21 @@ from .mesh import MeshData, backlash_range, mesh_check, nudge_angle
 from .plan import ToothPlan, plan_teeth
 from .rack import Rack, RackParams
 
-__all__ = ["ToothedPairData", "cut_pair", "undercut_free_module"]
+__all__ = ["ToothSpec", "ToothedPairData", "cut_pair", "undercut_free_module"]
+
+
+class ToothSpec(Protocol):
+    """What the teeth stage reads of a profile's [teeth] table (mm, radians)."""
+
+    module: float | None
+    count: int | None
+    pressure_angle: float
+    addendum: float
+    dedendum: float
+    tip_radius: float
+    profile_shift: float
+    backlash: float
+    clearance: float
 
 
 @dataclass(frozen=True)
@@ -80,7 +96,7 @@ def _with_clearance(gear: ToothedGear, clearance: float, tolerance: float) -> To
     return replace(gear, outline=Outline((ring,)), space_root=_nearest(ring, gear.outline.outer[gear.space_root]))
 
 
-def _rack(params: TeethParams, module: float, shift: float) -> Rack:
+def _rack(params: ToothSpec, module: float, shift: float) -> Rack:
     return Rack.from_params(
         RackParams(
             module=module,
@@ -94,22 +110,30 @@ def _rack(params: TeethParams, module: float, shift: float) -> Rack:
     )
 
 
-def cut_pair(data: DesignData, params: TeethParams, *, tol: Tolerances = DEFAULT) -> ToothedPairData:
-    """Teeth on both gears of a designed pair, proven to mesh."""
-    for gear in data.gears:
+def cut_pair(
+    pair: PairData,
+    gears: Sequence[GearData],
+    params: ToothSpec,
+    *,
+    mate_rotation: float | None = None,
+    tol: Tolerances = DEFAULT,
+) -> ToothedPairData:
+    """Teeth on both gears of a rolling pair, proven to mesh.
+
+    ``mate_rotation`` is δ with r2(θ) = r1(θ + δ) when gear 2 is gear 1 turned (a self-conjugate
+    pair), None otherwise: then the teeth are planned so the two gears are one part.
+    """
+    for gear in gears:
         if gear.shape.corners:
             where = ", ".join(f"{math.degrees(c.phi):.2f}°" for c in gear.shape.corners)
             raise DesignError(
                 f"{gear.name} has corners (at φ = {where}): a rack cannot roll round a corner, so "
                 "teeth need a smooth pitch curve — blend the corners (e.g. gear1.blend_width_deg)"
             )
-    pair = data.pair
     frames = (arc_frame(pair.gear1, tol=tol), arc_frame(pair.gear2, tol=tol))
     # a self-conjugate noncircular pair: gear 2 is gear 1 turned, and the count must make the
     # toothed gears one part too (a circle's mate is the same part at any count and turn)
-    round_ = data.gears[0].r_max - data.gears[0].r_min < 1e-9 * data.gears[0].r_max
-    alike = data.mate_shape_difference is not None and data.mate_shape_difference < 1e-6 and not round_
-    identical = data.mate_rotation if alike else None
+    identical = None if gears[0].round else mate_rotation
     plan = plan_teeth(
         frames[0], frames[1], pair.lobes, module=params.module, count=params.count, identical_rotation=identical
     )
@@ -123,17 +147,17 @@ def cut_pair(data: DesignData, params: TeethParams, *, tol: Tolerances = DEFAULT
         )
         for frame, z, phase, shift in zip(frames, plan.teeth, plan.phases, shifts)
     )
-    gears = tuple(_thinned(g, tol.outline_mm - fine_tol) for g in fine)
+    toothed = tuple(_thinned(g, tol.outline_mm - fine_tol) for g in fine)
     play = params.backlash + 4 * params.clearance / math.cos(params.pressure_angle)
     # the mesh proof and the play measurement are independent, and shapely's vectorised GEOS
     # calls release the GIL: run them side by side on the machine's two cores
     with ThreadPoolExecutor(max_workers=2) as pool:
-        mesh_job = pool.submit(mesh_check, pair, gears, frames, tolerance=tol.outline_mm, play=play)
+        mesh_job = pool.submit(mesh_check, pair, toothed, frames, tolerance=tol.outline_mm, play=play)
         limit = 2 * nudge_angle(pair, module=plan.module, tolerance=tol.outline_mm, play=play)
-        play_job = pool.submit(backlash_range, pair, gears, frames, limit=limit)
+        play_job = pool.submit(backlash_range, pair, toothed, frames, limit=limit)
         mesh, play_range = mesh_job.result(), play_job.result()
     limits = tuple(
-        undercut_free_module(g.shape.min_curvature_radius, gears[i].rack.params) for i, g in enumerate(data.gears)
+        undercut_free_module(g.shape.min_curvature_radius, toothed[i].rack.params) for i, g in enumerate(gears)
     )
     deviation = None
     if plan.identical:
@@ -143,20 +167,20 @@ def cut_pair(data: DesignData, params: TeethParams, *, tol: Tolerances = DEFAULT
         deviation = float(np.max(cKDTree(turned).query(fine[1].outline.outer)[0]))
     return ToothedPairData(
         plan=plan,
-        gears=gears,
+        gears=toothed,
         fine=tuple(g.outline.outer for g in fine),
         frames=frames,
         mesh=mesh,
         backlash_range=play_range,
         module_limits=limits,
         identical_deviation=deviation,
-        findings=tuple(_findings(data, plan, gears, mesh, limits)),
+        findings=tuple(_findings(gears, plan, toothed, mesh, limits)),
     )
 
 
-def _findings(data, plan, gears, mesh, limits) -> list[Finding]:
+def _findings(pitch, plan, gears, mesh, limits) -> list[Finding]:
     out = []
-    for gear_data, gear, limit in zip(data.gears, gears, limits):
+    for gear_data, gear, limit in zip(pitch, gears, limits):
         name = gear_data.name
         if gear.undercut:
             folded = gear.undercut_depth > 0

@@ -1,30 +1,18 @@
-"""PNG charts a reviewer would rather look at than read."""
+"""Charts of a gear pair: pitch curves in mesh, follower speed and acceleration, teeth in mesh."""
 
 from __future__ import annotations
 
 from pathlib import Path
 
-import matplotlib
+import numpy as np
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
+from ...pitch.curve import TWO_PI, points
+from .png import plt, save_png
 
-from ..design import DesignData  # noqa: E402
-from ..pitch.curve import TWO_PI, points  # noqa: E402
-
-__all__ = ["pitch_chart", "kinematics_chart", "mesh_chart", "save_png"]
-
-_META = {"Software": "gearcad"}  # no creation time: the same design gives the same bytes
+__all__ = ["draw", "pitch_chart", "kinematics_chart", "mesh_chart"]
 
 
-def save_png(fig, path: Path) -> None:
-    """Write a figure without a creation time (the same chart gives the same bytes) and free it."""
-    fig.savefig(path, dpi=110, metadata=_META)
-    plt.close(fig)
-
-
-def pitch_chart(data: DesignData, path: Path, rings) -> None:
+def pitch_chart(data, path: Path, rings) -> None:
     """The pair in place at driver angle 0, and r(φ) of both gears."""
     fig, (ax, ax2) = plt.subplots(1, 2, figsize=(12, 5.2), gridspec_kw={"width_ratios": [1.25, 1]})
     e = data.pair.center_distance
@@ -58,7 +46,7 @@ def pitch_chart(data: DesignData, path: Path, rings) -> None:
     save_png(fig, path)
 
 
-def kinematics_chart(data: DesignData, path: Path) -> None:
+def kinematics_chart(data, path: Path) -> None:
     """Follower speed and acceleration against driver angle at constant driver speed."""
     k = data.kinematics
     p = data.params
@@ -79,7 +67,7 @@ def kinematics_chart(data: DesignData, path: Path) -> None:
     save_png(fig, path)
 
 
-def mesh_chart(data: DesignData, teeth, path: Path) -> None:
+def mesh_chart(data, teeth, path: Path) -> None:
     """The toothed pair in mesh at driver angle 0: whole, and the mesh zone close up."""
     fig, (ax, zoom) = plt.subplots(1, 2, figsize=(12, 5.6), gridspec_kw={"width_ratios": [1.3, 1]})
     colours = ("tab:blue", "tab:orange")
@@ -113,3 +101,15 @@ def mesh_chart(data: DesignData, teeth, path: Path) -> None:
     fig.suptitle(data.params.title or data.params.name)
     fig.tight_layout()
     save_png(fig, path)
+
+
+def draw(design, folder: Path) -> list[str]:
+    """Every chart of a gear-pair design; returns the file names."""
+    detail = design.detail
+    pitch_chart(detail.pitch, folder / "pitch_curves.png", detail.pitch_rings)
+    kinematics_chart(detail.pitch, folder / "kinematics.png")
+    names = ["pitch_curves.png", "kinematics.png"]
+    if detail.teeth is not None:
+        mesh_chart(detail.pitch, detail.teeth, folder / "mesh.png")
+        names.append("mesh.png")
+    return names

@@ -1,7 +1,7 @@
-"""The pitch stage of the pipeline: profile parameters → a checked gear pair.
+"""A gear pair's pitch stage: profile parameters → the pair of pitch curves that rolls and closes.
 
-``design(params)`` builds the driver curve, synthesises the mate that truly rolls and closes,
-measures every check a reviewer needs, and tests the papers' own constructions alongside.
+``pitch_design(params)`` builds the driver curve, synthesises the mate that truly rolls and
+closes, measures every check a reviewer needs, and tests the papers' own constructions alongside.
 """
 
 from __future__ import annotations
@@ -11,13 +11,14 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .diagnostics import Finding, finding
-from .errors import DesignError
-from .pitch import shapes
-from .pitch import walker as W
-from .pitch.curve import TWO_PI, ConvexityData, PitchCurve, convexity, perimeter, radius_range
-from .pitch.kinematics import KinematicsData, kinematics
-from .pitch.pair import (
+from ..errors import DesignError
+from ..findings import Finding, finding
+from ..pitch import shapes
+from ..pitch import walker as W
+from ..pitch.curve import TWO_PI, PitchCurve, radius_range
+from ..pitch.gear import GearData, gear_data
+from ..pitch.kinematics import KinematicsData, kinematics
+from ..pitch.pair import (
     ClaimData,
     PairData,
     angle_map,
@@ -27,7 +28,7 @@ from .pitch.pair import (
     shape_difference,
     solve_center_distance,
 )
-from .profiles import (
+from ..profiles import (
     CircleParams,
     EllipseParams,
     GearPairParams,
@@ -36,20 +37,9 @@ from .profiles import (
     SamplesParams,
     WalkerParams,
 )
-from .tolerances import DEFAULT, Tolerances
+from ..tolerances import DEFAULT, Tolerances
 
-__all__ = ["GearData", "WalkerData", "DesignData", "design", "driver_curve"]
-
-
-@dataclass(frozen=True)
-class GearData:
-    name: str
-    curve: PitchCurve
-    pivot: tuple[float, float]
-    r_min: float
-    r_max: float
-    perimeter: float
-    shape: ConvexityData
+__all__ = ["WalkerData", "PairDesign", "pitch_design", "driver_curve"]
 
 
 @dataclass(frozen=True)
@@ -76,7 +66,9 @@ class WalkerData:
 
 
 @dataclass(frozen=True)
-class DesignData:
+class PairDesign:
+    """The pitch curves of a pair that rolls and closes, with every measure and the papers' checks."""
+
     params: GearPairParams
     gears: tuple[GearData, GearData]
     pair: PairData
@@ -116,11 +108,6 @@ def driver_curve(params: GearPairParams) -> tuple[PitchCurve, W.RatioLaw | None]
 def _walker_geometry(params: GearPairParams) -> W.WalkerGeometry:
     g = params.gear1
     return W.WalkerGeometry(L=params.center_distance, a=g.a, b=g.b, c=g.c)
-
-
-def _gear(name: str, curve: PitchCurve, pivot, tol: Tolerances) -> GearData:
-    r_min, r_max = radius_range(curve)
-    return GearData(name, curve, pivot, r_min, r_max, perimeter(curve, tol=tol), convexity(curve, tol=tol))
 
 
 def _shape_findings(gear: GearData) -> list[Finding]:
@@ -229,8 +216,8 @@ def _walker(
     return data, found
 
 
-def design(params: GearPairParams, *, tol: Tolerances = DEFAULT) -> DesignData:
-    """Build and check the pair a profile describes."""
+def pitch_design(params: GearPairParams, *, tol: Tolerances = DEFAULT) -> PairDesign:
+    """Build and check the pitch curves of the pair a profile describes."""
     curve, law = driver_curve(params)
     if params.center_distance is not None:
         _check_center_distance(params, curve, tol)
@@ -247,8 +234,8 @@ def design(params: GearPairParams, *, tol: Tolerances = DEFAULT) -> DesignData:
             f"{pair.rolling_residual:.3g} mm); please report this profile"
         )
     gears = (
-        _gear(params.gear1_name, pair.gear1, (0.0, 0.0), tol),
-        _gear(params.gear2_name, pair.gear2, (pair.center_distance, 0.0), tol),
+        gear_data(params.gear1_name, pair.gear1, (0.0, 0.0), tol=tol),
+        gear_data(params.gear2_name, pair.gear2, (pair.center_distance, 0.0), tol=tol),
     )
     findings: list[Finding] = []
     for gear in gears:
@@ -284,7 +271,7 @@ def design(params: GearPairParams, *, tol: Tolerances = DEFAULT) -> DesignData:
         walker, extra = _walker(params, law, pair, kin, tol)
         findings += extra
     likeness = shape_difference(pair.gear1, pair.gear2) if pair.lobes[0] == pair.lobes[1] else (None, None)
-    return DesignData(
+    return PairDesign(
         params=params,
         gears=gears,
         pair=pair,

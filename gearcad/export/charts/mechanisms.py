@@ -5,17 +5,13 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
-import matplotlib
+import numpy as np
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
+from ...bodies import rollers as RB
+from ...geometry.outline import rotate
+from .png import plt, save_png
 
-from ..bodies import rollers as RB  # noqa: E402
-from ..outline import rotate  # noqa: E402
-from .charts import save_png  # noqa: E402
-
-__all__ = ["limits_chart", "field_chart", "rolling_chart", "train_chart"]
+__all__ = ["draw", "limits_chart", "field_chart", "rolling_chart", "train_chart"]
 
 
 def limits_chart(limits: dict, params, path: Path) -> None:
@@ -46,7 +42,7 @@ def limits_chart(limits: dict, params, path: Path) -> None:
     save_png(fig, path)
 
 
-def field_chart(osc, params, path: Path) -> None:
+def field_chart(osc, params, path: Path, roller_radius: float) -> None:
     """Velocity and acceleration of contour points at four turn angles (w from the profile)."""
     w = params.rpm * 2 * math.pi / 60
     tau = np.linspace(0, 2 * math.pi, 49, endpoint=False)
@@ -56,10 +52,10 @@ def field_chart(osc, params, path: Path) -> None:
         t = phi / w
         for row, (label, k) in enumerate((("velocity", 1), ("acceleration", 2))):
             ax = axes[row, col]
-            outline = RB.contour(osc, dense, r=params.roller_radius)
+            outline = RB.contour(osc, dense, r=roller_radius)
             pos = [RB.point_motion(osc, x, y, w=w, t=np.array([t]))[0][0] for x, y in outline[::10]]
             ax.plot(*np.array(pos).T, color="0.5", lw=0.8)
-            pts = RB.contour(osc, tau, r=params.roller_radius)
+            pts = RB.contour(osc, tau, r=roller_radius)
             motion = [RB.point_motion(osc, x, y, w=w, t=np.array([t])) for x, y in pts]
             p = np.array([mo[0][0] for mo in motion])
             v = np.array([mo[k][0] for mo in motion])
@@ -76,7 +72,9 @@ def field_chart(osc, params, path: Path) -> None:
     save_png(fig, path)
 
 
-def rolling_chart(phi1, by_contour, by_rates, w2, e2, w3, params, path: Path) -> None:
+def rolling_chart(motion, params, path: Path) -> None:
+    phi1, by_contour, by_rates = motion.phi1, motion.by_contour, motion.by_rates
+    w2, w3, e2 = motion.omega2, motion.omega3, motion.eps2
     fig, axes = plt.subplots(2, 2, figsize=(11, 7), sharex=True)
     x = np.degrees(phi1)
     axes[0, 0].plot(x, np.degrees(by_contour), label="closed contour (eqs. 3, 5)")
@@ -103,15 +101,15 @@ def rolling_chart(phi1, by_contour, by_rates, w2, e2, w3, params, path: Path) ->
     save_png(fig, path)
 
 
-def train_chart(report: dict, parts, angles, centres, path: Path) -> None:
+def train_chart(report: dict, parts, placements, path: Path) -> None:
     fig, (ax, bar) = plt.subplots(1, 2, figsize=(12, 5), gridspec_kw={"width_ratios": [1.3, 1]})
-    for k, (part, a, c) in enumerate(zip(parts, angles, centres)):
+    for k, (part, pl) in enumerate(zip(parts, placements)):
         for ring in part.outline.rings:
-            pts = rotate(ring, a) + np.array([c, 0.0])
+            pts = rotate(ring, pl.angle) + np.asarray(pl.offset)
             pts = np.vstack([pts, pts[:1]])
             ax.plot(pts[:, 0], pts[:, 1], color=f"C{k}", lw=0.7)
-        ax.plot(c, 0, "+", color=f"C{k}")
-    ax.plot([0, max(centres)], [0, 0], color="0.5", lw=2, alpha=0.4, label="carrier")
+        ax.plot(*pl.offset, "+", color=f"C{k}")
+    ax.plot([0, max(pl.offset[0] for pl in placements)], [0, 0], color="0.5", lw=2, alpha=0.4, label="carrier")
     ax.set_aspect("equal")
     ax.grid(alpha=0.3)
     ax.set_title("gears on the carrier (assembled)")
@@ -124,3 +122,21 @@ def train_chart(report: dict, parts, angles, centres, path: Path) -> None:
     bar.set_title("method of stopping")
     fig.tight_layout()
     save_png(fig, path)
+
+
+def draw(design, folder: Path) -> list[str]:
+    """Every chart of a roller-body, rolling-wheel or carrier-train design; returns file names."""
+    p, names = design.params, []
+    if design.mechanism == "roller-body":
+        if "limits" in design.data:
+            limits_chart(design.data["limits"], p, folder / "amplitude_limits.png")
+            names.append("amplitude_limits.png")
+        field_chart(design.detail.oscillation, p, folder / "velocity_field.png", p.roller_radius)
+        names.append("velocity_field.png")
+    elif design.mechanism == "rolling-wheel":
+        rolling_chart(design.detail, p, folder / "motion.png")
+        names.append("motion.png")
+    elif design.mechanism == "carrier-train":
+        train_chart(design.data, design.parts(), design.placements, folder / "train.png")
+        names.append("train.png")
+    return names

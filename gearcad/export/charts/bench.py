@@ -4,13 +4,9 @@ from __future__ import annotations
 
 from pathlib import Path
 
-import matplotlib
+import numpy as np
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-
-from .charts import save_png  # noqa: E402
+from .png import plt, save_png
 
 __all__ = ["speed_accuracy", "output_size", "builds", "stability"]
 

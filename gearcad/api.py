@@ -1,0 +1,63 @@
+"""gearcad's Python API: the same stages the command line runs.
+
+>>> import gearcad
+>>> params = gearcad.load_profile("profiles/spur_pair.toml", overrides={"teeth.module": 2.0})
+>>> d = gearcad.check(params)
+>>> d.report()["pair"]["teeth"]["mesh"]["meshes"]
+True
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Mapping, Sequence
+from pathlib import Path
+from typing import Any
+
+from . import profiles as _profiles
+from .build import BuildResult
+from .build import build as _build
+from .mechanisms import Design
+from .mechanisms import design as _design
+from .profiles import ProfileParams
+
+__all__ = ["load_profile", "parse_profile", "design", "check", "build"]
+
+
+def load_profile(path: str | Path, overrides: Mapping[str, Any] | Sequence[str] = ()) -> ProfileParams:
+    """Read and validate a TOML profile; ``overrides`` map dotted keys to values (None unsets a
+    key; one of two exclusive keys replaces the other, e.g. teeth.count for teeth.module).
+    Raises :class:`~gearcad.errors.ProfileError` with one line per bad value."""
+    return _profiles.load_profile(path, overrides)
+
+
+def parse_profile(data: Mapping[str, Any], *, name: str = "profile") -> ProfileParams:
+    """Validate a profile given as a dict (the TOML's tables as nested dicts)."""
+    return _profiles.parse_profile(dict(data), default_name=name)
+
+
+def _params(profile: ProfileParams | str | Path | Mapping[str, Any]) -> ProfileParams:
+    if isinstance(profile, (str, Path)):
+        return load_profile(profile)
+    if isinstance(profile, Mapping):
+        return parse_profile(profile)
+    return profile
+
+
+def design(profile: ProfileParams | str | Path | Mapping[str, Any]) -> Design:
+    """The checked design of a profile (params, a path or a dict): parts, findings, report.
+    Raises :class:`~gearcad.errors.DesignError` for a design that cannot be made."""
+    return _design(_params(profile))
+
+
+def check(profile: ProfileParams | str | Path | Mapping[str, Any]) -> Design:
+    """Everything ``build`` checks, without writing a file; the same as :func:`design`."""
+    return design(profile)
+
+
+def build(
+    profiles: Sequence[ProfileParams | str | Path | Mapping[str, Any]],
+    out: str | Path,
+    progress: Callable[[int, int, BuildResult], None] | None = None,
+) -> list[BuildResult]:
+    """Build profiles into ``out/<name>/`` (all or nothing); returns each build's result."""
+    return _build([_params(p) for p in profiles], out, progress)

@@ -1,0 +1,45 @@
+"""The 2-D content of a DXF or SVG file: a design's cut and mark paths, per part or assembled."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..geometry.arcfit import ArcRing
+from ..geometry.outline import rotate
+from ..mechanisms import Design, Part, Placement
+from .dxf import Drawing, cross
+
+__all__ = ["part_drawing", "assembly_drawing"]
+
+
+def _placed(ring: ArcRing, placement: Placement) -> ArcRing:
+    return ArcRing(rotate(ring.vertices, placement.angle) + np.asarray(placement.offset), ring.bulges)
+
+
+def _drawing(items: list[tuple[Part, Placement]], design: Design) -> Drawing:
+    out = design.params.output
+    cut, mark = out.cut_layer, out.mark_layer
+    closed: dict[str, list] = {cut: [], mark: []}
+    strokes: dict[str, list] = {mark: []}
+    for part, placement in items:
+        closed[cut] += [_placed(r, placement) for r in part.cut]
+        closed[mark] += [_placed(r, placement) for r in part.mark]
+        if part.pivot_mark > 0:
+            strokes[mark] += cross(tuple(placement.offset), part.pivot_mark)
+    descriptions = {}
+    if out.kerf > 0:
+        descriptions[cut] = (
+            f"kerf compensation: cut paths offset {out.kerf / 2:g} mm into the waste (kerf {out.kerf:g} mm)"
+        )
+    return Drawing(closed, strokes, descriptions)
+
+
+def part_drawing(design: Design, part: Part) -> Drawing:
+    """One part about its pivot at the origin."""
+    return _drawing([(part, Placement(part.name))], design)
+
+
+def assembly_drawing(design: Design) -> Drawing:
+    """Every part where the assembly places it (touching: a fit check, not a cutting layout)."""
+    parts = {p.name: p for p in design.parts()}
+    return _drawing([(parts[pl.part], pl) for pl in design.placements], design)

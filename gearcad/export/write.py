@@ -1,0 +1,87 @@
+"""The one writing loop: a design's files into a folder, the same for every mechanism."""
+
+from __future__ import annotations
+
+import csv
+import json
+from pathlib import Path
+
+from ..mechanisms import Design
+from .drawing import assembly_drawing, part_drawing
+
+__all__ = ["write_design"]
+
+
+def _entry(path: Path, **counts) -> dict:
+    return {"bytes": path.stat().st_size, **counts}
+
+
+def _write_table(path: Path, table) -> None:
+    with path.open("w", newline="", encoding="utf-8") as fh:
+        w = csv.writer(fh, lineterminator="\n")
+        w.writerow(table.columns)
+        for row in table.rows:
+            w.writerow([f"{v:.12g}" for v in row])
+
+
+def write_design(design: Design, folder: Path) -> dict[str, dict]:
+    """Write every file the profile's [output] asks for into ``folder`` (which must exist);
+    return the files block of the report (the report itself written last)."""
+    out = design.params.output
+    formats = set(out.formats)
+    files: dict[str, dict] = {}
+    parts = design.parts()
+    placed = {p.name: p for p in parts}
+    if "dxf" in formats:
+        from .dxf import write_dxf
+
+        for part in parts:
+            path = folder / f"{part.name}.dxf"
+            n = write_dxf(path, part_drawing(design, part), flavour=out.dxf)
+            files[path.name] = _entry(path, kind="dxf", part=part.name, vertices=n, flavour=out.dxf)
+        path = folder / "assembly.dxf"
+        n = write_dxf(path, assembly_drawing(design), flavour=out.dxf)
+        files[path.name] = _entry(path, kind="dxf", part="assembly", vertices=n, flavour=out.dxf)
+    if formats & {"stl", "3mf"}:
+        from .mesh import SolidItem, extrude, write_3mf, write_stl
+
+        solids = {p.name: extrude(p.outline, out.thickness, name=p.name, chamfer=out.chamfer) for p in parts}
+        for name, solid in solids.items():
+            if "stl" in formats:
+                path = folder / f"{name}.stl"
+                count = write_stl(path, solid)
+                files[path.name] = _entry(path, kind="stl", part=name, triangles=count, volume=solid.volume)
+            if "3mf" in formats:
+                path = folder / f"{name}.3mf"
+                count = write_3mf(path, [SolidItem(solid)])
+                files[path.name] = _entry(path, kind="3mf", part=name, triangles=count, volume=solid.volume)
+        if "3mf" in formats:
+            path = folder / "assembly.3mf"
+            items = [SolidItem(solids[pl.part], pl.angle, (*pl.offset, 0.0)) for pl in design.placements]
+            files[path.name] = _entry(path, kind="3mf", part="assembly", triangles=write_3mf(path, items))
+    for table in design.tables:
+        path = folder / table.file
+        _write_table(path, table)
+        files[path.name] = _entry(path, kind="csv", rows=len(table.rows))
+    if out.animation and design.motion is not None:
+        from .animation import write_gif
+
+        path = folder / "animation.gif"
+        where = {pl.part: pl for pl in design.placements}
+        m = design.motion
+        frames = write_gif(
+            path,
+            [placed[name].outline.outer for name in m.parts],
+            [where[name].offset for name in m.parts],
+            m.angles + [where[name].angle for name in m.parts],
+        )
+        files[path.name] = _entry(path, kind="gif", frames=frames)
+    if out.charts:
+        from .charts import draw_charts
+
+        for name in draw_charts(design, folder):
+            files[name] = _entry(folder / name, kind="png")
+    files["report.json"] = {"kind": "json"}
+    text = json.dumps(design.report(files), indent=2, ensure_ascii=False, allow_nan=False)
+    (folder / "report.json").write_text(text + "\n", encoding="utf-8")
+    return files

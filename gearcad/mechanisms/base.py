@@ -1,0 +1,161 @@
+"""What every mechanism's ``design(params)`` returns: one :class:`Design` with the same blocks.
+
+The exporters write a design and nothing else; ``gearcad check`` prints it; report.json is
+``design.report(files)``.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from ..findings import Finding
+from .parts import Part, Placement, placed_polygon
+
+__all__ = ["SCHEMA_VERSION", "Assembly", "Design", "Motion", "Table", "assembly_overlap", "finite"]
+
+SCHEMA_VERSION = 2
+"""report.json's schema: 2 gave every mechanism the same parts[], assembly, warnings and files blocks."""
+
+
+@dataclass(frozen=True)
+class Motion:
+    """The assembly in motion over one cycle: each row of ``angles`` (frames, parts) turns the
+    parts named in ``parts`` about their placed pivots (rad, added to the placement's angle)."""
+
+    parts: tuple[str, ...]
+    angles: np.ndarray
+
+
+@dataclass(frozen=True)
+class Table:
+    """A CSV table: column names and rows (n, columns) of floats."""
+
+    file: str
+    columns: tuple[str, ...]
+    rows: np.ndarray
+
+
+@dataclass(frozen=True)
+class Assembly:
+    """The interference proof of the parts as assembled (mm²): neighbours overlap by at most
+    ``allowed``, and turned a little (``nudged``, None where not measured) they do touch."""
+
+    overlap: float
+    allowed: float
+    nudged: float | None = None
+    positions: int = 1
+
+    @property
+    def fits(self) -> bool:
+        return self.overlap <= self.allowed and (self.nudged is None or self.nudged > self.allowed)
+
+    def as_dict(self) -> dict:
+        return {
+            "overlap": self.overlap,
+            "allowed_overlap": self.allowed,
+            "nudged_min_overlap": self.nudged,
+            "positions": self.positions,
+            "fits": self.fits,
+        }
+
+
+def assembly_overlap(parts: dict[str, Part], placements: list[Placement], pairs) -> float:
+    """The largest overlap area (mm²) of the placed parts named in ``pairs`` ((i, j) indices)."""
+    polygons = [placed_polygon(parts[p.part], p) for p in placements]
+    return max((float(polygons[i].intersection(polygons[j]).area) for i, j in pairs), default=0.0)
+
+
+def finite(value):
+    """JSON has no NaN or infinity: such a value becomes null (and numpy scalars plain floats)."""
+    if isinstance(value, (float, np.floating)):
+        return float(value) if math.isfinite(value) else None
+    if isinstance(value, np.integer):
+        return int(value)
+    if isinstance(value, np.bool_):
+        return bool(value)
+    if isinstance(value, dict):
+        return {k: finite(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [finite(v) for v in value]
+    return value
+
+
+@dataclass(frozen=True)
+class Design:
+    """A checked mechanism: its parts and assembly, findings, report data and what to draw.
+
+    ``data`` holds the mechanism's own report blocks (JSON-ready); ``detail`` the mechanism's
+    own computed objects (for charts, and for users who want more than the report).
+    """
+
+    params: Any
+    mechanism: str
+    summary: str
+    findings: tuple[Finding, ...]
+    part_list: tuple[Part, ...]
+    placements: tuple[Placement, ...]
+    assembly: Assembly
+    data: dict
+    units: dict
+    detail: Any = None
+    details: tuple[str, ...] = ()
+    """More lines for ``gearcad check``, after the summary."""
+    motion: Motion | None = None
+    tables: tuple[Table, ...] = ()
+    seconds: float = field(default=0.0, compare=False)
+
+    @property
+    def name(self) -> str:
+        return self.params.name
+
+    def parts(self) -> tuple[Part, ...]:
+        """Every part once (the assembly may place a part several times)."""
+        return self.part_list
+
+    def part(self, name: str) -> Part:
+        return next(p for p in self.part_list if p.name == name)
+
+    def report(self, files: dict | None = None) -> dict:
+        """The report as a JSON-ready dict (README, "report.json"): no NaN, no infinity."""
+        p, out = self.params, self.params.output
+        placed = {pl.part: pl for pl in reversed(self.placements)}
+        report = {
+            "schema": SCHEMA_VERSION,
+            "name": p.name,
+            "title": p.title,
+            "mechanism": self.mechanism,
+            "units": self.units,
+            "tolerance": out.tolerance,
+            **self.data,
+            "parts": [
+                {
+                    "name": part.name,
+                    "area": part.outline.area,
+                    "vertices": part.outline.vertex_count,
+                    "holes": len(part.outline.rings) - 1,
+                    "cut_vertices": part.cut_vertices,
+                    "placement": {"angle": placed[part.name].angle, "offset": list(placed[part.name].offset)},
+                }
+                for part in self.part_list
+            ],
+            "assembly": self.assembly.as_dict(),
+            "output": {
+                "thickness": out.thickness,
+                "chamfer": out.chamfer,
+                "kerf": out.kerf,
+                "dxf": out.dxf,
+                "formats": list(out.formats),
+                "layers": {"cut": out.cut_layer, "mark": out.mark_layer},
+            },
+            "warnings": [f.as_dict() for f in self.findings],
+            "files": dict(files or {}),
+        }
+        if hasattr(p, "bore"):
+            report["output"]["bore"] = {
+                k: getattr(p.bore, k) for k in ("diameter", "keyway_width", "keyway_depth", "flat")
+            }
+        return finite(report)

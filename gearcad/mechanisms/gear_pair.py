@@ -1,0 +1,253 @@
+"""Gear pairs (seeds 004 and 002): pitch curves that roll and close, teeth, parts and the proof.
+
+profile → :func:`~.pair_pitch.pitch_design` (curves and the papers' checks) → teeth
+(:func:`~gearcad.teeth.pair.cut_pair`) → parts with bores → :class:`~.base.Design`.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from ..geometry.arcfit import decimate
+from ..pitch.discretize import polyline
+from ..pitch.gear import GearData
+from ..profiles import GearPairParams
+from ..teeth.pair import ToothedPairData, cut_pair
+from ..tolerances import DEFAULT
+from .base import Assembly, Design, Motion, Table, assembly_overlap
+from .pair_pitch import PairDesign, pitch_design
+from .parts import Placement, make_part
+
+__all__ = ["GearPairDetail", "design", "frames_for"]
+
+UNITS = {"length": "mm", "angle": "rad", "speed": "rad/s", "acceleration": "rad/s^2"}
+
+
+@dataclass(frozen=True)
+class GearPairDetail:
+    """The pair's own computed objects: pitch stage and (if toothed) teeth stage."""
+
+    pitch: PairDesign
+    teeth: ToothedPairData | None
+    pitch_rings: tuple[np.ndarray, np.ndarray]
+    """Each pitch curve as a polyline within the tolerance, about its pivot (mm)."""
+
+
+def frames_for(cycle: float, teeth: int | None) -> int:
+    """Enough frames that the driver turns at most ~1/3 of a tooth (or 5°) per frame, ≤ 180."""
+    step = (2 * math.pi / teeth / 3) if teeth else math.radians(5)
+    return int(min(180, max(24, math.ceil(cycle / step))))
+
+
+def _gear_block(g: GearData, lobes: int) -> dict:
+    s = g.shape
+    return {
+        "name": g.name,
+        "curve": g.curve.name,
+        "pivot": list(g.pivot),
+        "lobes": lobes,
+        "r_min": g.r_min,
+        "r_max": g.r_max,
+        "perimeter": g.perimeter,
+        "convex": s.convex,
+        "convexity_margin_min": s.min_margin,
+        "min_curvature_radius": s.min_curvature_radius,
+        "concave_intervals": [list(i) for i in s.concave_intervals],
+        "corners": [{"phi": c.phi, "turn": c.turn, "convex": c.convex} for c in s.corners],
+    }
+
+
+def _teeth_block(t: ToothedPairData, i: int) -> dict:
+    gear, plan = t.gears[i], t.plan
+    folded = gear.undercut_depth > 0
+    return {
+        "count": gear.teeth,
+        "module": plan.module,
+        "requested_module": plan.requested_module,
+        "pressure_angle": gear.rack.params.pressure_angle,
+        "profile_shift": gear.rack.params.profile_shift,
+        "undercut": gear.undercut,
+        "undercut_flanks": int(np.count_nonzero(folded)),
+        "undercut_depth": float(max(np.max(gear.undercut_depth), 0.0)),
+        "undercut_phi": [float(a) for a in gear.flank_phi[folded]],
+        "trimmed_spaces": int(np.count_nonzero(gear.space_loops)),
+        "min_tip_thickness": float(np.min(gear.tip_thickness)),
+        "pointed_teeth": int(len(gear.pointed)),
+        "module_limit_undercut": t.module_limits[i],
+        "vertices": gear.outline.vertex_count,
+        "area": gear.outline.area,
+    }
+
+
+def _report_data(params: GearPairParams, pitch: PairDesign, teeth: ToothedPairData | None, parts) -> dict:
+    pair, kin = pitch.pair, pitch.kinematics
+    n1, n2 = pair.lobes
+    data = {
+        "gears": [_gear_block(pitch.gears[0], n1), _gear_block(pitch.gears[1], n2)],
+        "pair": {
+            "center_distance": pair.center_distance,
+            "lobes": [n1, n2],
+            "closure_error": pair.closure_error,
+            "rolling_residual": pair.rolling_residual,
+            "contact_residual": pair.contact_residual,
+            "slip_residual": pair.slip_residual,
+            "ratio_min": pitch.ratio_range[0],
+            "ratio_max": pitch.ratio_range[1],
+            "mate_shape_difference": pitch.mate_shape_difference,
+        },
+        "kinematics": {
+            "driver": (params.gear1_name, params.gear2_name)[kin.driver - 1],
+            "driver_rpm": params.driver_rpm,
+            "driver_speed": kin.driver_speed,
+            "follower_speed_min": float(np.min(kin.speed)),
+            "follower_speed_max": float(np.max(kin.speed)),
+            "follower_acceleration_min": float(np.min(kin.acceleration)),
+            "follower_acceleration_max": float(np.max(kin.acceleration)),
+        },
+    }
+    for gear, part in zip(data["gears"], parts):
+        gear["part"] = {
+            "area": part.outline.area,
+            "vertices": part.outline.vertex_count,
+            "holes": len(part.outline.rings) - 1,
+        }
+    if teeth is not None:
+        for i in range(2):
+            data["gears"][i]["teeth"] = _teeth_block(teeth, i)
+        mesh = teeth.mesh
+        data["pair"]["teeth"] = {
+            "identical_parts": teeth.plan.identical,
+            "identical_deviation": teeth.identical_deviation,
+            "backlash_design": params.teeth.backlash,
+            "clearance": params.teeth.clearance,
+            "backlash_min": teeth.backlash_range[0],
+            "backlash_max": teeth.backlash_range[1],
+            "mesh": {
+                "meshes": mesh.meshes,
+                "positions": mesh.positions,
+                "max_overlap": mesh.max_overlap,
+                "allowed_overlap": mesh.allowed_overlap,
+                "worst_phi": mesh.worst_phi,
+                "nudge": mesh.nudge,
+                "nudged_min_overlap": mesh.nudged_min_overlap,
+            },
+        }
+    if pitch.claim is not None:
+        c = pitch.claim
+        data["claim"] = {
+            "source": params.claim.source,
+            "center_distance": c.center_distance,
+            "holds": c.holds,
+            "mate_turn": c.turn,
+            "shortfall": c.shortfall,
+            "shape_difference": c.shape_difference,
+        }
+    if pitch.walker is not None:
+        data["walker"] = dict(vars(pitch.walker))
+    return data
+
+
+def _summary(pitch: PairDesign, teeth: ToothedPairData | None, findings: int) -> str:
+    pair = pitch.pair
+    text = (
+        f"E = {pair.center_distance:.6f} mm, closure {pair.closure_error:.1e} rad, "
+        f"rolling {pair.rolling_residual:.1e} mm"
+    )
+    if teeth is not None:
+        z1, z2 = teeth.plan.teeth
+        text += f", {z1}/{z2} teeth m = {teeth.plan.module:.4f}, {'meshes' if teeth.mesh.meshes else 'INTERFERES'}"
+    return f"{text}, {findings} warning(s)"
+
+
+def _details(pitch: PairDesign, teeth: ToothedPairData | None) -> list[str]:
+    lines = [
+        f"{g.name}: r {g.r_min:.4f}…{g.r_max:.4f} mm, perimeter {g.perimeter:.6f} mm, "
+        f"{'convex' if g.shape.convex else 'not convex'}, min radius of curvature {g.shape.min_curvature_radius:.4g} mm"
+        for g in pitch.gears
+    ]
+    lo, hi = pitch.ratio_range
+    lines.append(f"ratio ω2/ω1 {lo:.6g}…{hi:.6g}")
+    if pitch.walker is not None:
+        w = pitch.walker
+        lines.append(
+            f"walker: i (paper's method) = {w.i_paper:.6f}, i (rolls and closes) = {w.i:.6f}"
+            + (f", i (blended) = {w.i_blended:.6f}" if w.blend_width else "")
+        )
+    if teeth is not None:
+        for g, t in zip(pitch.gears, teeth.gears):
+            lines.append(
+                f"{g.name}: {t.teeth} teeth, thinnest tip land {t.tip_thickness.min():.3f} mm, "
+                f"{'undercut' if t.undercut else 'no undercut'}, {t.outline.vertex_count} vertices"
+            )
+        lo, hi = teeth.backlash_range
+        lines.append(
+            f"mesh: max overlap {teeth.mesh.max_overlap:.3g} mm² (allowed {teeth.mesh.allowed_overlap:.3g}), "
+            f"backlash {lo:.4f}…{hi:.4f} mm"
+        )
+    return lines
+
+
+def design(params: GearPairParams) -> Design:
+    """Design, tooth, make and prove the pair a profile describes."""
+    out = params.output
+    tol = replace(DEFAULT, outline_mm=out.tolerance)
+    fine_tol = out.tolerance * DEFAULT.fine_fraction
+    pitch = pitch_design(params, tol=tol)
+    teeth = None
+    if params.teeth is not None:
+        alike = pitch.mate_shape_difference is not None and pitch.mate_shape_difference < 1e-6
+        teeth = cut_pair(
+            pitch.pair, pitch.gears, params.teeth, mate_rotation=pitch.mate_rotation if alike else None, tol=tol
+        )
+    pitch_fine = [polyline(g.curve, fine_tol) for g in pitch.gears]
+    parts = []
+    for i, gear in enumerate(pitch.gears):
+        outer = teeth.fine[i] if teeth is not None else pitch_fine[i]
+        parts.append(
+            make_part(
+                gear.name,
+                outer,
+                output=out,
+                bore=params.bore,
+                wall=teeth.plan.module if teeth is not None else 0.0,
+                marks=(pitch_fine[i],) if teeth is not None else (),
+                pivot_mark=0.05 * gear.r_min,
+            )
+        )
+    placements = tuple(Placement(g.name, 0.0, g.pivot) for g in pitch.gears)
+    overlap = assembly_overlap({p.name: p for p in parts}, list(placements), [(0, 1)])
+    if teeth is not None:
+        mesh = teeth.mesh
+        assembly = Assembly(
+            max(overlap, mesh.max_overlap), mesh.allowed_overlap, mesh.nudged_min_overlap, mesh.positions
+        )
+    else:
+        assembly = Assembly(overlap, 2 * out.tolerance * pitch.gears[0].r_min)
+    findings = pitch.findings + (teeth.findings if teeth is not None else ())
+    cycle = pitch.pair.cycle
+    phi1 = np.linspace(0.0, cycle, frames_for(cycle, teeth.plan.teeth[0] if teeth else None), endpoint=False)
+    kin = pitch.kinematics
+    table = Table(
+        "kinematics.csv",
+        ("driver_angle_rad", "follower_angle_rad", "ratio", "follower_speed_rad_s", "follower_acceleration_rad_s2"),
+        np.column_stack([kin.driver_angle, kin.follower_angle, kin.ratio, kin.speed, kin.acceleration]),
+    )
+    rings = tuple(decimate(r, out.tolerance - fine_tol) for r in pitch_fine)
+    return Design(
+        params=params,
+        mechanism="gear-pair",
+        summary=_summary(pitch, teeth, len(findings)),
+        findings=findings,
+        part_list=tuple(parts),
+        placements=placements,
+        assembly=assembly,
+        data=_report_data(params, pitch, teeth, parts),
+        units=UNITS,
+        detail=GearPairDetail(pitch, teeth, rings),
+        details=tuple(_details(pitch, teeth)),
+        motion=Motion((parts[0].name, parts[1].name), np.column_stack([-phi1, pitch.pair.angle_map(phi1)])),
+        tables=(table,),
+    )

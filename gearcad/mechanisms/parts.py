@@ -1,0 +1,175 @@
+"""Parts: what a design hands to every exporter.
+
+A :class:`Part` holds a part's shape at the tolerance (for solids, areas and the interference
+proof) and its cut and mark paths exactly as they will be written — kerf applied, arcs fitted
+and then verified: every cut ring is simple and within the tolerance of the exact outline.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Protocol
+
+import numpy as np
+import shapely
+
+from ..errors import DesignError
+from ..geometry.arcfit import ArcRing, arc_points, decimate, fit_arcs
+from ..geometry.inset import check_chamfer
+from ..geometry.outline import Outline, rotate
+from ..geometry.rings import bore_ring, offset_outline
+from ..geometry.verify import is_simple, max_distance
+from ..tolerances import DEFAULT
+
+__all__ = ["Part", "Placement", "BoreSpec", "CutSpec", "make_part", "placed_polygon"]
+
+
+class BoreSpec(Protocol):
+    diameter: float
+    keyway_width: float
+    keyway_depth: float
+    flat: float
+
+
+class CutSpec(Protocol):
+    """What the parts stage reads of a profile's [output] table."""
+
+    tolerance: float
+    kerf: float
+    dxf: str
+    thickness: float
+    chamfer: float
+
+
+@dataclass(frozen=True)
+class Part:
+    """One part, its pivot at the origin (mm).
+
+    ``outline`` is the shape at the tolerance (outer ring counter-clockwise, holes clockwise);
+    ``cut`` and ``mark`` are the paths as written to DXF and SVG (kerf applied to ``cut``);
+    ``pivot_mark`` the half-length of the engraved cross at the pivot (0 for none).
+    """
+
+    name: str
+    outline: Outline
+    cut: tuple[ArcRing, ...]
+    mark: tuple[ArcRing, ...]
+    pivot_mark: float
+
+    @property
+    def cut_vertices(self) -> int:
+        return sum(len(r.vertices) for r in self.cut)
+
+
+@dataclass(frozen=True)
+class Placement:
+    """Where a part sits in the assembly: turned by ``angle`` rad about its pivot, then moved."""
+
+    part: str
+    angle: float = 0.0
+    offset: tuple[float, float] = (0.0, 0.0)
+
+
+def placed_polygon(part: Part, placement: Placement) -> shapely.Polygon:
+    rings = [rotate(r, placement.angle) + np.asarray(placement.offset) for r in part.outline.rings]
+    return shapely.Polygon(rings[0], rings[1:])
+
+
+def _with_bore(outer: np.ndarray, bore: BoreSpec | None, tolerance: float, *, part: str, wall: float) -> Outline:
+    """``outer`` and, if any, the bore hole — which must leave ``wall`` mm of material."""
+    hole = None
+    if bore is not None:
+        hole = bore_ring(
+            bore.diameter, tolerance, keyway_width=bore.keyway_width, keyway_depth=bore.keyway_depth, flat=bore.flat
+        )
+    if hole is None:
+        return Outline((outer,))
+    reach = float(np.max(np.hypot(hole[:, 0], hole[:, 1])))
+    root = float(np.min(np.hypot(outer[:, 0], outer[:, 1])))
+    if reach + wall >= root:
+        key = "bore.keyway_depth" if bore.keyway_depth > 0 and reach > bore.diameter / 2 else "bore.diameter"
+        value = bore.keyway_depth if key == "bore.keyway_depth" else bore.diameter
+        raise DesignError(
+            f"{key} = {value:g}: the bore reaches {reach:.3f} mm from the pivot of {part}, whose outline "
+            f"comes within {root:.3f} mm of it; leave at least {wall:.3f} mm of material"
+        )
+    return Outline((outer, hole))
+
+
+def _cut_ring(ring: np.ndarray, tolerance: float, fine_tol: float, *, flat: bool, part: str) -> ArcRing:
+    """The ring as written: arcs fitted (or chords), refitted tighter until the written path is
+    simple and within ``tolerance`` of ``ring``; chords as the last resort."""
+    budget = tolerance - fine_tol
+    if not flat:
+        for attempt in range(3):
+            arcs = fit_arcs(ring, budget / 2**attempt)
+            drawn = arc_points(arcs, fine_tol / 4)
+            if is_simple(drawn) and max_distance(drawn, ring, limit=budget) <= budget:
+                return arcs
+    chords = decimate(ring, budget)
+    if not is_simple(chords):
+        raise DesignError(f"{part}: the outline crosses itself at this tolerance; use a smaller output.tolerance")
+    return ArcRing(chords, np.zeros(len(chords)))
+
+
+def _kerf_keeps_shape(fine: Outline, kerf: float, fine_tol: float) -> Outline | None:
+    """The cut paths offset kerf/2 into the waste, or None where that fills spaces or closes holes
+    (some point of the part would then lie farther than kerf/2 from its cut path)."""
+    try:
+        grown = offset_outline(fine, kerf / 2, fine_tol, what="kerf")
+    except DesignError:
+        return None
+    for ring, offset in zip(fine.rings, grown.rings):
+        if max_distance(ring, offset, limit=kerf / 2 + 2 * fine_tol) > kerf / 2 + 2 * fine_tol:
+            return None
+    return grown
+
+
+def _kerf(fine: Outline, kerf: float, fine_tol: float, *, part: str) -> Outline:
+    grown = _kerf_keeps_shape(fine, kerf, fine_tol)
+    if grown is not None:
+        return grown
+    lo, hi = 0.0, kerf  # the largest kerf the part takes, to 1 %
+    while hi - lo > 0.01 * hi:
+        mid = (lo + hi) / 2
+        lo, hi = (mid, hi) if _kerf_keeps_shape(fine, mid, fine_tol) is not None else (lo, mid)
+    raise DesignError(
+        f"output.kerf = {kerf:g}: the laser's path would fill the tooth spaces or holes of {part}; "
+        f"the largest kerf it takes is {lo:.3f} mm"
+    )
+
+
+def make_part(
+    name: str,
+    fine_outer: np.ndarray,
+    *,
+    output: CutSpec,
+    bore: BoreSpec | None = None,
+    wall: float = 0.0,
+    marks: tuple[np.ndarray, ...] = (),
+    hole: np.ndarray | None = None,
+    pivot_mark: float = 0.0,
+) -> Part:
+    """A part from its outer ring sampled at the fine tolerance (counter-clockwise, mm).
+
+    ``bore`` adds the shaft hole (leaving ``wall`` mm to the outline), ``hole`` a given inner ring
+    instead (clockwise, fine), ``marks`` closed rings to engrave (fine).  The kerf is applied to
+    the cut paths only: the part's ``outline`` stays at its designed size.
+    """
+    tol = output.tolerance
+    fine_tol = tol * DEFAULT.fine_fraction
+    if not is_simple(fine_outer):
+        raise DesignError(f"{name}: the outline crosses itself (the design cannot be cut as one piece)")
+    if hole is not None:
+        fine = Outline((fine_outer, hole))
+        outline = Outline((decimate(fine_outer, tol - fine_tol), decimate(hole, tol - fine_tol)))
+    else:
+        fine = _with_bore(fine_outer, bore, fine_tol, part=name, wall=wall)
+        outline = _with_bore(decimate(fine_outer, tol - fine_tol), bore, tol, part=name, wall=wall)
+    if output.kerf > 0:
+        fine = _kerf(fine, output.kerf, fine_tol, part=name)
+    check_chamfer(outline, output.thickness, output.chamfer, name=name)
+    flat = output.dxf == "polyline-flat"
+    cut = tuple(_cut_ring(r, tol, fine_tol, flat=flat, part=name) for r in fine.rings)
+    mark = tuple(_cut_ring(r, tol, fine_tol, flat=flat, part=name) for r in marks)
+    return Part(name, outline, cut, mark, pivot_mark)

@@ -1,0 +1,236 @@
+"""Bodies rolling on three rollers (seed 003): contour, exact amplitude limits, kinematics of the
+centre, optional teeth (the rollers as pinions), parts and the interference proof."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..bodies import rollers as RB
+from ..errors import DesignError
+from ..findings import Finding, finding
+from ..geometry.rings import circle_ring
+from ..pitch import shapes
+from ..profiles import RollerBodyParams
+from ..teeth.frame import ParametricFrame, arc_frame
+from ..teeth.gear import cut_teeth
+from ..teeth.rack import Rack, RackParams
+from ..tolerances import DEFAULT
+from .base import Assembly, Design, assembly_overlap
+from .parts import Placement, make_part
+
+__all__ = ["RollerBodyDetail", "design", "PAPER_M"]
+
+TWO_PI = 2 * math.pi
+PAPER_M = (3, 6, 9, 12, 15)
+"""The frequencies for which the paper gives its by-eye amplitude limits."""
+UNITS = {"length": "mm (body lengths in units of R in 'body')", "speed": "mm/s", "acceleration": "mm/s^2"}
+
+
+@dataclass(frozen=True)
+class RollerBodyDetail:
+    oscillation: RB.Oscillation
+    roller_radius: float
+    """Units of R, after fitting a whole number of teeth."""
+
+
+def _oscillation(p: RollerBodyParams) -> RB.Oscillation:
+    osc = RB.Oscillation(p.f, p.g) if p.direction == "series" else RB.harmonic(p.direction, p.amplitude, p.m)
+    osc.check()
+    return osc
+
+
+def _limits(p: RollerBodyParams) -> dict[int, tuple[float, float]]:
+    if p.direction == "series":
+        return {}
+    return {
+        m: (
+            RB.amplitude_limit(p.direction, m, r=p.roller_radius, test="convex"),
+            RB.amplitude_limit(p.direction, m, r=p.roller_radius, test="simple"),
+        )
+        for m in sorted({*PAPER_M, p.m})
+    }
+
+
+def _toothed_body(osc: RB.Oscillation, p: RollerBodyParams) -> dict:
+    """Teeth on the body, the rollers as pinions of pitch radius r (one generating rack).
+
+    The rollers' count fixes the module (m = 2r/z_r); the body's contour is the roller path P
+    moved in by r, so its perimeter is P_path − 2πr, and a whole body count z_b needs
+    r = P_path·z_r / (2π(z_r + z_b)) — the roller radius is adjusted to it.
+    """
+    z_r = p.roller_teeth
+    u = np.linspace(0, TWO_PI, 2048, endpoint=False)
+    path = ParametricFrame(RB.roller_path(osc, -u))  # τ runs clockwise; u = −τ counter-clockwise
+    body0 = path.perimeter - TWO_PI * p.roller_radius
+    m0 = 2 * p.roller_radius / z_r
+    z_b = max(3, int(round(body0 / (math.pi * m0))))
+    r = path.perimeter * z_r / (TWO_PI * (z_r + z_b))
+    if not RB.is_simple(osc, r=r):
+        raise DesignError(f"teeth.roller_count = {z_r}: the roller radius it needs ({r:.4f} R) breaks the contour")
+    module = 2 * r * p.scale / z_r
+    frame = ParametricFrame(RB.contour(osc, -u, r=r) * p.scale)
+    if not math.isclose(frame.perimeter, z_b * math.pi * module, rel_tol=1e-9):
+        raise DesignError("the body's perimeter does not fit its teeth (the contour is not a parallel of its path)")
+    fine = p.output.tolerance * DEFAULT.fine_fraction
+    rack = Rack.from_params(RackParams(module=module, pressure_angle=p.pressure_angle))
+    body = cut_teeth(frame, rack, z_b, rack.pitch / 2, tolerance=fine)
+    roller = cut_teeth(arc_frame(shapes.circle(r * p.scale)), rack, z_r, rack.pitch / 2, tolerance=fine)
+    turns = []
+    for k in range(3):
+        tau = TWO_PI * k / 3
+        s_k = float(frame.arc_at(np.array([-tau]))[0])
+        space = ((s_k - rack.pitch / 2) / rack.pitch) % 1.0  # 0 where a body space is centred
+        centre = RB.roller_path(osc, np.array([tau]))[0] * p.scale
+        contact = RB.contour(osc, np.array([tau]), r=r)[0] * p.scale
+        theta = math.atan2(*(contact - centre)[::-1])
+        # the two curves run opposite ways at the contact, so the tooth pattern is mirrored: a
+        # body space centre `space` pitches behind the contact needs a roller tooth centre as far
+        # ahead; the roller's spaces sit at arc r·(angle − turn) = pitch/2 + j·pitch
+        turns.append(theta - (rack.pitch / 2 + ((0.5 - space) % 1.0) * rack.pitch) / (r * p.scale))
+    return {
+        "body_teeth": z_b,
+        "roller_teeth": z_r,
+        "module": module,
+        "roller_radius": r,
+        "requested_roller_radius": p.roller_radius,
+        "body_undercut": body.undercut,
+        "roller_undercut": roller.undercut,
+        "_body_ring": body.outline.outer,
+        "_roller_ring": roller.outline.outer,
+        "_roller_turns": turns,
+    }
+
+
+def _body_ring(osc: RB.Oscillation, p: RollerBodyParams, r: float) -> tuple[np.ndarray, np.ndarray]:
+    """The plain contour and the roller path, sampled so that chords sag at most the fine
+    tolerance where they bend most (sag ≈ κ·ds²/8), counter-clockwise, mm."""
+    fine = p.output.tolerance * DEFAULT.fine_fraction
+    probe = np.linspace(0, TWO_PI, 4096, endpoint=False)
+    kappa = float(np.max(np.abs(RB.contour_curvature(osc, probe, r=r)))) / p.scale
+    ds = math.sqrt(8 * fine / max(kappa, 1e-12))
+    length = float(np.sum(np.hypot(*np.diff(RB.contour(osc, probe, r=r), axis=0).T))) * p.scale
+    tau = np.linspace(0, TWO_PI, max(256, int(math.ceil(2 * length / ds))), endpoint=False)
+    body = RB.contour(osc, tau, r=r)[::-1] * p.scale  # τ runs clockwise: reverse for CCW
+    return body, RB.roller_path(osc, tau)[::-1] * p.scale
+
+
+def design(p: RollerBodyParams) -> Design:
+    """The body, its three rollers and their proof, from a roller-body profile."""
+    osc = _oscillation(p)
+    r = p.roller_radius
+    findings: list[Finding] = []
+    limits = _limits(p)
+    simple, convex = RB.is_simple(osc, r=r), RB.is_convex(osc, r=r)
+    if not simple:
+        limit = f" (largest simple amplitude for m = {p.m}: {limits[p.m][1]:.6f})" if limits else ""
+        raise DesignError(f"body.amplitude = {p.amplitude:g}: the body contour crosses itself or has cusps{limit}")
+    if not convex:
+        findings.append(finding("concave", "the body contour has concave stretches (it is not an 'oval')", "body"))
+    # kinematics of the centre at uniform rotation, numerically over one turn, against eq. 11
+    w = p.rpm * TWO_PI / 60
+    t = np.linspace(0.0, TWO_PI / w, 20001)
+    _, vel, acc = RB.point_motion(osc, 0.0, 0.0, w=w, t=t)
+    vmax, amax = float(np.max(np.hypot(*vel.T))) * p.scale, float(np.max(np.hypot(*acc.T))) * p.scale
+    data = {
+        "body": {
+            "scale": p.scale,
+            "roller_radius": r,
+            "direction": p.direction,
+            "amplitude": p.amplitude,
+            "m": p.m,
+            "convex": convex,
+            "simple": simple,
+            "amplitude_limit_convex": limits[p.m][0] if limits else None,
+            "amplitude_limit_simple": limits[p.m][1] if limits else None,
+        },
+        "centre": {"rpm": p.rpm, "w": w, "v_max": vmax, "a_max": amax},
+    }
+    if p.direction == "horizontal":
+        v_closed, a_closed = RB.centre_extremes(p.amplitude * p.scale, p.m, w)
+        data["centre"].update(v_max_closed_form=v_closed, a_max_closed_form=a_closed)
+    if limits:
+        ms = np.array(PAPER_M)
+        conv = np.array([limits[m][0] for m in ms])
+        k, logc = np.polyfit(np.log(ms), np.log(conv), 1)
+        data["limits"] = {
+            "m": ms.tolist(),
+            "convex": conv.tolist(),
+            "simple": [limits[m][1] for m in ms],
+            "paper_by_eye": [0.15, 0.05, 0.025, 0.01, 0.005],
+            "paper_regression": [1.74 * m**-2.07 for m in ms],
+            "power_law_convex": {"coefficient": float(math.exp(logc)), "exponent": float(k)},
+        }
+    summary = (
+        f"{'convex' if convex else 'not convex'}, "
+        + (f"amplitude limits convex {limits[p.m][0]:.5f} / simple {limits[p.m][1]:.5f} R, " if limits else "")
+        + f"centre Vmax {vmax:.4g} mm/s"
+    )
+    teeth = _toothed_body(osc, p) if p.roller_teeth else None
+    if teeth is not None:
+        data["teeth"] = {k: v for k, v in teeth.items() if not k.startswith("_")}
+        summary += f", {teeth['body_teeth']}/{teeth['roller_teeth']} teeth m = {teeth['module']:.4f}"
+        if teeth["roller_radius"] != r:
+            findings.append(
+                finding(
+                    "teeth-fit",
+                    f"roller radius {r:g} R adjusted to {teeth['roller_radius']:.6f} R so that the body carries "
+                    f"a whole number of teeth ({teeth['body_teeth']}) of the rollers' module",
+                    "body",
+                )
+            )
+        r = teeth["roller_radius"]
+    out = p.output
+    fine = out.tolerance * DEFAULT.fine_fraction
+    body, path = _body_ring(osc, p, r)
+    roller_circle = circle_ring(r * p.scale, fine)
+    mark = 0.05 * r * p.scale
+    if teeth is None:
+        parts = (
+            make_part("body", body, output=out, bore=p.bore, pivot_mark=mark),
+            make_part("roller", roller_circle, output=out, pivot_mark=mark),
+        )
+        turns = [0.0, 0.0, 0.0]
+    else:
+        parts = (
+            make_part("body", teeth["_body_ring"], output=out, bore=p.bore, wall=teeth["module"], marks=(body,)),
+            make_part("roller", teeth["_roller_ring"], output=out, marks=(roller_circle,), pivot_mark=mark),
+        )
+        turns = teeth["_roller_turns"]
+    centres = [(p.scale * math.sin(a), p.scale * math.cos(a)) for a in (0.0, TWO_PI / 3, 2 * TWO_PI / 3)]
+    placements = (Placement("body"),) + tuple(Placement("roller", a, c) for a, c in zip(turns, centres))
+    by_name = {part.name: part for part in parts}
+    pairs = [(0, 1), (0, 2), (0, 3)]
+    overlap = assembly_overlap(by_name, list(placements), pairs)
+    if teeth is None:
+        assembly = Assembly(overlap, 2 * out.tolerance * TWO_PI * r * p.scale)
+    else:
+        # turned a little either way, every roller must bite into the body: they do touch
+        nudge = 200 * out.tolerance / (r * p.scale)
+        nudged = min(
+            max(
+                assembly_overlap(by_name, [placements[0], Placement("roller", pl.angle + d, pl.offset)], [(0, 1)])
+                for d in (-nudge, nudge)
+            )
+            for pl in placements[1:]
+        )
+        assembly = Assembly(overlap, 2 * out.tolerance * 2.25 * teeth["module"], nudged)
+        if not assembly.fits:
+            findings.append(
+                finding("interference", f"the body and a roller overlap by {overlap:.4g} mm² as assembled", "body")
+            )
+    return Design(
+        params=p,
+        mechanism="roller-body",
+        summary=summary,
+        findings=tuple(findings),
+        part_list=parts,
+        placements=placements,
+        assembly=assembly,
+        data=data,
+        units=UNITS,
+        detail=RollerBodyDetail(osc, r),
+        details=(f"assembly: max overlap {overlap:.3g} mm² (allowed {assembly.allowed:.3g})",),
+    )

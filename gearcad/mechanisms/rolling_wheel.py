@@ -1,0 +1,137 @@
+"""A wheel rolling on the ground, driven through an inclined rack (seed 000): inclination, rack
+length, rates, the motion law two ways, and the two wheels as parts."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..findings import finding
+from ..geometry.rings import circle_ring
+from ..profiles import RollingWheelParams
+from ..tolerances import DEFAULT
+from ..trains import rack_drive as RD
+from .base import Assembly, Design, assembly_overlap
+from .parts import Placement, make_part
+
+__all__ = ["RollingWheelDetail", "design"]
+
+TWO_PI = 2 * math.pi
+UNITS = {"length": "mm", "angle": "rad", "speed": "rad/s", "acceleration": "rad/s^2"}
+
+
+@dataclass(frozen=True)
+class RollingWheelDetail:
+    """The motion over the travel: driver angle, the wheel's angle by both methods, rates."""
+
+    phi1: np.ndarray
+    by_contour: np.ndarray
+    by_rates: np.ndarray
+    omega2: np.ndarray
+    omega3: np.ndarray
+    eps2: np.ndarray
+
+
+def _motion(d: RD.RackDrive, p: RollingWheelParams, w1: float) -> RollingWheelDetail:
+    if math.isclose(p.H, p.R - p.r, rel_tol=1e-12, abs_tol=1e-12 * max(p.R, p.r)):
+        # a horizontal rack stays horizontal (β ≡ 0): the law is linear, φ2 = φ1·r/(2R), and
+        # both methods give it exactly; the rack does not turn (ω3 = 0) and ε2 = 0
+        phi1 = np.linspace(0.0, p.travel / p.R * 2 * p.R / p.r, 401)
+        phi2 = phi1 * p.r / (2 * p.R)
+        zero = np.zeros_like(phi1)
+        return RollingWheelDetail(phi1, phi2, phi2.copy(), zero + w1 * p.r / (2 * p.R), zero, zero)
+    beta_end = float(RD.inclination(d, p.L - p.travel))
+    phi1 = np.linspace(0.0, RD._contour_state(d, beta_end)[0], 401)
+    by_contour = RD.law_by_contour(d, phi1)
+    by_rates = RD.law_by_rates(d, phi1)
+    w2, w3, e2 = RD.rates(d, p.L - p.R * by_contour, omega1=w1)
+    return RollingWheelDetail(phi1, by_contour, by_rates, w2, w3, e2)
+
+
+def design(p: RollingWheelParams) -> Design:
+    """The drive's geometry and motion, checked two ways, and its two wheels as parts."""
+    d = RD.RackDrive(p.r, p.R, p.L, p.H)
+    beta0 = float(RD.inclination(d))
+    l0 = float(RD.rack_length(d))
+    beta_end = float(RD.inclination(d, p.L - p.travel))
+    w1 = p.driver_rpm * TWO_PI / 60
+    motion = _motion(d, p, w1)
+    difference = float(np.max(np.abs(motion.by_contour - motion.by_rates)))
+    w2, w3, e2 = motion.omega2, motion.omega3, motion.eps2
+    findings = []
+    paper_l = RD.paper_rack_length(d)
+    if abs(paper_l - l0) > 1e-9 * l0:
+        findings.append(
+            finding(
+                "paper-formula",
+                f"printed eq. 2 (l² = L² + H² + (R − r)²) gives l = {paper_l:.4f} mm; eq. 1 gives "
+                f"l² = L² + H² − (R − r)², l = {l0:.4f} mm (used)",
+                "drive",
+            )
+        )
+    scale = float(np.max(np.abs(e2))) or 1.0
+    gap = float(np.max(np.abs(RD.paper_eps2(d, p.L - p.R * motion.by_contour, omega1=w1) - e2)))
+    if gap > 1e-9 * scale:
+        findings.append(
+            finding(
+                "paper-formula",
+                "printed eq. 9 lacks a factor 1/(1 + cos β) in its second term: its ε2 differs from the derivative of "
+                f"eq. 8 by up to {gap:.4g} rad/s² here ({100 * gap / scale:.0f}% of the largest ε2); the corrected "
+                "form is used",
+                "drive",
+            )
+        )
+    if difference > 1e-9:
+        findings.append(finding("not-closed", f"the two motion laws differ by {difference:.3g} rad", "drive"))
+    paper_beta = RD.paper_inclination(d) if p.R != p.r else None
+    data = {
+        "drive": {"r": p.r, "R": p.R, "L": p.L, "H": p.H, "travel": p.travel, "driver_rpm": p.driver_rpm},
+        "geometry": {
+            "beta_start": beta0,
+            "beta_end": beta_end,
+            "rack_length_start": l0,
+            "rack_length_paper_eq2": paper_l,
+            "beta_paper_eq10": paper_beta,
+        },
+        "motion": {
+            "phi1_end": float(motion.phi1[-1]),
+            "phi2_end": float(motion.by_contour[-1]),
+            "law_difference": difference,
+            "omega2_min": float(w2.min()),
+            "omega2_max": float(w2.max()),
+            "omega3_min": float(w3.min()),
+            "omega3_max": float(w3.max()),
+            "eps2_min": float(e2.min()),
+            "eps2_max": float(e2.max()),
+            "ratio_start": float(w2[0] / w1),
+            "ratio_horizontal_rack": p.r / (2 * p.R),
+        },
+    }
+    out = p.output
+    fine = out.tolerance * DEFAULT.fine_fraction
+    # a plain wheel has no pitch curve to engrave apart from its cut: only the pivot is marked
+    parts = (
+        make_part("wheel1", circle_ring(p.r, fine), output=out, pivot_mark=0.1 * p.r),
+        make_part("wheel2", circle_ring(p.R, fine), output=out, pivot_mark=0.1 * p.R),
+    )
+    placements = (Placement("wheel1", 0.0, (p.L, p.H)), Placement("wheel2"))
+    overlap = assembly_overlap({q.name: q for q in parts}, list(placements), [(0, 1)])
+    summary = (
+        f"β {math.degrees(beta0):.3f}°→{math.degrees(beta_end):.3f}°, ω2/ω1 {w2.min() / w1:.5f}…"
+        f"{w2.max() / w1:.5f}, motion laws agree to {difference:.1e} rad"
+    )
+    return Design(
+        params=p,
+        mechanism="rolling-wheel",
+        summary=summary,
+        findings=tuple(findings),
+        part_list=parts,
+        placements=placements,
+        assembly=Assembly(overlap, 0.0),
+        data=data,
+        units=UNITS,
+        detail=motion,
+        details=(f"assembly: the wheels overlap by {overlap:.3g} mm² (they must not touch)",),
+    )
