@@ -1,0 +1,343 @@
+"""Publish built profile folders into ``--out``, each folder atomically.
+
+Guarantee: **each profile folder is individually atomic: after a kill at any moment, every
+folder ``out/<name>`` is either the complete previous build or the complete new one — never
+missing, never half-written, never mixed. Folders of different profiles are replaced one
+after another, so a build killed while publishing can leave some profiles new and others old.**
+A build that fails or is interrupted (SIGINT, SIGTERM) publishes nothing; if ``--out`` did not
+exist, neither it nor its missing parents exist afterwards.
+
+Design
+------
+*Real folders, swapped.* The new ``out/<name>`` is swapped with the old one in one step by
+``renameat2(RENAME_EXCHANGE)`` (Linux ≥ 3.15 on ext4, xfs, btrfs, tmpfs, …), then the old copy
+is deleted. ``out/<name>`` stays a plain folder, unlike a symlink into a hidden version folder,
+which ``cp -r``, zip, rsync or git copy as a link whose target is left behind. A program with a
+file open keeps reading the old file (Linux keeps deleted files alive while open); one whose
+current folder is the old ``out/<name>`` finds it emptied. A kill between swap and delete leaves
+the old copy in a hidden staging folder, which the next build deletes. Where the swap is not
+available (other systems, some network filesystems) two renames are used instead: a kill
+between them leaves ``out/<name>`` missing until the next build, which puts the old one back.
+
+*Staging.* Files are written into a hidden ``.gearcad-staging-XXXXXXXX`` folder: inside ``out``
+when it exists, beside the folders they replace (a rename needs one filesystem); otherwise in
+its nearest existing ancestor, standing for the first missing component of the path, so that
+one rename publishes ``out`` and its missing parents at once. ``ls out`` shows the profile
+folders only, and a staging folder while a build runs or after a kill, until the next build.
+
+*Locks.* A build holds ``flock`` on its staging folder; every build deletes the staging
+folders in ``out`` and its nearest existing ancestor that no live process holds (left by
+killed builds). Concurrent builds
+into one ``out`` both build, and a ``flock`` on ``out`` makes the second to finish wait while
+the first publishes: ``out`` ends with the complete output of the later one (profiles it does
+not build keep the earlier one's). Files are not fsynced: this guards against killed
+processes, not power loss. POSIX only (``fcntl``).
+
+Use
+---
+``with interrupt_guard(out), Publisher(out) as pub:`` give each profile ``pub.folder(name)``
+(a plain path, so a process pool's workers can write into it), then ``pub.commit()``. SIGINT
+and SIGTERM become :class:`Interrupted`, whose message is the one line to print and whose
+``exit_code`` is 130 or 143; they are held off while ``commit`` publishes.
+"""
+
+from __future__ import annotations
+
+import ctypes
+import errno
+import fcntl
+import os
+import re
+import shutil
+import signal
+import tempfile
+import threading
+from contextlib import contextmanager, nullcontext, suppress
+from pathlib import Path
+
+from .errors import GearcadError, ProfileError
+
+__all__ = ["Publisher", "Interrupted", "interrupt_guard", "check_out"]
+
+_SIGNALS = (signal.SIGINT, signal.SIGTERM)
+_NAME = re.compile(r"[\w-][\w.-]*")
+_PREFIX = ".gearcad-staging-"
+_STAGING = re.compile(re.escape(_PREFIX) + "[a-z0-9_]{8}")  # tempfile.mkdtemp's 8 random characters
+_AT_FDCWD, _RENAME_EXCHANGE = -100, 2
+
+
+class Interrupted(GearcadError):
+    """SIGINT or SIGTERM ended the build; the message is one line, ``exit_code`` 128 + signal."""
+
+    def __init__(self, message: str, signum: int) -> None:
+        super().__init__(message)
+        self.signum = signum
+        self.exit_code = 128 + signum
+
+    def __reduce__(self):  # raised in a process pool's worker, it crosses back by pickle
+        return type(self), (str(self), self.signum)
+
+
+def interrupt_guard(out: Path | str | None = None):
+    """A context manager turning SIGINT and SIGTERM into :class:`Interrupted` (main thread only).
+
+    Parameters
+    ----------
+    out : path, optional
+        The output folder, named in the message ``interrupted; <out> left as it was``.
+    """
+
+    def interrupt(signum, frame):
+        raise Interrupted(f"interrupted; {out} left as it was" if out else "interrupted", signum)
+
+    return _handling(interrupt)
+
+
+@contextmanager
+def _handling(handler):
+    previous = {s: signal.signal(s, handler) for s in _SIGNALS}
+    try:
+        yield
+    finally:
+        for s, old in previous.items():
+            signal.signal(s, signal.SIG_DFL if old is None else old)
+
+
+@contextmanager
+def _held_signals(*, deliver: bool = True):
+    """Hold SIGINT and SIGTERM off inside the block; deliver the first one afterwards."""
+    caught: list[int] = []
+    main = threading.current_thread() is threading.main_thread()
+    try:
+        with _handling(lambda signum, frame: caught.append(signum)) if main else nullcontext():
+            yield
+    finally:
+        if caught and deliver:
+            signal.raise_signal(caught[0])
+
+
+def _nearest(path: Path) -> Path:
+    while not os.path.lexists(path):
+        path = path.parent
+    return path
+
+
+def check_out(out: Path | str) -> None:
+    """Raise :class:`GearcadError` (one line) if files cannot be published into ``out``.
+
+    ``out`` must be a folder or a path that does not exist yet, inside a folder one can write in.
+    """
+    path = Path(os.path.abspath(out))
+    ancestor = _nearest(path)
+    if ancestor == path and not path.is_dir():
+        raise GearcadError(f"--out {out}: exists and is not a folder; give a folder or a new path")
+    if not ancestor.is_dir():
+        raise GearcadError(f"--out {out}: {ancestor} is a file, so no folder can be made inside it")
+    if not os.access(ancestor, os.W_OK | os.X_OK):
+        raise GearcadError(f"--out {out}: {ancestor} is not writable")
+
+
+def _load_renameat2():
+    try:
+        fn = ctypes.CDLL(None, use_errno=True).renameat2
+    except (OSError, AttributeError):
+        return None
+    fn.argtypes = [ctypes.c_int, ctypes.c_char_p, ctypes.c_int, ctypes.c_char_p, ctypes.c_uint]
+    fn.restype = ctypes.c_int
+    return fn
+
+
+_renameat2 = _load_renameat2()
+
+
+def _exchange(a: Path, b: Path) -> bool:
+    """Swap two existing paths in one step; ``False`` where the system or filesystem cannot."""
+    if _renameat2 is None:
+        return False
+    if _renameat2(_AT_FDCWD, os.fsencode(a), _AT_FDCWD, os.fsencode(b), _RENAME_EXCHANGE) == 0:
+        return True
+    err = ctypes.get_errno()
+    if err in (errno.EINVAL, errno.ENOSYS, errno.EOPNOTSUPP):
+        return False
+    raise OSError(err, os.strerror(err), str(b))
+
+
+def _lock(folder: Path, *, wait: bool) -> int | None:
+    """A descriptor of ``folder`` holding its exclusive flock, or ``None`` if another holds it."""
+    fd = os.open(folder, os.O_RDONLY | os.O_DIRECTORY)
+    try:
+        fcntl.flock(fd, fcntl.LOCK_EX | (0 if wait else fcntl.LOCK_NB))
+    except BaseException as exc:
+        os.close(fd)
+        if isinstance(exc, BlockingIOError):
+            return None
+        raise
+    return fd
+
+
+def _new_staging(parent: Path) -> tuple[Path, int]:
+    """A new staging folder in ``parent`` and the descriptor that holds its lock."""
+    while True:
+        path = Path(tempfile.mkdtemp(prefix=_PREFIX, dir=parent))
+        fd = _lock(path, wait=True)
+        with suppress(FileNotFoundError):  # a cleaner took it, unlocked, for a killed build's
+            if os.path.samestat(os.fstat(fd), os.stat(path)):
+                return path, fd
+        os.close(fd)
+
+
+def _clean(folder: Path, *, repair: bool = False) -> None:
+    """Delete the staging folders in ``folder`` no live build holds (``repair``: put back into
+    ``folder`` each ``.old-<name>`` a killed two-rename publish left)."""
+    try:
+        entries = list(os.scandir(folder))
+    except OSError:
+        return
+    found = [Path(e.path) for e in entries if _STAGING.fullmatch(e.name) and e.is_dir(follow_symlinks=False)]
+    for path in found:
+        try:
+            fd = _lock(path, wait=False)
+        except OSError:  # removed meanwhile
+            continue
+        if fd is None:  # a live build's
+            continue
+        try:
+            for old in path.glob(".old-*") if repair else ():
+                if not os.path.lexists(folder / old.name[5:]):
+                    os.rename(old, folder / old.name[5:])
+            shutil.rmtree(path, ignore_errors=True)
+        finally:
+            os.close(fd)
+
+
+class Publisher:
+    """Stage profile folders and publish them into ``out``; a context manager.
+
+    Parameters
+    ----------
+    out : path
+        The output folder; checked by :func:`check_out` at once, created only by :meth:`commit`.
+
+    Leaving the ``with`` block without :meth:`commit` (an error, an interrupt) deletes the
+    staging and leaves ``out`` as it was, apart from leftovers of killed builds.
+    """
+
+    def __init__(self, out: Path | str) -> None:
+        check_out(out)
+        self.out = Path(out)
+        self._abs = Path(os.path.abspath(out))
+        self._root: Path | None = None  # this build's staging folder
+        self._tree: Path | None = None  # the future ``out`` inside it
+        self._fds: list[int] = []
+        self._names: list[str] = []
+        self._published = False
+
+    def __enter__(self) -> Publisher:
+        return self
+
+    def __exit__(self, kind, exc, tb) -> None:
+        with _held_signals(deliver=exc is None):
+            self._close()
+        if isinstance(exc, Interrupted):
+            done = "had already been published" if self._published else "left as it was"
+            raise Interrupted(f"interrupted; {self.out} {done}", exc.signum) from None
+
+    def folder(self, name: str) -> Path:
+        """A new empty folder for the files of profile ``name``.
+
+        Raises :class:`ProfileError` for a name given twice or not one safe path component:
+        letters, digits, ``-``, ``_``, ``.``, not starting with ``.``.
+        """
+        if not isinstance(name, str) or not _NAME.fullmatch(name):
+            raise ProfileError(f"name = {name!r}: must be letters, digits, '-', '_', '.', not starting with '.'")
+        if name in self._names:
+            raise ProfileError(f"name = {name!r}: two profiles build into the same folder")
+        if self._published:
+            raise GearcadError(f"{self.out}: already published")
+        if self._root is None:
+            self._start()
+        path = self._tree / name
+        path.mkdir(parents=True)
+        self._names.append(name)
+        return path
+
+    def _start(self) -> None:
+        _clean(_nearest(self._abs.parent))
+        if self._abs.is_dir():
+            lock = _lock(self._abs, wait=True)  # not while another build publishes
+            try:
+                _clean(self._abs, repair=True)
+            finally:
+                os.close(lock)
+        parent = _nearest(self._abs)
+        with _held_signals():  # an interrupt must not leave it unrecorded
+            self._root, fd = _new_staging(parent)
+            self._fds.append(fd)
+        self._tree = self._root.joinpath(*self._abs.relative_to(parent).parts[1:])
+
+    def commit(self) -> None:
+        """Publish every staged folder into ``out``, each atomically, then delete the staging.
+
+        With no folder staged nothing is published (``out`` is not created).
+        """
+        if self._published:
+            raise GearcadError(f"{self.out}: already published")
+        with _held_signals():
+            try:
+                if self._names and (self._root.parent == self._abs or not self._publish_tree()):
+                    self._publish_folders()
+            except OSError as exc:
+                raise GearcadError(f"--out {self.out}: cannot publish {exc.filename} ({exc.strerror})") from None
+            self._published = True
+            self._close()
+
+    def _publish_tree(self) -> bool:
+        """Publish the missing part of the path, ``out`` in it, by one rename; ``False`` if out exists."""
+        ancestor = self._root.parent
+        parts = self._abs.relative_to(ancestor).parts
+        for depth in range(1, len(parts) + 1):
+            try:
+                os.rename(self._root.joinpath(*parts[1:depth]), ancestor.joinpath(*parts[:depth]))
+            except OSError as exc:
+                if exc.errno not in (errno.EEXIST, errno.ENOTEMPTY):
+                    raise
+                continue  # made meanwhile, by another build or by hand
+            if depth == 1:
+                self._root = None  # it is part of the published path now
+            return True
+        return False
+
+    def _publish_folders(self) -> None:
+        lock = _lock(self._abs, wait=True)  # one build publishes into out at a time
+        try:
+            if self._root.parent != self._abs:  # staged in an ancestor, but out has appeared since
+                root, fd = _new_staging(self._abs)
+                self._fds.append(fd)
+                for name in self._names:
+                    os.rename(self._tree / name, root / name)
+                shutil.rmtree(self._root, ignore_errors=True)
+                self._root = self._tree = root
+            for i, name in enumerate(self._names):
+                try:
+                    _swap(self._root / name, self._abs / name)
+                except OSError as exc:
+                    done = f"{i} of {len(self._names)} replaced"
+                    raise GearcadError(f"{self.out / name}: cannot publish ({exc.strerror}); {done}") from None
+        finally:
+            os.close(lock)
+
+    def _close(self) -> None:
+        if self._root is not None:
+            shutil.rmtree(self._root, ignore_errors=True)
+            self._root = None
+        while self._fds:
+            os.close(self._fds.pop())
+
+
+def _swap(staged: Path, target: Path) -> None:
+    """Put ``staged`` at ``target`` in one step; what was there stays in the staging folder."""
+    if not os.path.lexists(target):
+        os.rename(staged, target)
+    elif not _exchange(staged, target):  # two renames; a kill between them is repaired by _clean
+        os.rename(target, staged.parent / f".old-{target.name}")
+        os.rename(staged, target)
