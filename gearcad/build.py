@@ -1,13 +1,15 @@
-"""Build profiles into folders of files: design every profile, then write and publish them.
+"""Build profiles into folders of files: design, write into staging, publish atomically.
 
-Everything is designed (and so checked) before anything is written; files are written into a
-staging folder and published into ``out`` only when every profile has built.
+Every profile is designed (and so checked) and written into a staging folder; only when every
+profile has built are the folders published into ``out``, each folder atomically (see
+:mod:`gearcad.publish`).  Several profiles are built side by side, one process per core.
 """
 
 from __future__ import annotations
 
-import shutil
-import tempfile
+import multiprocessing
+import os
+import signal
 import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
@@ -15,71 +17,99 @@ from pathlib import Path
 
 from .errors import GearcadError, ProfileError
 from .export.write import write_design
+from .findings import Finding
 from .mechanisms import Design, design
 from .profiles import ProfileParams
+from .publish import Publisher, check_out, interrupt_guard
 
 __all__ = ["BuildResult", "build", "design_all"]
 
 
 @dataclass(frozen=True)
 class BuildResult:
-    """A built profile: its design, the files written (the report's files block) and the time."""
+    """A built profile: its one-line summary, findings, the files written (the report's files
+    block) and the time.  (The design itself stays in the worker: ``gearcad.design`` gives it.)"""
 
-    design: Design
+    name: str
+    summary: str
+    findings: tuple[Finding, ...]
     files: dict[str, dict]
     seconds: float
 
-    @property
-    def name(self) -> str:
-        return self.design.name
 
-    @property
-    def summary(self) -> str:
-        return self.design.summary
-
-
-def design_all(profiles: Sequence[ProfileParams]) -> list[Design]:
-    """Design every profile; an error names the profile it came from."""
+def _unique(profiles: Sequence[ProfileParams]) -> None:
     names = [p.name for p in profiles]
     duplicates = sorted({n for n in names if names.count(n) > 1})
     if duplicates:
         raise ProfileError(f"name = {duplicates[0]!r}: two profiles build into the same folder")
-    designs = []
-    for params in profiles:
-        try:
-            designs.append(design(params))
-        except GearcadError as exc:
-            raise type(exc)(f"{params.name}: {exc}") from None
-    return designs
+
+
+def _named(params: ProfileParams, work: Callable[[], object]):
+    """Run ``work``; an error names the profile it came from."""
+    try:
+        return work()
+    except GearcadError as exc:
+        raise type(exc)(f"{params.name}: {exc}") from None
+
+
+def design_all(profiles: Sequence[ProfileParams]) -> list[Design]:
+    """Design every profile (every check a build makes, no file written)."""
+    _unique(profiles)
+    return [_named(p, lambda p=p: design(p)) for p in profiles]
+
+
+def _build_one(job: tuple[ProfileParams, Path]) -> BuildResult:
+    params, folder = job
+    start = time.perf_counter()
+    d = _named(params, lambda: design(params))
+    files = _named(params, lambda: write_design(d, folder))
+    return BuildResult(d.name, d.summary, d.findings, files, time.perf_counter() - start)
+
+
+def _worker_init() -> None:
+    # the parent handles Ctrl-C and SIGTERM for the whole build and ends the workers
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)
+
+
+def _workers(count: int) -> int:
+    cores = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else (os.cpu_count() or 1)
+    return max(1, min(count, cores))
 
 
 def build(
     profiles: Sequence[ProfileParams],
     out: str | Path,
     progress: Callable[[int, int, BuildResult], None] | None = None,
+    *,
+    workers: int | None = None,
 ) -> list[BuildResult]:
-    """Build every profile into ``out/<name>/``; all or nothing."""
+    """Build every profile into ``out/<name>/``; publish only when all have built.
+
+    ``workers`` processes build side by side (default: one per available core, at most one per
+    profile); results come back in the profiles' order.
+    """
     out = Path(out)
-    designs = design_all(profiles)
-    out.parent.mkdir(parents=True, exist_ok=True)
-    staging = Path(tempfile.mkdtemp(prefix=f".{out.name}-staging-", dir=out.parent))
-    try:
-        results = []
-        for n, d in enumerate(designs, 1):
-            start = time.perf_counter()
-            folder = staging / d.name
-            folder.mkdir()
-            files = write_design(d, folder)
-            result = BuildResult(d, files, d.seconds + time.perf_counter() - start)
-            results.append(result)
-            if progress:
-                progress(n, len(designs), result)
-        out.mkdir(exist_ok=True)
-        for d in designs:
-            target = out / d.name
-            if target.exists():
-                target.rename(staging / f".previous-{d.name}")
-            (staging / d.name).rename(target)
-        return results
-    finally:
-        shutil.rmtree(staging, ignore_errors=True)
+    check_out(out)
+    _unique(profiles)
+    count = _workers(len(profiles)) if workers is None else max(1, workers)
+    results: list[BuildResult] = []
+    with interrupt_guard(out), Publisher(out) as publisher:
+        jobs = [(p, publisher.folder(p.name)) for p in profiles]
+        if count == 1:
+            built = map(_build_one, jobs)
+            pool = None
+        else:
+            pool = multiprocessing.get_context("fork").Pool(count, initializer=_worker_init)
+            built = pool.imap(_build_one, jobs)
+        try:
+            for n, result in enumerate(built, 1):
+                results.append(result)
+                if progress:
+                    progress(n, len(jobs), result)
+        finally:
+            if pool is not None:
+                pool.terminate()
+                pool.join()
+        publisher.commit()
+    return results

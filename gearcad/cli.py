@@ -10,6 +10,7 @@ import argparse
 import json
 import logging
 import math
+import os
 import sys
 from pathlib import Path
 
@@ -117,11 +118,24 @@ def main(argv: list[str] | None = None) -> int:
     args = _parser().parse_args(argv)
     logging.basicConfig(level=logging.ERROR, format="%(levelname)s: %(message)s")
     try:
+        if args.command == "build":
+            from .publish import check_out
+
+            check_out(args.out)  # before any work: a bad --out is found in a moment
         return _run(args)
     except GearcadError as exc:
+        code = getattr(exc, "exit_code", EXIT_BAD_INPUT)
+        prefix = "gearcad: " if code != EXIT_BAD_INPUT else "gearcad: error: "
         for line in str(exc).splitlines():
-            print(f"gearcad: error: {line}", file=sys.stderr)
-        return EXIT_BAD_INPUT
+            print(f"{prefix}{line}", file=sys.stderr)
+        return code
+    except KeyboardInterrupt:  # Ctrl-C outside a build (a build turns it into Interrupted)
+        print("gearcad: interrupted", file=sys.stderr)
+        return 130
+    except BrokenPipeError:  # e.g. `gearcad check … | head -1`: the reader has gone
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+        return 0
 
 
 if __name__ == "__main__":

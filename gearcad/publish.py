@@ -179,6 +179,10 @@ def _new_staging(parent: Path) -> tuple[Path, int]:
     """A new staging folder in ``parent`` and the descriptor that holds its lock."""
     while True:
         path = Path(tempfile.mkdtemp(prefix=_PREFIX, dir=parent))
+        # mkdtemp makes it private (0700); it may become --out itself: give it a folder's usual mode
+        umask = os.umask(0)
+        os.umask(umask)
+        os.chmod(path, 0o777 & ~umask)
         fd = _lock(path, wait=True)
         with suppress(FileNotFoundError):  # a cleaner took it, unlocked, for a killed build's
             if os.path.samestat(os.fstat(fd), os.stat(path)):

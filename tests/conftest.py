@@ -15,6 +15,22 @@ def seed_tables() -> dict:
     return json.loads((DATA / "seed_tables.json").read_text(encoding="utf-8"))
 
 
+@pytest.fixture(scope="session")
+def built(tmp_path_factory) -> Path:
+    """Every profile built once, with every output, shared by the tests that read files back."""
+    from gearcad.cli import main
+
+    out = tmp_path_factory.mktemp("build") / "out"
+    assert main(["build", *map(str, PROFILES), "--out", str(out)]) == 0
+    return out
+
+
+@pytest.fixture(scope="session")
+def golden() -> dict:
+    """Every number the README states, with where it comes from (tests/data/golden.json)."""
+    return json.loads((DATA / "golden.json").read_text(encoding="utf-8"))
+
+
 @pytest.fixture(autouse=True)
 def _quiet_design_warnings(caplog):
     caplog.set_level(logging.ERROR, logger="gearcad")

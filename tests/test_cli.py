@@ -30,13 +30,6 @@ def _tree(folder: Path) -> dict:
     return {p.relative_to(folder): p.read_bytes() for p in sorted(folder.rglob("*")) if p.is_file()}
 
 
-@pytest.fixture(scope="module")
-def built(tmp_path_factory):
-    out = tmp_path_factory.mktemp("build") / "out"
-    assert main(["build", *map(str, PROFILES), "--out", str(out)]) == 0
-    return out
-
-
 def _pair_reports(built):
     reports = [json.loads(p.read_text()) for p in sorted(built.glob("*/report.json"))]
     pairs = [r for r in reports if r["mechanism"] == "gear-pair"]
