@@ -1,1 +1,1 @@
-"""Writers: DXF, charts, report.  Only this stage imports ezdxf and matplotlib."""
+"""Writers: DXF, SVG, charts, report.  Only this stage imports ezdxf and matplotlib."""

@@ -2,14 +2,31 @@
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 
 from ..geometry.arcfit import ArcRing
 from ..geometry.outline import rotate
 from ..mechanisms import Design, Part, Placement
-from .dxf import Drawing, cross
 
-__all__ = ["part_drawing", "assembly_drawing"]
+__all__ = ["Drawing", "cross", "part_drawing", "assembly_drawing"]
+
+
+@dataclass(frozen=True)
+class Drawing:
+    """What goes into one DXF: per layer, closed rings (ArcRing, or plain (n, 2) arrays for the
+    flat encoding) and open strokes; and a description per layer (e.g. kerf compensation)."""
+
+    closed: dict[str, list]
+    strokes: dict[str, list[np.ndarray]]
+    descriptions: dict[str, str]
+
+
+def cross(center, size: float) -> list[np.ndarray]:
+    """Two short open strokes marking a pivot: list of (2, 2) float, mm."""
+    x, y = center
+    return [np.array([[x - size, y], [x + size, y]]), np.array([[x, y - size], [x, y + size]])]
 
 
 def _placed(ring: ArcRing, placement: Placement) -> ArcRing:

@@ -13,7 +13,6 @@ from __future__ import annotations
 
 import math
 from contextlib import contextmanager
-from dataclasses import dataclass
 from pathlib import Path
 
 import ezdxf
@@ -21,27 +20,12 @@ import numpy as np
 from ezdxf import units
 
 from ..geometry.arcfit import ArcRing
+from .drawing import Drawing
 
-__all__ = ["FLAVOURS", "Drawing", "write_dxf", "cross"]
+__all__ = ["FLAVOURS", "write_dxf"]
 
 FLAVOURS = ("polyline", "lines-arcs", "polyline-flat")
 _LAYER_COLOURS = {"CUT": 1, "MARK": 5}
-
-
-@dataclass(frozen=True)
-class Drawing:
-    """What goes into one DXF: per layer, closed rings (ArcRing, or plain (n, 2) arrays for the
-    flat encoding) and open strokes; and a description per layer (e.g. kerf compensation)."""
-
-    closed: dict[str, list]
-    strokes: dict[str, list[np.ndarray]]
-    descriptions: dict[str, str]
-
-
-def cross(center, size: float) -> list[np.ndarray]:
-    """Two short open strokes marking a pivot: list of (2, 2) float, mm."""
-    x, y = center
-    return [np.array([[x - size, y], [x + size, y]]), np.array([[x, y - size], [x, y + size]])]
 
 
 @contextmanager

@@ -42,6 +42,17 @@ def write_design(design: Design, folder: Path) -> dict[str, dict]:
         path = folder / "assembly.dxf"
         n = write_dxf(path, assembly_drawing(design), flavour=out.dxf)
         files[path.name] = _entry(path, kind="dxf", part="assembly", vertices=n, flavour=out.dxf)
+    if "svg" in formats:
+        from .svg import write_svg
+
+        layers = {"cut_layer": out.cut_layer, "mark_layer": out.mark_layer}
+        for part in parts:
+            path = folder / f"{part.name}.svg"
+            n = write_svg(path, part_drawing(design, part), title=f"{design.name}: {part.name}", **layers)
+            files[path.name] = _entry(path, kind="svg", part=part.name, segments=n)
+        path = folder / "assembly.svg"
+        n = write_svg(path, assembly_drawing(design), title=f"{design.name}: assembly", **layers)
+        files[path.name] = _entry(path, kind="svg", part="assembly", segments=n)
     if formats & {"stl", "3mf"}:
         from .mesh import SolidItem, extrude, write_3mf, write_stl
 
