@@ -2,6 +2,7 @@
 refuses exactly what ``build`` refuses."""
 
 import re
+import shutil
 from pathlib import Path
 
 import pytest
@@ -21,13 +22,15 @@ def _readme_python_blocks() -> list[str]:
 def test_the_readme_example_runs(tmp_path, monkeypatch):
     blocks = _readme_python_blocks()
     assert blocks, "the README has a Python section with an example"
-    monkeypatch.chdir(ROOT)
-    scope = {"__name__": "readme_example", "OUT": tmp_path / "out"}
+    shutil.copytree(ROOT / "profiles", tmp_path / "profiles")
+    monkeypatch.chdir(tmp_path)
+    scope = {"__name__": "readme_example"}
     for block in blocks:
         exec(compile(block, "README.md", "exec"), scope)  # noqa: S102 - our own README
     for name, test in list(scope.items()):
         if name.startswith("test_") and callable(test):
             test()
+    assert (tmp_path / "out" / "spur_pair" / "report.json").is_file()
 
 
 def test_api_exports():

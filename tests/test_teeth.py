@@ -127,7 +127,7 @@ def test_module_too_large_for_the_curve_is_an_error():
     """Teeth 6 mm deep at an apex whose radius of curvature is 1.44 mm cannot be cut."""
     frame = arc_frame(shapes.ellipse_focus(25, 6))
     rack = Rack.from_params(RackParams(module=frame.perimeter / (14 * math.pi)))
-    with pytest.raises(DesignError, match="smaller module"):
+    with pytest.raises(DesignError, match="smaller teeth.module"):
         cut_teeth(frame, rack, 14, rack.pitch / 2, tolerance=TOL)
 
 
@@ -211,7 +211,7 @@ def test_random_toothed_outlines_are_simple_ccw_rings(a, ecc, z, pivot):
     try:
         gear = cut_teeth(frame, rack, z, rack.pitch / 2, tolerance=TOL)
     except DesignError as exc:  # a clear refusal is allowed, a wrong outline is not
-        assert "smaller module" in str(exc)
+        assert "smaller teeth.module" in str(exc)
         return
     ring = gear.outline.outer
     polygon = shapely.Polygon(ring)

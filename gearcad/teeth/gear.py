@@ -139,6 +139,24 @@ def _newton2(residual, x, y, *, h=1e-7, iterations=30):
     return x, y
 
 
+def _crossings(a: np.ndarray, d: np.ndarray):
+    """Pairs (i, j), j ≥ i + 2, of segments a[i]→a[i]+d[i] that cross, with their parameters.
+
+    Candidate pairs come from an R-tree of the segments' boxes (O(n log n) for a polyline that
+    crosses itself a few times), never from all pairs."""
+    segments = shapely.linestrings(np.stack([a, a + d], axis=1))
+    i, j = shapely.STRtree(segments).query(segments, predicate="intersects")
+    keep = j >= i + 2
+    i, j = i[keep], j[keep]
+    denom = d[i, 0] * d[j, 1] - d[i, 1] * d[j, 0]
+    w = a[j] - a[i]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        t = (w[:, 0] * d[j, 1] - w[:, 1] * d[j, 0]) / denom
+        u = (w[:, 0] * d[i, 1] - w[:, 1] * d[i, 0]) / denom
+    hit = (denom != 0) & (t > 0) & (t < 1) & (u > 0) & (u < 1)
+    return i[hit], j[hit], t[hit]
+
+
 def remove_loops(points: np.ndarray) -> tuple[np.ndarray, int]:
     """Cut self-intersection loops out of an open polyline: (points, loops removed).
 
@@ -147,19 +165,12 @@ def remove_loops(points: np.ndarray) -> tuple[np.ndarray, int]:
     """
     removed = 0
     while len(points) > 3:
-        a, b = points[:-1], points[1:]
-        d = b - a
-        i, j = np.triu_indices(len(a), k=2)
-        denom = d[i, 0] * d[j, 1] - d[i, 1] * d[j, 0]
-        w = a[j] - a[i]
-        with np.errstate(divide="ignore", invalid="ignore"):
-            t = (w[:, 0] * d[j, 1] - w[:, 1] * d[j, 0]) / denom
-            s = (w[:, 0] * d[i, 1] - w[:, 1] * d[i, 0]) / denom
-        hit = (denom != 0) & (t > 0) & (t < 1) & (s > 0) & (s < 1)
-        if not np.any(hit):
+        a = points[:-1]
+        d = points[1:] - a
+        i, j, t = _crossings(a, d)
+        if not len(i):
             break
-        first = np.nonzero(hit)[0]
-        k = first[np.lexsort((-j[first], i[first]))[0]]  # earliest segment, outermost loop
+        k = np.lexsort((-j, i))[0]  # earliest segment, outermost loop
         cross = a[i[k]] + t[k] * d[i[k]]
         points = np.vstack([points[: i[k] + 1], cross, points[j[k] + 1 :]])
         removed += 1
@@ -259,8 +270,7 @@ def _check_ring(ring: np.ndarray) -> None:
         raise DesignError("the tooth outline is not finite (the rack cannot follow this pitch curve)")
     polygon = shapely.Polygon(ring)
     if not polygon.is_valid or ring_area(ring) <= 0:
-        reason = shapely.is_valid_reason(polygon)
         raise DesignError(
-            f"the teeth overlap each other ({reason}): the module is too large for this pitch "
-            "curve; choose a smaller module or more teeth"
+            "the teeth overlap each other: they are too large for this pitch curve; choose a smaller "
+            "teeth.module or a larger teeth.count"
         )

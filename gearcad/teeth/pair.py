@@ -85,13 +85,22 @@ def _nearest(ring: np.ndarray, points: np.ndarray) -> np.ndarray:
 
 
 def _with_clearance(gear: ToothedGear, clearance: float, tolerance: float) -> ToothedGear:
-    """The outline offset inwards by ``clearance`` (round joins sampled from the tolerance)."""
+    """The outline offset inwards by ``clearance`` (round joins sampled from the tolerance).
+
+    Every flank moves in by the clearance, so a tooth keeps a tip land only while the clearance
+    is under half its tip land: beyond that the teeth wear down to bumps, which is refused (a
+    tooth already pointed may lose up to 0.1 module of height)."""
     if clearance <= 0:
         return gear
+    module = gear.rack.params.module
+    largest = max(float(np.min(gear.tip_thickness)), 0.2 * module) / 2
     segments = max(2, arc_steps(clearance, tolerance, np.pi / 2))  # shapely counts segments per quarter
     shrunk = shapely.Polygon(gear.outline.outer).buffer(-clearance, join_style="round", quad_segs=segments)
-    if shrunk.geom_type != "Polygon" or shrunk.is_empty:
-        raise DesignError(f"teeth.clearance = {clearance:g}: the offset teeth fall apart; use a smaller clearance")
+    if clearance >= largest or shrunk.geom_type != "Polygon" or shrunk.is_empty:
+        raise DesignError(
+            f"teeth.clearance = {clearance:g}: the offset would wear the teeth down to bumps; the largest "
+            f"clearance these teeth take is {largest:.3f} mm (half the thinnest tip land)"
+        )
     ring = np.asarray(shapely.geometry.polygon.orient(shrunk, 1.0).exterior.coords)[:-1]
     return replace(gear, outline=Outline((ring,)), space_root=_nearest(ring, gear.outline.outer[gear.space_root]))
 
@@ -137,6 +146,11 @@ def cut_pair(
     plan = plan_teeth(
         frames[0], frames[1], pair.lobes, module=params.module, count=params.count, identical_rotation=identical
     )
+    if params.backlash >= math.pi * plan.module / 2:
+        raise DesignError(
+            f"teeth.backlash = {params.backlash:g}: it would thin every tooth to under half its thickness; "
+            f"the largest backlash module {plan.module:.4g} takes is {math.pi * plan.module / 2:.3f} mm"
+        )
     shifts = (params.profile_shift, -params.profile_shift)
     fine_tol = tol.outline_mm * tol.fine_fraction
     fine = tuple(
