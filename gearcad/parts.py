@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 import numpy as np
 import shapely
@@ -11,20 +10,9 @@ import shapely.geometry
 
 from .errors import DesignError
 from .outline import Outline, arc_steps
+from .profiles import BoreParams
 
 __all__ = ["BoreParams", "bore_ring", "circle_ring", "with_bore"]
-
-
-@dataclass(frozen=True)
-class BoreParams:
-    """The hole every gear gets for its shaft (mm); diameter 0 means none."""
-
-    diameter: float = 0.0
-    keyway_width: float = 0.0
-    keyway_depth: float = 0.0
-    """Keyway cut into the gear beyond the bore's edge, at the +x side (polar angle 0)."""
-    flat: float = 0.0
-    """Distance from the centre to a D-flat (the shaft's flat), at the +x side; 0 for none."""
 
 
 def circle_ring(radius: float, tolerance: float) -> np.ndarray:
