@@ -114,7 +114,7 @@ def report(data: DesignData, teeth, parts, files: dict[str, dict]) -> dict:
         "kerf": p.output.kerf,
         "dxf": p.output.dxf,
         "layers": {"cut": p.output.cut_layer, "mark": p.output.mark_layer},
-        "bore": asdict(p.bore),
+        "bore": p.bore.model_dump(),  # a pydantic model now, not a dataclass
     }
     if teeth is not None:
         for i in range(2):
