@@ -1,0 +1,255 @@
+"""Profiles read: TOML text, overrides, validation into parameters; and the profiles' JSON Schema.
+
+Every error a user can cause here is a :class:`~gearcad.errors.ProfileError` whose message has
+one line per bad value (``gear1.b = -3: must be a length in mm > 0``); :func:`load_profile`
+prefixes each line with the file's path.
+"""
+
+from __future__ import annotations
+
+import codecs
+import copy
+import tomllib
+from collections.abc import Iterable, Mapping, Sequence
+from pathlib import Path
+from typing import Annotated, Any, TypeVar, Union
+
+from pydantic import BaseModel, Discriminator, Tag, TypeAdapter, ValidationError
+from pydantic.json_schema import GenerateJsonSchema
+
+from ..errors import ProfileError
+from .carrier_train import CarrierTrainParams
+from .common import ParamsModel
+from .gear_pair import GearPairParams
+from .messages import error_lines, show
+from .roller_body import RollerBodyParams
+from .rolling_wheel import RollingWheelParams
+
+__all__ = [
+    "MECHANISMS",
+    "EXCLUSIVE_KEYS",
+    "ProfileParams",
+    "parse_profile",
+    "load_profile",
+    "apply_overrides",
+    "validated",
+    "profile_error",
+    "profile_schema",
+]
+
+MECHANISMS = ("gear-pair", "roller-body", "rolling-wheel", "carrier-train")
+ProfileParams = GearPairParams | RollerBodyParams | RollingWheelParams | CarrierTrainParams
+_BY_MECHANISM: dict[str, type[BaseModel]] = dict(zip(MECHANISMS, ProfileParams.__args__, strict=True))
+
+EXCLUSIVE_KEYS = (("teeth.module", "teeth.count"), ("gear1.b", "gear1.eccentricity"))
+"""Keys of which a profile gives one: an override that sets one removes the other."""
+_PARTNER = {a: b for pair in EXCLUSIVE_KEYS for a, b in (pair, pair[::-1])}
+
+M = TypeVar("M", bound=BaseModel)
+
+
+def _mechanism_of(value: Any) -> Any:
+    return value.get("mechanism", "gear-pair") if isinstance(value, Mapping) else getattr(value, "mechanism", None)
+
+
+_TAGGED = Annotated[
+    Union[tuple(Annotated[cls, Tag(tag)] for tag, cls in _BY_MECHANISM.items())],  # noqa: UP007
+    Discriminator(_mechanism_of),
+]
+
+
+def profile_error(exc: ValidationError, root: Any = None) -> ProfileError:
+    """A pydantic ``ValidationError`` as gearcad's error, one line per bad value.
+
+    ``root`` is the class that was validated (found from the error's title when not given):
+    for an API layer that builds parameters itself, ``except ValidationError as e: raise
+    profile_error(e) from None``.
+    """
+    if root is None:
+        root = {cls.__name__: cls for cls in ParamsModel.__subclasses__()}.get(exc.title, _TAGGED)
+    return ProfileError("\n".join(error_lines(exc, root)))
+
+
+def validated(cls: type[M], /, **fields: Any) -> M:
+    """``cls(**fields)``, raising :class:`ProfileError` (not pydantic's error) for bad fields.
+
+    ``validated(CircleParams, radius=-1)`` raises ``ProfileError("radius = -1: must be a
+    length in mm > 0")``; keys are relative to ``cls``.
+    """
+    try:
+        return cls(**fields)
+    except ValidationError as exc:
+        raise profile_error(exc, cls) from None
+
+
+def parse_profile(data: Mapping[str, Any], *, default_name: str = "profile") -> ProfileParams:
+    """Validate a profile's data (as TOML reads it); ``name`` defaults to ``default_name``.
+
+    Raises :class:`ProfileError` with one line per bad value, all of them at once where one
+    does not hide another (rules between keys are checked once each key is valid).
+    """
+    if not isinstance(data, Mapping):
+        raise ProfileError(f"the profile = {show(data)}: must be a table of keys")
+    mechanism = data.get("mechanism", "gear-pair")
+    cls = _BY_MECHANISM.get(mechanism) if isinstance(mechanism, str) else None
+    if cls is None:
+        raise ProfileError(f"mechanism = {show(mechanism)}: must be one of " + ", ".join(map(repr, MECHANISMS)))
+    named = "name" in data
+    try:
+        return cls.model_validate(data if named else {**data, "name": default_name})
+    except ValidationError as exc:
+        lines = error_lines(exc, cls)
+    if not named:  # the name came from the file's name: say so, and how to choose another
+        lines = [
+            f'{ln} (the name comes from the file\'s name; set name = "…")' if ln.startswith("name = ") else ln
+            for ln in lines
+        ]
+    raise ProfileError("\n".join(lines))
+
+
+def apply_overrides(
+    data: Mapping[str, Any],
+    overrides: Sequence[str] | Mapping[str, Any] = (),
+    *,
+    unset: Iterable[str] = (),
+) -> dict[str, Any]:
+    """A deep copy of ``data`` with keys removed (``unset``) and then set (``overrides``).
+
+    ``overrides`` is either ``KEY=VALUE`` strings, as ``--set`` gives them (VALUE is read as
+    TOML, else taken as a plain string), or a mapping ``{dotted key: value}`` where None
+    removes the key. Setting one of :data:`EXCLUSIVE_KEYS` removes its partner, so that
+    ``teeth.count=39`` works on a profile that gives ``teeth.module``.
+    """
+    result = copy.deepcopy(dict(data))
+    for key in [unset] if isinstance(unset, str) else unset:
+        _remove(result, _parts(key, f"--unset {key!r}"))
+    for label, key, value in _items(overrides):
+        parts = _parts(key, label)
+        if value is None:
+            _remove(result, parts)
+            continue
+        node = result
+        for depth, part in enumerate(parts[:-1], 1):
+            node = node.setdefault(part, {})
+            if not isinstance(node, dict):
+                raise ProfileError(f"{label}: {'.'.join(parts[:depth])} is not a table")
+        node[parts[-1]] = value
+        partner = _PARTNER.get(".".join(parts))
+        if partner is not None:
+            _remove(result, partner.split("."))
+    return result
+
+
+def _items(overrides: Sequence[str] | Mapping[str, Any]) -> Iterable[tuple[str, str, Any]]:
+    if isinstance(overrides, Mapping):
+        for key, value in overrides.items():
+            yield f"override {key!r}", key, copy.deepcopy(value)
+        return
+    if isinstance(overrides, str):
+        overrides = [overrides]
+    for item in overrides:
+        label = f"--set {item!r}"
+        if not isinstance(item, str) or "=" not in item:
+            raise ProfileError(f"{label}: must be KEY=VALUE, e.g. gear1.a=30")
+        key, raw = item.split("=", 1)
+        yield label, key, _toml_value(raw)
+
+
+def _toml_value(raw: str) -> Any:
+    try:
+        parsed = tomllib.loads(f"v = {raw}")
+    except ValueError:  # TOMLDecodeError, or an integer past Python's 4300-digit limit
+        return raw
+    return parsed["v"] if parsed.keys() == {"v"} else raw
+
+
+def _parts(key: Any, label: str) -> list[str]:
+    parts = [part.strip() for part in key.split(".")] if isinstance(key, str) else [""]
+    if not all(parts):
+        raise ProfileError(f"{label}: the key must be dotted names, e.g. pair.driver_rpm")
+    return parts
+
+
+def _remove(data: dict, parts: list[str]) -> None:
+    node: Any = data
+    for part in parts[:-1]:
+        node = node.get(part) if isinstance(node, dict) else None
+    if isinstance(node, dict):
+        node.pop(parts[-1], None)
+
+
+def load_profile(
+    path: str | Path,
+    overrides: Sequence[str] | Mapping[str, Any] = (),
+    *,
+    unset: Iterable[str] = (),
+) -> ProfileParams:
+    """Read, override and validate one profile file; every error line starts with ``path: ``.
+
+    The file must be UTF-8 (a byte-order mark is accepted); ``name`` defaults to its stem.
+    """
+    path = Path(path)
+    try:
+        raw = path.read_bytes()
+    except OSError as exc:
+        raise ProfileError(f"{path}: cannot read the profile ({exc.strerror or exc})") from None
+    skip = len(codecs.BOM_UTF8) if raw.startswith(codecs.BOM_UTF8) else 0
+    try:
+        text = raw[skip:].decode("utf-8")
+    except UnicodeDecodeError as exc:
+        at = skip + exc.start
+        raise ProfileError(f"{path}: not UTF-8 text (byte 0x{raw[at]:02x} at offset {at})") from None
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise ProfileError(f"{path}: not valid TOML ({exc})") from None
+    except ValueError:
+        raise ProfileError(f"{path}: not valid TOML (an integer of more than 4300 digits)") from None
+    try:
+        return parse_profile(apply_overrides(data, overrides, unset=unset), default_name=path.stem)
+    except ProfileError as exc:
+        raise ProfileError("\n".join(f"{path}: {line}" for line in str(exc).splitlines())) from None
+
+
+class _TomlSchema(GenerateJsonSchema):
+    """TOML has no null: a key that may be absent is simply left out, never ``null``."""
+
+    def nullable_schema(self, schema: Any) -> Any:
+        return self.generate_inner(schema["schema"])
+
+    def default_schema(self, schema: Any) -> Any:
+        if schema.get("default", ...) is None:
+            return self.generate_inner(schema["schema"])
+        return super().default_schema(schema)
+
+    def field_title_should_be_set(self, schema: Any) -> bool:
+        return False  # "Center Distance" says less than the key itself, which editors show
+
+    def generate(self, schema: Any, mode: Any = "validation") -> Any:
+        return _plain(super().generate(schema, mode=mode))
+
+
+def _plain(node: Any) -> Any:
+    """Docstrings' ``literal`` marks dropped: editors show descriptions as plain text."""
+    if isinstance(node, dict):
+        return {k: v.replace("``", "") if k == "description" else _plain(v) for k, v in node.items()}
+    if isinstance(node, list):
+        return [_plain(v) for v in node]
+    return node
+
+
+def profile_schema() -> dict[str, Any]:
+    """The JSON Schema of a profile, for editors (taplo, Even Better TOML).
+
+    ``profiles/profile.schema.json`` holds it; a profile whose first line is
+    ``#:schema ./profile.schema.json`` is checked and completed as it is typed. Regenerate
+    the file with ``json.dumps(profile_schema(), indent=2, ensure_ascii=False)``.
+    """
+    schema = TypeAdapter(_TAGGED).json_schema(schema_generator=_TomlSchema)
+    return {
+        "$schema": "https://json-schema.org/draft/2020-12/schema",
+        "title": "gearcad profile",
+        "description": "A gearcad design profile: a gear pair (the default), roller body, rolling wheel "
+        "or carrier train. Lengths in mm, angles in degrees where the key ends in _deg.",
+        **schema,
+    }
