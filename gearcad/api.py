@@ -14,8 +14,8 @@ from pathlib import Path
 from typing import Any
 
 from . import profiles as _profiles
-from .build import BuildResult
-from .build import build as _build
+from .batch import BuildResult
+from .batch import build as _build
 from .mechanisms import Design
 from .mechanisms import design as _design
 from .profiles import ProfileParams

@@ -193,7 +193,7 @@ def bench_envelope(quick: bool) -> list[dict]:
 
 
 def bench_output(quick: bool, folder: Path) -> list[dict]:
-    from .build import build
+    from .batch import build
     from .profiles import load_profile
 
     root = Path(__file__).resolve().parent.parent / "profiles"
@@ -240,7 +240,7 @@ import resource, sys, time, logging
 logging.disable(logging.WARNING)
 from pathlib import Path
 from gearcad.profiles import load_profile
-from gearcad.build import build
+from gearcad.batch import build
 p = load_profile(sys.argv[1], sys.argv[3:])
 t = time.perf_counter()
 r = build([p], Path(sys.argv[2]) / "out")

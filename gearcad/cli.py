@@ -77,7 +77,7 @@ def _progress(n: int, total: int, result) -> None:
 
 
 def _check(args) -> None:
-    from .build import design_all
+    from .batch import design_all
 
     for d in design_all(_load_all(args)):
         print(f"{d.name}: {d.summary}")
@@ -106,7 +106,7 @@ def _run(args) -> int:
     if args.command == "check":
         _check(args)
         return 0
-    from .build import build
+    from .batch import build
 
     results = build(_load_all(args), args.out, _progress)
     total = math.fsum(r.seconds for r in results)

@@ -12,7 +12,7 @@ from dataclasses import replace
 from ..profiles import CarrierTrainParams, GearPairParams, ProfileParams, RollerBodyParams, RollingWheelParams
 from . import carrier_train, gear_pair, roller_body, rolling_wheel
 from .base import Design
-from .parts import Part, Placement
+from .parts import Part, Placement, cut_paths
 
 __all__ = ["Design", "Part", "Placement", "design"]
 
@@ -28,4 +28,5 @@ def design(params: ProfileParams) -> Design:
     """The checked design of any mechanism's profile parameters."""
     start = time.perf_counter()
     result = _DESIGNERS[type(params)](params)
-    return replace(result, seconds=time.perf_counter() - start)
+    parts = cut_paths(result.part_list, params.output)
+    return replace(result, part_list=parts, seconds=time.perf_counter() - start)

@@ -7,7 +7,7 @@ and then verified: every cut ring is simple and within the tolerance of the exac
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Protocol
 
 import numpy as np
@@ -21,7 +21,7 @@ from ..geometry.rings import bore_ring, offset_outline
 from ..geometry.verify import is_simple, max_distance
 from ..tolerances import DEFAULT
 
-__all__ = ["Part", "Placement", "BoreSpec", "CutSpec", "make_part", "placed_polygon"]
+__all__ = ["Part", "Placement", "BoreSpec", "CutSpec", "make_part", "cut_paths", "placed_polygon"]
 
 
 class BoreSpec(Protocol):
@@ -46,12 +46,14 @@ class Part:
     """One part, its pivot at the origin (mm).
 
     ``outline`` is the shape at the tolerance (outer ring counter-clockwise, holes clockwise);
-    ``cut`` and ``mark`` are the paths as written to DXF and SVG (kerf applied to ``cut``);
-    ``pivot_mark`` the half-length of the engraved cross at the pivot (0 for none).
+    ``fine`` the same cut at a quarter of the tolerance (what the written paths are fitted to
+    and checked against); ``cut`` and ``mark`` are the paths as written to DXF and SVG (kerf
+    applied to ``cut``); ``pivot_mark`` the half-length of the engraved cross at the pivot.
     """
 
     name: str
     outline: Outline
+    fine: Outline
     cut: tuple[ArcRing, ...]
     mark: tuple[ArcRing, ...]
     pivot_mark: float
@@ -125,18 +127,12 @@ def _kerf_keeps_shape(fine: Outline, kerf: float, fine_tol: float) -> Outline | 
     return grown
 
 
-def _kerf(fine: Outline, kerf: float, fine_tol: float, *, part: str) -> Outline:
-    grown = _kerf_keeps_shape(fine, kerf, fine_tol)
-    if grown is not None:
-        return grown
-    lo, hi = 0.0, kerf  # the largest kerf the part takes, to 1 %
+def _largest_kerf(fine: Outline, kerf: float, fine_tol: float) -> float:
+    lo, hi = 0.0, kerf  # to 1 %
     while hi - lo > 0.01 * hi:
         mid = (lo + hi) / 2
         lo, hi = (mid, hi) if _kerf_keeps_shape(fine, mid, fine_tol) is not None else (lo, mid)
-    raise DesignError(
-        f"output.kerf = {kerf:g}: the laser's path would fill the tooth spaces or holes of {part}; "
-        f"the largest kerf it takes is {lo:.3f} mm"
-    )
+    return lo
 
 
 def make_part(
@@ -153,8 +149,8 @@ def make_part(
     """A part from its outer ring sampled at the fine tolerance (counter-clockwise, mm).
 
     ``bore`` adds the shaft hole (leaving ``wall`` mm to the outline), ``hole`` a given inner ring
-    instead (clockwise, fine), ``marks`` closed rings to engrave (fine).  The kerf is applied to
-    the cut paths only: the part's ``outline`` stays at its designed size.
+    instead (clockwise, fine), ``marks`` closed rings to engrave (fine).  The cut paths are made
+    for every part of a design together, by :func:`cut_paths`.
     """
     tol = output.tolerance
     fine_tol = tol * DEFAULT.fine_fraction
@@ -166,10 +162,28 @@ def make_part(
     else:
         fine = _with_bore(fine_outer, bore, fine_tol, part=name, wall=wall)
         outline = _with_bore(decimate(fine_outer, tol - fine_tol), bore, tol, part=name, wall=wall)
-    if output.kerf > 0:
-        fine = _kerf(fine, output.kerf, fine_tol, part=name)
     check_chamfer(outline, output.thickness, output.chamfer, name=name)
     flat = output.dxf == "polyline-flat"
-    cut = tuple(_cut_ring(r, tol, fine_tol, flat=flat, part=name) for r in fine.rings)
     mark = tuple(_cut_ring(r, tol, fine_tol, flat=flat, part=name) for r in marks)
-    return Part(name, outline, cut, mark, pivot_mark)
+    return Part(name, outline, fine, (), mark, pivot_mark)
+
+
+def cut_paths(parts: tuple[Part, ...], output: CutSpec) -> tuple[Part, ...]:
+    """Every part with its cut paths as they will be written: offset half the kerf into the waste,
+    arcs fitted, each checked simple and within the tolerance.  A kerf that would fill a tooth
+    space or close a hole of any part is refused with the largest kerf every part takes."""
+    tol = output.tolerance
+    fine_tol = tol * DEFAULT.fine_fraction
+    flat = output.dxf == "polyline-flat"
+    kerfed = [p.fine if output.kerf <= 0 else _kerf_keeps_shape(p.fine, output.kerf, fine_tol) for p in parts]
+    if any(k is None for k in kerfed):
+        failed = [p.name for p, k in zip(parts, kerfed) if k is None]
+        largest = min(_largest_kerf(p.fine, output.kerf, fine_tol) for p in parts)
+        raise DesignError(
+            f"output.kerf = {output.kerf:g}: the laser's path would fill the tooth spaces or holes of "
+            f"{', '.join(failed)}; the largest kerf every part takes is {largest:.3f} mm"
+        )
+    return tuple(
+        replace(p, cut=tuple(_cut_ring(r, tol, fine_tol, flat=flat, part=p.name) for r in k.rings))
+        for p, k in zip(parts, kerfed)
+    )

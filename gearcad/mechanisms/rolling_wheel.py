@@ -133,5 +133,5 @@ def design(p: RollingWheelParams) -> Design:
         data=data,
         units=UNITS,
         detail=motion,
-        details=(f"assembly: the wheels overlap by {overlap:.3g} mm² (they must not touch)",),
+        details=(f"assembly: max overlap {overlap:.3g} mm² (the wheels must not touch)",),
     )

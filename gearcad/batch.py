@@ -1,4 +1,4 @@
-"""Build profiles into folders of files: design, write into staging, publish atomically.
+"""Build a batch of profiles into folders of files: design, write into staging, publish atomically.
 
 Every profile is designed (and so checked) and written into a staging folder; only when every
 profile has built are the folders published into ``out``, each folder atomically (see
