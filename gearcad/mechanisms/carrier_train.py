@@ -19,6 +19,7 @@ from ..teeth.rack import Rack, RackParams
 from ..tolerances import DEFAULT
 from ..trains import carrier as CT
 from .base import Assembly, Design, assembly_overlap
+from .budget import check_teeth_work
 from .parts import Placement, make_part
 
 __all__ = ["design", "layout"]
@@ -83,6 +84,7 @@ def _phases(p: CarrierTrainParams) -> list[float]:
 def design(p: CarrierTrainParams) -> Design:
     """Speeds, accelerations, parts and assembly of a train on a carrier."""
     radii, centres, ring = layout(p)
+    check_teeth_work([(z, p.module) for z in p.teeth], p.output.tolerance)
     train = CT.solve_train(
         radii,
         p.meshes,

@@ -18,6 +18,7 @@ from ..profiles import GearPairParams
 from ..teeth.pair import ToothedPairData, cut_pair
 from ..tolerances import DEFAULT
 from .base import Assembly, Design, Motion, Table, assembly_overlap
+from .budget import check_teeth_work
 from .pair_pitch import PairDesign, pitch_design
 from .parts import Placement, make_part
 
@@ -198,6 +199,17 @@ def design(params: GearPairParams) -> Design:
     pitch = pitch_design(params, tol=tol)
     teeth = None
     if params.teeth is not None:
+        spec = params.teeth
+        estimate = [
+            (g.perimeter / (math.pi * spec.module), spec.module)
+            if spec.module
+            else (
+                spec.count * g.perimeter / pitch.gears[0].perimeter,
+                pitch.gears[0].perimeter / (math.pi * spec.count),
+            )
+            for g in pitch.gears
+        ]
+        check_teeth_work(estimate, out.tolerance)
         alike = pitch.mate_shape_difference is not None and pitch.mate_shape_difference < 1e-6
         teeth = cut_pair(
             pitch.pair, pitch.gears, params.teeth, mate_rotation=pitch.mate_rotation if alike else None, tol=tol

@@ -16,7 +16,7 @@ import shapely
 from ..errors import DesignError
 from ..geometry.arcfit import ArcRing, arc_points, decimate, fit_arcs
 from ..geometry.inset import check_chamfer
-from ..geometry.outline import Outline, rotate
+from ..geometry.outline import Outline, ring_area, rotate
 from ..geometry.rings import bore_ring, offset_outline
 from ..geometry.verify import is_simple, max_distance
 from ..tolerances import DEFAULT
@@ -98,10 +98,23 @@ def _with_bore(outer: np.ndarray, bore: BoreSpec | None, tolerance: float, *, pa
     return Outline((outer, hole))
 
 
+def _circle_arcs(radius: float, *, clockwise: bool) -> ArcRing:
+    """A circle about the pivot as four exact quarter arcs (no fitting needed)."""
+    t = np.arange(4) * (np.pi / 2) * (-1 if clockwise else 1)
+    bulge = np.tan(np.pi / 8) * (-1 if clockwise else 1)
+    return ArcRing(radius * np.column_stack([np.cos(t), np.sin(t)]), np.full(4, bulge))
+
+
 def _cut_ring(ring: np.ndarray, tolerance: float, fine_tol: float, *, flat: bool, part: str) -> ArcRing:
     """The ring as written: arcs fitted (or chords), refitted tighter until the written path is
     simple and within ``tolerance`` of ``ring``; chords as the last resort."""
     budget = tolerance - fine_tol
+    # vertices and chord midpoints all on one circle about the pivot (a chord such as a D-flat's
+    # has its midpoint well inside)
+    probe = np.vstack([ring, (ring + np.roll(ring, -1, axis=0)) / 2])
+    radii = np.hypot(probe[:, 0], probe[:, 1])
+    if not flat and radii.max() - radii.min() <= fine_tol:
+        return _circle_arcs((radii.max() + radii.min()) / 2, clockwise=ring_area(ring) < 0)
     if not flat:
         for attempt in range(3):
             arcs = fit_arcs(ring, budget / 2**attempt)

@@ -1,0 +1,121 @@
+"""What a hostile tester tried (issue: trust what is written): every case ends in a result or
+one clear line with exit 2, within a bounded time, and nothing escapes --out."""
+
+import json
+import os
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+
+from gearcad.cli import main
+
+ROOT = Path(__file__).parent.parent
+PROFILES = ROOT / "profiles"
+QUICK = ["--set", "output.charts=false", "--set", "output.animation=false"]
+
+
+@pytest.mark.parametrize(
+    "name",
+    ["../../escaped", "/tmp/abs", "a/b", "", ".hidden", "assembly", "x" * 65],
+    ids=["parent", "absolute", "separator", "empty", "hidden", "reserved", "long"],
+)
+@pytest.mark.parametrize("key", ["name", "gear1.name", "gear2.name"])
+def test_no_name_can_write_outside_out(tmp_path, capsys, key, name):
+    out = tmp_path / "deep" / "out"
+    args = ["build", str(PROFILES / "elliptic_focus.toml"), "--out", str(out), "--set", f'{key}="{name}"', *QUICK]
+    assert main(args) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and key in err[0], err
+    assert list(tmp_path.rglob("*")) == []  # nothing anywhere: not --out, not its parents
+
+
+@pytest.mark.parametrize(
+    "profile,overrides",
+    [
+        ("roller_body_m3", ["body.roller_radius=0"]),
+        ("elliptic_focus", ["gear2.lobes=100000"]),
+        ("elliptic_focus", ["output.tolerance=1e-6"]),
+        ("elliptic_focus", ["output.tolerance=1e-9"]),
+        ("elliptic_centre", ["teeth.module=8"]),
+        ("planetary_external", ["train.module=1e6"]),
+        ("rolling_wheel", ["drive.R=1e6", "drive.H=1e6"]),
+        ("rolling_wheel", ["drive.R=1e5", "drive.H=1e5", "drive.L=1e5", "drive.travel=9e4"]),
+        ("spur_pair", ["teeth.count=2000", "gear1.radius=1000", "gear2.lobes=1", "output.tolerance=0.0001"]),
+        ("roller_body_m3", ["body.m=18"]),
+        ("elliptic_focus", ["teeth.count=12345678901234567890123456789012345678901234567890"]),
+    ],
+    ids=lambda v: v if isinstance(v, str) else " ".join(v),
+)
+def test_accepted_or_refused_within_budget(profile, overrides):
+    """Each case once hung or asked for gigabytes; now each ends within seconds."""
+    sets = [a for o in overrides for a in ("--set", o)]
+    start = time.perf_counter()
+    run = subprocess.run(
+        [sys.executable, "-m", "gearcad", "check", str(PROFILES / f"{profile}.toml"), *sets],
+        capture_output=True,
+        text=True,
+        timeout=60,
+    )
+    assert time.perf_counter() - start < 30
+    assert run.returncode in (0, 2), run.stderr
+    if run.returncode == 2:
+        lines = run.stderr.strip().splitlines()
+        assert 1 <= len(lines) <= len(overrides), lines  # one line per bad value
+        assert all(line.startswith("gearcad: error:") for line in lines), lines
+        assert "Traceback" not in run.stderr
+
+
+def test_horizontal_rack_has_exact_values_and_no_nan(tmp_path):
+    """H = R − r: β stays 0, so ω3 = 0, ε2 = 0 and ω2/ω1 = r/2R exactly (seed 000)."""
+    out = tmp_path / "out"
+    assert main(["build", str(PROFILES / "rolling_wheel.toml"), "--out", str(out), "--set", "drive.H=40", *QUICK]) == 0
+    text = (out / "rolling_wheel" / "report.json").read_text()
+    report = json.loads(text, parse_constant=lambda c: pytest.fail(f"{c} in report.json"))
+    m, d = report["motion"], report["drive"]
+    assert d["H"] == d["R"] - d["r"]
+    assert m["omega3_min"] == m["omega3_max"] == 0 and m["eps2_min"] == m["eps2_max"] == 0
+    assert m["ratio_start"] == pytest.approx(d["r"] / (2 * d["R"]), rel=1e-15)
+    assert report["geometry"]["beta_start"] == pytest.approx(0, abs=1e-12)
+
+
+def test_out_that_is_a_file_is_refused_before_building(tmp_path, capsys):
+    target = tmp_path / "file"
+    target.write_text("x")
+    start = time.perf_counter()
+    assert main(["build", str(PROFILES / "walker.toml"), "--out", str(target)]) == 2
+    assert time.perf_counter() - start < 1.0  # found before any design work
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "not a folder" in err[0]
+    assert target.read_text() == "x"
+
+
+def test_sigterm_during_a_build_ends_with_one_line_and_leaves_out_alone(tmp_path):
+    out = tmp_path / "out"
+    child = subprocess.Popen(
+        [sys.executable, "-m", "gearcad", "build", "--out", str(out)],
+        cwd=ROOT,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
+    time.sleep(2.5)
+    child.send_signal(signal.SIGTERM)
+    _, err = child.communicate(timeout=30)
+    assert child.returncode == 128 + signal.SIGTERM
+    assert err.strip().splitlines() == [f"gearcad: interrupted; {out} left as it was"]
+    assert not out.exists() and os.listdir(tmp_path) == []
+
+
+def test_closed_stdout_is_not_a_traceback():
+    shell = f"{sys.executable} -m gearcad check {PROFILES / 'walker.toml'} | head -1"
+    run = subprocess.run(["bash", "-c", shell], capture_output=True, text=True, timeout=60)
+    assert run.stdout.startswith("walker:") and run.stderr == ""
+
+
+def test_report_numbers_are_finite_for_every_profile(built):
+    for path in built.glob("*/report.json"):
+        json.loads(path.read_text(), parse_constant=lambda c: pytest.fail(f"{c} in {path}"))
