@@ -28,7 +28,8 @@ def test_a_circle_needs_only_a_few_arcs():
     t = np.linspace(0, 2 * math.pi, 4000, endpoint=False)
     ring = 10 * np.column_stack([np.cos(t), np.sin(t)])
     arcs = fit_arcs(ring, 1e-4)
-    assert len(arcs.vertices) <= 40 and arcs.arcs == len(arcs.vertices) - np.count_nonzero(arcs.bulges == 0)
+    # a circle is arcs, bar at most one leftover chord of the fine ring where the walk closes
+    assert len(arcs.vertices) <= 40 and arcs.arcs >= len(arcs.vertices) - 1
     back = arc_points(arcs, 1e-7)
     assert np.abs(np.hypot(*back.T) - 10).max() < 1e-9  # the arcs are the circle itself
 

@@ -6,6 +6,7 @@ import numpy as np
 import pytest
 from scipy.special import ellipe
 
+from gearcad.errors import DesignError
 from gearcad.pitch import chebyshev, shapes
 from gearcad.pitch.curve import (
     TWO_PI,
@@ -43,7 +44,7 @@ def test_chebyshev_splits_sharp_functions():
 
 def test_inverse_rejects_non_monotone_maps():
     f = chebyshev.fit(np.sin, [0.0, 3.0], rel_tol=1e-14)
-    with pytest.raises(Exception, match="not increasing"):
+    with pytest.raises(DesignError, match="not increasing"):
         f.inverse(rel_tol=1e-14)
 
 

@@ -12,6 +12,7 @@ import trimesh
 
 from gearcad.bodies import rollers as RB
 from gearcad.cli import main
+from gearcad.errors import DesignError
 from gearcad.trains import carrier as CT
 from gearcad.trains import rack_drive as RD
 
@@ -47,7 +48,7 @@ def test_point_kinematics_against_numerical_differentiation():
 
 
 def test_oscillations_must_repeat_every_120_degrees():
-    with pytest.raises(Exception, match="multiples of 3"):
+    with pytest.raises(DesignError, match="multiples of 3"):
         RB.Oscillation(f=((4, 0.0, 0.1),)).check()
 
 
