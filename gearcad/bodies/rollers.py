@@ -14,9 +14,9 @@ from dataclasses import dataclass
 
 import numpy as np
 import shapely
-from scipy.optimize import brentq
 
 from ..errors import DesignError
+from ..roots import brentq
 
 __all__ = [
     "Oscillation",

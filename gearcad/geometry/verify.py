@@ -5,9 +5,8 @@ from __future__ import annotations
 
 import numpy as np
 import shapely
-from scipy.spatial import cKDTree
 
-__all__ = ["is_simple", "max_distance"]
+__all__ = ["is_simple", "max_distance", "nearest"]
 
 
 def is_simple(ring: np.ndarray) -> bool:
@@ -15,26 +14,23 @@ def is_simple(ring: np.ndarray) -> bool:
     return bool(len(ring) >= 3 and shapely.LinearRing(ring).is_simple)
 
 
-def _segment_distance(p: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    ab = b - a
-    t = np.clip(np.einsum("...j,...j->...", p - a, ab) / np.maximum(np.einsum("...j,...j->...", ab, ab), 1e-300), 0, 1)
-    return np.hypot(*np.moveaxis(p - (a + t[..., None] * ab), -1, 0))
+def nearest(points: np.ndarray, vertices: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """For each point, the index of the nearest of ``vertices`` and the distance to it."""
+    tree = shapely.STRtree(shapely.points(vertices))
+    (i, j), d = tree.query_nearest(shapely.points(points), return_distance=True, all_matches=False)
+    index, distance = np.empty(len(points), dtype=int), np.empty(len(points))
+    index[i], distance[i] = j, d
+    return index, distance
 
 
-def max_distance(points: np.ndarray, ring: np.ndarray, *, limit: float, candidates: int = 8) -> float:
-    """The largest distance from ``points`` to the closed polyline ``ring`` (mm): exact where it
-    exceeds ``limit``, an upper bound at most ``limit`` otherwise.
+def max_distance(points: np.ndarray, ring: np.ndarray, *, limit: float = 0.0) -> float:
+    """The largest distance from ``points`` to the closed polyline ``ring`` (mm), exact.
 
-    Each point is first measured against the ``candidates`` segments with the nearest midpoints
-    (a true distance, so an upper bound); only points whose bound exceeds ``limit`` are measured
-    against every segment.  O(n log m) for a ring that follows the points.
+    The segments sit in an R-tree and each point is measured against its nearest one by GEOS:
+    O(n log m).  (``limit`` is accepted for callers that only need to know whether it exceeds it.)
     """
-    a, b = ring, np.roll(ring, -1, axis=0)
-    k = min(candidates, len(ring))
-    _, idx = cKDTree((a + b) / 2).query(points, k=k)
-    idx = idx.reshape(len(points), k)
-    d = _segment_distance(points[:, None, :], a[idx], b[idx]).min(axis=1)
-    unsure = np.nonzero(d > limit)[0]
-    if len(unsure):
-        d[unsure] = shapely.distance(shapely.points(points[unsure]), shapely.LinearRing(ring))
-    return float(d.max()) if len(d) else 0.0
+    if not len(points):
+        return 0.0
+    segments = shapely.linestrings(np.stack([ring, np.roll(ring, -1, axis=0)], axis=1))
+    _, d = shapely.STRtree(segments).query_nearest(shapely.points(points), return_distance=True, all_matches=False)
+    return float(d.max())

@@ -8,25 +8,27 @@ from __future__ import annotations
 
 import time
 from dataclasses import replace
+from importlib import import_module
 
-from ..profiles import CarrierTrainParams, GearPairParams, ProfileParams, RollerBodyParams, RollingWheelParams
-from . import carrier_train, gear_pair, roller_body, rolling_wheel
+from ..profiles import ProfileParams
 from .base import Design
 from .parts import Part, Placement, cut_paths
 
 __all__ = ["Design", "Part", "Placement", "design"]
 
-_DESIGNERS = {
-    GearPairParams: gear_pair.design,
-    RollerBodyParams: roller_body.design,
-    RollingWheelParams: rolling_wheel.design,
-    CarrierTrainParams: carrier_train.design,
+_MODULES = {
+    "gear-pair": "gear_pair",
+    "roller-body": "roller_body",
+    "rolling-wheel": "rolling_wheel",
+    "carrier-train": "carrier_train",
 }
+"""Each mechanism's module, imported when a profile of it is designed (a gear pair need not
+load the roller bodies', the rack drive's or the trains' numerics)."""
 
 
 def design(params: ProfileParams) -> Design:
     """The checked design of any mechanism's profile parameters."""
     start = time.perf_counter()
-    result = _DESIGNERS[type(params)](params)
+    result = import_module(f".{_MODULES[params.mechanism]}", __name__).design(params)
     parts = cut_paths(result.part_list, params.output)
     return replace(result, part_list=parts, seconds=time.perf_counter() - start)

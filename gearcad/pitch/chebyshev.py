@@ -15,7 +15,6 @@ from functools import cached_property
 
 import numpy as np
 from numpy.polynomial import chebyshev as C
-from scipy.fft import dct
 
 from ..errors import DesignError
 
@@ -36,7 +35,8 @@ def lobatto_points(n: int) -> np.ndarray:
 def _coefficients(values: np.ndarray) -> np.ndarray:
     """Chebyshev coefficients of the interpolant through values at the Lobatto points."""
     n = len(values) - 1
-    c = dct(values, type=1) / n
+    # DCT-I as the real FFT of the even extension (numpy's FFT: no scipy.fft import at start-up)
+    c = np.fft.rfft(np.concatenate([values, values[-2:0:-1]])).real[: n + 1] / n
     c[0] /= 2
     c[-1] /= 2
     return c

@@ -14,9 +14,9 @@ from functools import cached_property
 from math import gcd
 
 import numpy as np
-from scipy.optimize import brentq
 
 from ..errors import DesignError
+from ..roots import brentq
 from ..tolerances import DEFAULT, Tolerances
 from . import chebyshev
 from .curve import TWO_PI, PitchCurve, radius_range, segments, zoom_min

@@ -10,12 +10,12 @@ from typing import Protocol
 
 import numpy as np
 import shapely
-from scipy.spatial import cKDTree
 
 from ..errors import DesignError
 from ..findings import Finding, finding
 from ..geometry.arcfit import decimate
 from ..geometry.outline import Outline, arc_steps, rotate
+from ..geometry.verify import nearest
 from ..pitch.gear import GearData
 from ..pitch.pair import PairData
 from ..tolerances import DEFAULT, Tolerances
@@ -81,7 +81,7 @@ def _thinned(gear: ToothedGear, tolerance: float) -> ToothedGear:
 
 
 def _nearest(ring: np.ndarray, points: np.ndarray) -> np.ndarray:
-    return cKDTree(ring).query(points)[1]
+    return nearest(points, ring)[0]
 
 
 def _with_clearance(gear: ToothedGear, clearance: float, tolerance: float) -> ToothedGear:
@@ -178,7 +178,7 @@ def cut_pair(
         # both gears are cut by the same code from the same curve, so their vertices coincide
         # when they are the same part: the largest vertex-to-nearest-vertex distance says so
         turned = rotate(fine[0].outline.outer, -identical)
-        deviation = float(np.max(cKDTree(turned).query(fine[1].outline.outer)[0]))
+        deviation = float(np.max(nearest(fine[1].outline.outer, turned)[1]))
     return ToothedPairData(
         plan=plan,
         gears=toothed,

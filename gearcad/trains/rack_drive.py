@@ -22,10 +22,9 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.integrate import solve_ivp
-from scipy.optimize import brentq
 
 from ..errors import DesignError
+from ..roots import brentq
 
 __all__ = [
     "RackDrive",
@@ -133,6 +132,8 @@ def law_by_contour(d: RackDrive, phi1: np.ndarray) -> np.ndarray:
 
 def law_by_rates(d: RackDrive, phi1: np.ndarray) -> np.ndarray:
     """φ2 at each φ1 by integrating dφ2/dφ1 = (r/R)/(1 + cos β), β from eq. 10 at L − R·φ2."""
+
+    from scipy.integrate import solve_ivp  # only the rolling wheel integrates: imported on use
 
     def rate(_, y):
         return [d.r / d.R / (1 + math.cos(float(inclination(d, d.L - d.R * y[0]))))]
