@@ -138,6 +138,7 @@ class Design:
                     "vertices": part.outline.vertex_count,
                     "holes": len(part.outline.rings) - 1,
                     "cut_vertices": part.cut_vertices,
+                    "pivot": {"marked_by": part.pivot, "diameter": part.pivot_diameter, "cross": part.pivot_mark},
                     "placement": {"angle": placed[part.name].angle, "offset": list(placed[part.name].offset)},
                 }
                 for part in self.part_list
@@ -156,6 +157,6 @@ class Design:
         }
         if hasattr(p, "bore"):
             report["output"]["bore"] = {
-                k: getattr(p.bore, k) for k in ("diameter", "keyway_width", "keyway_depth", "flat")
+                k: getattr(p.bore, k) for k in ("diameter", "keyway_width", "keyway_depth", "flat", "pilot")
             }
         return finite(report)

@@ -63,9 +63,7 @@ def _gear_part(p: CarrierTrainParams, k: int, ring: bool):
     if ring:
         rim = circle_ring(r + 3.75 * m, fine)
         return make_part(p.names[k], rim, output=out, hole=gear.outline.outer[::-1].copy(), marks=(pitch,))
-    return make_part(
-        p.names[k], gear.outline.outer, output=out, bore=p.bore, wall=m, marks=(pitch,), pivot_mark=0.1 * r
-    )
+    return make_part(p.names[k], gear.outline.outer, output=out, bore=p.bore, wall=m, marks=(pitch,))
 
 
 def _phases(p: CarrierTrainParams) -> list[float]:

@@ -226,7 +226,6 @@ def design(params: GearPairParams) -> Design:
                 bore=params.bore,
                 wall=teeth.plan.module if teeth is not None else 0.0,
                 marks=(pitch_fine[i],) if teeth is not None else (),
-                pivot_mark=0.05 * gear.r_min,
             )
         )
     placements = tuple(Placement(g.name, 0.0, g.pivot) for g in pitch.gears)

@@ -29,6 +29,7 @@ class BoreSpec(Protocol):
     keyway_width: float
     keyway_depth: float
     flat: float
+    pilot: float
 
 
 class CutSpec(Protocol):
@@ -57,6 +58,10 @@ class Part:
     cut: tuple[ArcRing, ...]
     mark: tuple[ArcRing, ...]
     pivot_mark: float
+    pivot: str = "cross"
+    """What marks the pivot: "bore", "pilot" (a small hole where no bore is given), "cross"
+    (engraved only) or "hole" (a ring's inner teeth are concentric with it)."""
+    pivot_diameter: float = 0.0
 
     @property
     def cut_vertices(self) -> int:
@@ -77,15 +82,32 @@ def placed_polygon(part: Part, placement: Placement) -> shapely.Polygon:
     return shapely.Polygon(rings[0], rings[1:])
 
 
+DEFAULT_PILOT = 1.0
+"""Pilot hole diameter (mm) of a part whose profile has no [bore] table (``bore.pilot``)."""
+
+
+def _pivot_hole(bore: BoreSpec | None, outer: np.ndarray, wall: float) -> tuple[str, float]:
+    """What marks the part's pivot: its bore, else a pilot hole where it leaves the wall, else
+    only the engraved cross; and the hole's diameter (mm)."""
+    if bore is not None and bore.diameter > 0:
+        return "bore", bore.diameter
+    pilot = DEFAULT_PILOT if bore is None else bore.pilot
+    root = float(np.min(np.hypot(outer[:, 0], outer[:, 1])))
+    if pilot > 0 and pilot / 2 + max(wall, pilot) < root:
+        return "pilot", pilot
+    return "cross", 0.0
+
+
 def _with_bore(outer: np.ndarray, bore: BoreSpec | None, tolerance: float, *, part: str, wall: float) -> Outline:
-    """``outer`` and, if any, the bore hole — which must leave ``wall`` mm of material."""
-    hole = None
-    if bore is not None:
-        hole = bore_ring(
-            bore.diameter, tolerance, keyway_width=bore.keyway_width, keyway_depth=bore.keyway_depth, flat=bore.flat
-        )
-    if hole is None:
+    """``outer`` and, if any, the bore (or pilot) hole — which must leave ``wall`` mm of material."""
+    kind, diameter = _pivot_hole(bore, outer, wall)
+    if kind == "cross":
         return Outline((outer,))
+    if kind == "pilot":
+        return Outline((outer, bore_ring(diameter, tolerance)))
+    hole = bore_ring(
+        bore.diameter, tolerance, keyway_width=bore.keyway_width, keyway_depth=bore.keyway_depth, flat=bore.flat
+    )
     reach = float(np.max(np.hypot(hole[:, 0], hole[:, 1])))
     root = float(np.min(np.hypot(outer[:, 0], outer[:, 1])))
     if reach + wall >= root:
@@ -157,18 +179,22 @@ def make_part(
     wall: float = 0.0,
     marks: tuple[np.ndarray, ...] = (),
     hole: np.ndarray | None = None,
-    pivot_mark: float = 0.0,
 ) -> Part:
     """A part from its outer ring sampled at the fine tolerance (counter-clockwise, mm).
 
-    ``bore`` adds the shaft hole (leaving ``wall`` mm to the outline), ``hole`` a given inner ring
-    instead (clockwise, fine), ``marks`` closed rings to engrave (fine).  The cut paths are made
+    ``bore`` adds the shaft hole (leaving ``wall`` mm to the outline) — or where none is given a
+    pilot hole — ``hole`` a given inner ring instead (clockwise, fine), ``marks`` closed rings to
+    engrave (fine).  The pivot is engraved as a cross sized to the part: a fifth of the radius
+    the outline comes within, between 1 and 5 mm (none on a ring, whose hole is concentric).  The cut paths are made
     for every part of a design together, by :func:`cut_paths`.
     """
     tol = output.tolerance
     fine_tol = tol * DEFAULT.fine_fraction
     if not is_simple(fine_outer):
         raise DesignError(f"{name}: the outline crosses itself (the design cannot be cut as one piece)")
+    pivot, diameter = ("hole", 0.0) if hole is not None else _pivot_hole(bore, fine_outer, wall)
+    root = float(np.min(np.hypot(fine_outer[:, 0], fine_outer[:, 1])))
+    pivot_mark = 0.0 if hole is not None else min(max(0.2 * root, 1.0), 5.0, 0.5 * root)
     if hole is not None:
         fine = Outline((fine_outer, hole))
         outline = Outline((decimate(fine_outer, tol - fine_tol), decimate(hole, tol - fine_tol)))
@@ -178,7 +204,7 @@ def make_part(
     check_chamfer(outline, output.thickness, output.chamfer, name=name)
     flat = output.dxf == "polyline-flat"
     mark = tuple(_cut_ring(r, tol, fine_tol, flat=flat, part=name) for r in marks)
-    return Part(name, outline, fine, (), mark, pivot_mark)
+    return Part(name, outline, fine, (), mark, pivot_mark, pivot, diameter)
 
 
 def cut_paths(parts: tuple[Part, ...], output: CutSpec) -> tuple[Part, ...]:

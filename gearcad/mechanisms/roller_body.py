@@ -186,17 +186,16 @@ def design(p: RollerBodyParams) -> Design:
     fine = out.tolerance * DEFAULT.fine_fraction
     body, path = _body_ring(osc, p, r)
     roller_circle = circle_ring(r * p.scale, fine)
-    mark = 0.05 * r * p.scale
     if teeth is None:
         parts = (
-            make_part("body", body, output=out, bore=p.bore, pivot_mark=mark),
-            make_part("roller", roller_circle, output=out, pivot_mark=mark),
+            make_part("body", body, output=out, bore=p.bore),
+            make_part("roller", roller_circle, output=out),
         )
         turns = [0.0, 0.0, 0.0]
     else:
         parts = (
             make_part("body", teeth["_body_ring"], output=out, bore=p.bore, wall=teeth["module"], marks=(body,)),
-            make_part("roller", teeth["_roller_ring"], output=out, marks=(roller_circle,), pivot_mark=mark),
+            make_part("roller", teeth["_roller_ring"], output=out, marks=(roller_circle,)),
         )
         turns = teeth["_roller_turns"]
     centres = [(p.scale * math.sin(a), p.scale * math.cos(a)) for a in (0.0, TWO_PI / 3, 2 * TWO_PI / 3)]

@@ -113,8 +113,8 @@ def design(p: RollingWheelParams) -> Design:
     fine = out.tolerance * DEFAULT.fine_fraction
     # a plain wheel has no pitch curve to engrave apart from its cut: only the pivot is marked
     parts = (
-        make_part("wheel1", circle_ring(p.r, fine), output=out, pivot_mark=0.1 * p.r),
-        make_part("wheel2", circle_ring(p.R, fine), output=out, pivot_mark=0.1 * p.R),
+        make_part("wheel1", circle_ring(p.r, fine), output=out),
+        make_part("wheel2", circle_ring(p.R, fine), output=out),
     )
     placements = (Placement("wheel1", 0.0, (p.L, p.H)), Placement("wheel2"))
     overlap = assembly_overlap({q.name: q for q in parts}, list(placements), [(0, 1)])

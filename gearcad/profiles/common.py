@@ -103,6 +103,9 @@ class OutputParams(ParamsModel):
         return self
 
 
+PilotDiameter = number("a diameter in mm", ge=0, le=20)
+
+
 class BoreParams(ParamsModel):
     """``[bore]``: the hole every gear gets for its shaft (mm); diameter 0 means none."""
 
@@ -114,6 +117,9 @@ class BoreParams(ParamsModel):
     """Depth of the keyway beyond the bore's edge, mm."""
     flat: LengthOrZero = 0.0
     """Distance from the centre to a D-flat at polar angle 0, mm (0: none)."""
+    pilot: PilotDiameter = 1.0
+    """Where no bore is given, a pilot hole of this diameter marks the pivot exactly (a noncircular
+    gear works only on its exact pivot), mm; 0 for none (the engraved cross remains)."""
 
     @model_validator(mode="after")
     def _shape(self) -> BoreParams:
