@@ -53,6 +53,18 @@ def write_design(design: Design, folder: Path) -> dict[str, dict]:
         path = folder / "assembly.svg"
         n = write_svg(path, assembly_drawing(design), title=f"{design.name}: assembly", **layers)
         files[path.name] = _entry(path, kind="svg", part="assembly", segments=n)
+    if formats & {"dxf", "svg"}:
+        from .sheet import sheet_drawing
+
+        sheet = sheet_drawing(design)
+        if "dxf" in formats:
+            path = folder / "sheet.dxf"
+            n = write_dxf(path, sheet, flavour=out.dxf)
+            files[path.name] = _entry(path, kind="dxf", part="sheet", vertices=n, flavour=out.dxf)
+        if "svg" in formats:
+            path = folder / "sheet.svg"
+            n = write_svg(path, sheet, title=f"{design.name}: cutting sheet", **layers)
+            files[path.name] = _entry(path, kind="svg", part="sheet", segments=n)
     if formats & {"stl", "3mf"}:
         from .mesh import SolidItem, extrude, write_3mf, write_stl
 
@@ -70,6 +82,10 @@ def write_design(design: Design, folder: Path) -> dict[str, dict]:
             path = folder / "assembly.3mf"
             items = [SolidItem(solids[pl.part], pl.angle, (*pl.offset, 0.0)) for pl in design.placements]
             files[path.name] = _entry(path, kind="3mf", part="assembly", triangles=write_3mf(path, items))
+            from .plate import write_plate
+
+            path = folder / "plate.3mf"
+            files[path.name] = _entry(path, kind="3mf", part="plate", triangles=write_plate(path, design, solids))
     for table in design.tables:
         path = folder / table.file
         _write_table(path, table)
@@ -92,7 +108,11 @@ def write_design(design: Design, folder: Path) -> dict[str, dict]:
 
         for name in draw_charts(design, folder):
             files[name] = _entry(folder / name, kind="png")
+    files["index.html"] = {"kind": "html"}
     files["report.json"] = {"kind": "json"}
     text = json.dumps(design.report(files), indent=2, ensure_ascii=False, allow_nan=False)
     (folder / "report.json").write_text(text + "\n", encoding="utf-8")
+    from .html import write_profile_page
+
+    write_profile_page(folder / "index.html", design, files)
     return files

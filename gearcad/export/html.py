@@ -1,0 +1,438 @@
+"""HTML reports: ``index.html`` per profile and one over all profiles.
+
+Self-contained: one file with its own CSS and no script, no web fonts, no network reference; it
+opens from the file system.  The parts are drawn as inline SVG from the same cut and mark paths
+the DXF and SVG files hold (each part's path defined once and placed with ``<use>`` in the part
+views, the assembly, the cutting sheet and the print plate).  Charts and the animation are not
+copied in: they are linked relatively (``<img src="mesh.png">``), files of the same folder, which
+keeps the page small; every file of the folder is linked from the table at the end.
+"""
+
+from __future__ import annotations
+
+import math
+from collections import Counter
+from collections.abc import Mapping, Sequence
+from html import escape
+from pathlib import Path
+from urllib.parse import quote
+
+import numpy as np
+
+from ..findings import CODES
+from ..mechanisms import Design, Part, Placement
+from .bounds import drawing_bounds
+from .drawing import assembly_drawing, part_drawing
+from .html_figures import Figures
+from .html_style import CSS
+from .plate import plate_layout
+from .sheet import sheet_layout
+
+__all__ = ["pivot_marking", "write_profile_page", "index_entry", "write_index"]
+
+_STANDARD = {"schema", "name", "title", "mechanism", "units", "tolerance", "parts", "assembly", "output"}
+_STANDARD |= {"warnings", "files"}
+
+
+def _fmt(value) -> str:
+    """A number as a reader wants it: 6 significant digits, exponent only when very large or small."""
+    if isinstance(value, bool):
+        return "yes" if value else "no"
+    if isinstance(value, int):
+        return str(value)
+    if isinstance(value, float):
+        if value == 0 or math.isnan(value):
+            return "0" if value == 0 else "NaN"
+        if 1e-3 <= abs(value) < 1e6:
+            return f"{value:.6g}"
+        return f"{value:.3e}"
+    if value is None:
+        return "—"
+    return str(value)
+
+
+def _e(value) -> str:
+    return escape(_fmt(value))
+
+
+def _value(value, depth: int = 0) -> str:
+    """Any JSON value of the report as HTML: tables for objects, lists inline where short."""
+    if isinstance(value, dict):
+        if not value:
+            return "—"
+        rows = "".join(f"<tr><th>{escape(str(k))}</th><td>{_value(v, depth + 1)}</td></tr>" for k, v in value.items())
+        return f'<table class="kv">{rows}</table>'
+    if isinstance(value, list):
+        if not value:
+            return "none"
+        if all(isinstance(v, dict) for v in value):
+            blocks = []
+            for k, v in enumerate(value):
+                label = v.get("name", f"#{k + 1}")
+                rest = {key: x for key, x in v.items() if key != "name"}
+                blocks.append(f"<h3>{escape(str(label))}</h3>{_value(rest, depth + 1)}")
+            return "".join(blocks)
+        shown = ", ".join(_value(v, depth + 1) for v in value[:12])
+        more = f", … ({len(value)} values)" if len(value) > 12 else ""
+        return f"[{shown}{more}]"
+    return _e(value)
+
+
+def pivot_marking(design: Design, part: Part, report_part: Mapping | None = None) -> str:
+    """What shows where ``part`` turns: its bore, an engraved cross, both or nothing.
+
+    ``report_part`` is the part's entry of ``design.report()``: when it carries a ``pivot`` entry
+    (a sentence, or a mapping of what marks the pivot), that is what is shown.  Otherwise the
+    bore is found as a hole of the part's outline about the pivot no larger than the profile's
+    ``[bore]``, and the cross from ``part.pivot_mark``.
+    """
+    given = (report_part or {}).get("pivot")
+    if isinstance(given, str) and given:
+        return given
+    if isinstance(given, Mapping) and given:
+        return "; ".join(f"{k} {_fmt(v)}" for k, v in given.items())
+    out = design.params.output
+    marks = []
+    bore = getattr(design.params, "bore", None)
+    if bore is not None and bore.diameter > 0:
+        reach = bore.diameter / 2 + bore.keyway_depth + 2 * out.tolerance
+        for hole in part.outline.rings[1:]:
+            r = np.hypot(hole[:, 0], hole[:, 1])
+            if r.max() <= reach:
+                text = f"Ø{bore.diameter:g} mm bore"
+                if bore.keyway_width > 0:
+                    text += f" with a {bore.keyway_width:g} × {bore.keyway_depth:g} mm keyway"
+                elif bore.flat > 0:
+                    text += f" with a D-flat {bore.flat:g} mm from the centre"
+                marks.append(text)
+                break
+    if part.pivot_mark > 0:
+        marks.append(f"engraved cross ±{part.pivot_mark:.3g} mm (layer {out.mark_layer})")
+    return " and ".join(marks) if marks else "not marked: no bore and no engraved cross"
+
+
+def _link(name: str) -> str:
+    return f'<a href="{escape(quote(name))}">{escape(name)}</a>'
+
+
+def _what(name: str, entry: Mapping) -> str:
+    kind = entry.get("kind", "")
+    part = entry.get("part")
+    bits = []
+    if name.startswith("sheet."):
+        bits.append("cutting sheet: every part laid out")
+    elif name == "plate.3mf":
+        bits.append("print plate: every part on the bed")
+    elif part == "assembly":
+        bits.append("assembly: parts in place, touching (checks the fit; not for cutting or printing)")
+    elif part:
+        bits.append(f"part {part}")
+    for key, unit in (("vertices", "vertices"), ("segments", "segments"), ("triangles", "triangles")):
+        if key in entry:
+            bits.append(f"{entry[key]} {unit}")
+    if "rows" in entry:
+        bits.append(f"table, {entry['rows']} rows")
+    if "frames" in entry:
+        bits.append(f"animation, {entry['frames']} frames")
+    if kind == "png":
+        bits.append("chart")
+    if kind == "json":
+        bits.append("the report: every number of this page and more")
+    return escape(", ".join(bits))
+
+
+def _size(entry: Mapping) -> str:
+    size = entry.get("bytes")
+    if size is None:
+        return ""
+    return f"{size / 1024:.1f} kB" if size >= 1024 else f"{size} B"
+
+
+def _section_parts(design: Design, figures: Figures, report: dict, counts: Counter) -> str:
+    cards = []
+    entries = {p["name"]: p for p in report["parts"]}
+    for part in design.parts():
+        bounds = drawing_bounds(part_drawing(design, part))
+        svg = figures.view([Placement(part.name)], bounds, label=f"{part.name}, about its pivot")
+        entry = entries.get(part.name, {})
+        marking = pivot_marking(design, part, entry)
+        unmarked = "none" if marking.startswith("not marked") else ""
+        times = counts.get(part.name, 0)
+        placed = f" × {times}" if times > 1 else ""
+        w, h = bounds[2] - bounds[0], bounds[3] - bounds[1]
+        holes = len(part.outline.rings) - 1
+        cards.append(
+            f'<div class="card">{svg}<h3>{escape(part.name)}{placed}</h3>'
+            f"<p>{w:.1f} × {h:.1f} mm, area {_e(part.outline.area)} mm², {holes} hole{'s' * (holes != 1)}</p>"
+            f'<p class="pivot-note {unmarked}"><b>Pivot:</b> {escape(marking)}</p></div>'
+        )
+    return (
+        '<h2 id="parts">Parts</h2>'
+        '<p class="legend">Each part about its pivot:<i style="border-color:var(--cut)"></i>cut path'
+        '<i style="border-color:var(--mark)"></i>marks (pitch curve, engraved pivot cross)'
+        '<i style="border-color:var(--pivot)"></i>the pivot, between four ticks (drawn here only)</p>'
+        f'<div class="cards">{"".join(cards)}</div>'
+    )
+
+
+def _section_assembly(design: Design, figures: Figures, report: dict, files: Mapping) -> str:
+    a = report["assembly"]
+    verdict = '<b class="ok">fits</b>' if a.get("fits") else '<b class="bad">does not fit</b>'
+    nudged = a.get("nudged_min_overlap")
+    facts = (
+        f"<p>Assembled, the parts overlap by at most {_e(a['overlap'])} mm² (allowed {_e(a['allowed_overlap'])} mm²"
+        + (f"; turned a little they overlap by {_e(nudged)} mm²" if nudged is not None else "")
+        + f", {_e(a['positions'])} position{'s' * (a['positions'] != 1)} checked): {verdict}.</p>"
+    )
+    svg = figures.view(design.placements, drawing_bounds(assembly_drawing(design)), label="the assembly")
+    gif = next((n for n, e in files.items() if e.get("kind") == "gif"), None)
+    right = (
+        f'<figure><img src="{escape(quote(gif))}" alt="the mechanism in motion">'
+        f"<figcaption>{_link(gif)}: one cycle of motion</figcaption></figure>"
+        if gif
+        else '<p class="note">No animation was written (output.animation is off or the mechanism does not move).</p>'
+    )
+    return (
+        '<h2 id="assembly">Assembly</h2>'
+        f'<div class="pair"><figure class="wide">{svg}<figcaption>The parts as assembled: they touch, to check '
+        "the fit; cut from the sheet and print from the plate.</figcaption></figure>"
+        f"<div>{right}{facts}</div></div>"
+    )
+
+
+def _section_findings(report: dict) -> str:
+    warnings = report["warnings"]
+    if not warnings:
+        return '<h2 id="findings">Findings</h2><p class="ok">No findings: nothing to warn about.</p>'
+    rows = "".join(
+        f'<tr><td><span class="code" title="{escape(CODES.get(w["code"], ""))}">{escape(w["code"])}</span></td>'
+        f"<td>{escape(w.get('where') or '')}</td><td>{escape(w['message'])}</td></tr>"
+        for w in warnings
+    )
+    codes = sorted({w["code"] for w in warnings})
+    glossary = "".join(
+        f'<tr><td><span class="code">{escape(c)}</span></td><td>{escape(CODES.get(c, ""))}</td></tr>' for c in codes
+    )
+    return (
+        f'<h2 id="findings">Findings ({len(warnings)})</h2>'
+        f"<table><tr><th>code</th><th>where</th><th>message</th></tr>{rows}</table>"
+        f"<h3>What the codes mean</h3><table>{glossary}</table>"
+    )
+
+
+def _section_numbers(design: Design, report: dict, counts: Counter) -> str:
+    lines = "".join(f"<li>{escape(line)}</li>" for line in design.details)
+    units = ", ".join(f"{k} in {v}" for k, v in report.get("units", {}).items())
+    rows = "".join(
+        f"<tr><td>{escape(p['name'])}</td><td class='num'>{counts.get(p['name'], 0)}</td>"
+        f"<td class='num'>{_e(p['area'])}</td><td class='num'>{_e(p['holes'])}</td>"
+        f"<td class='num'>{_e(p['vertices'])}</td><td class='num'>{_e(p['cut_vertices'])}</td>"
+        f"<td class='num'>{_e(math.degrees(p['placement']['angle']))}°</td>"
+        f"<td>({', '.join(_e(v) for v in p['placement']['offset'])})</td></tr>"
+        for p in report["parts"]
+    )
+    out = dict(report["output"])
+    params = design.params.output
+    out.update({"sheet": list(params.sheet), "gap": params.gap, "bed": list(params.bed)})
+    return (
+        '<h2 id="numbers">Key numbers</h2>'
+        f'<p class="note">Tolerance {_e(report["tolerance"])} mm; {escape(units)}.</p>'
+        f'<ul class="lines">{lines}</ul>'
+        "<h3>Parts</h3><table><tr><th>part</th><th>placed</th><th>area, mm²</th><th>holes</th>"
+        "<th>outline vertices</th><th>cut vertices</th><th>assembly angle</th><th>pivot in the assembly, mm</th>"
+        f"</tr>{rows}</table>"
+        f"<h3>Output</h3>{_value(out)}"
+    )
+
+
+def _section_report(report: dict, files: Mapping) -> str:
+    """The mechanism's own report blocks, each folded."""
+    blocks = "".join(
+        f"<details><summary>{escape(k)}</summary>{_value(report[k])}</details>" for k in report if k not in _STANDARD
+    )
+    if not blocks:
+        return ""
+    return (
+        '<h2 id="report">The mechanism in numbers</h2><p class="note">The blocks of '
+        f"{_link('report.json') if 'report.json' in files else 'the report'} about this mechanism; "
+        f"open one to read it.</p>{blocks}"
+    )
+
+
+def _section_layouts(design: Design, figures: Figures, files: Mapping) -> str:
+    """The cutting sheet and the print plate as laid out in sheet.dxf/sheet.svg and plate.3mf."""
+    out = design.params.output
+    layouts = []
+    sheets = [n for n in files if n.startswith("sheet.")]
+    if sheets:
+        layouts.append(("cutting sheet", out.sheet, sheet_layout(design), sheets))
+    if "plate.3mf" in files:
+        layouts.append(("print plate (top view)", out.bed, plate_layout(design), ["plate.3mf"]))
+    shown = []
+    for noun, (w, h), layout, names in layouts:
+        svg = figures.view(layout, (0.0, 0.0, w, h), label=noun, frame=(w, h))
+        links = ", ".join(_link(n) for n in names)
+        shown.append(
+            f'<figure class="wide">{svg}<figcaption>{links}: the {noun}, {w:g} × {h:g} mm, parts at least '
+            f"{out.gap:g} mm apart and from the edges.</figcaption></figure>"
+        )
+    if not shown:
+        return ""
+    return '<h2 id="layouts">Sheet and plate</h2><div class="pair">' + "".join(shown) + "</div>"
+
+
+def _section_charts(files: Mapping) -> str:
+    charts = [n for n, e in files.items() if e.get("kind") == "png"]
+    if not charts:
+        return ""
+    figures = "".join(
+        f'<figure><a href="{escape(quote(n))}"><img src="{escape(quote(n))}" alt="{escape(n)}"></a>'
+        f"<figcaption>{escape(n)}</figcaption></figure>"
+        for n in charts
+    )
+    return f'<h2 id="charts">Charts</h2><div class="charts">{figures}</div>'
+
+
+def _section_files(files: Mapping, page: str) -> str:
+    rows = "".join(
+        f"<tr><td>{_link(name)}</td><td>{escape(str(e.get('kind', '')))}</td><td>{_what(name, e)}</td>"
+        f"<td class='num'>{_size(e)}</td></tr>"
+        for name, e in files.items()
+        if name != page
+    )
+    return (
+        '<h2 id="files">Files</h2>'
+        '<p class="note">To cut: <b>sheet.dxf</b> or <b>sheet.svg</b> (every part, laid out) or one file per part. '
+        "To print: <b>plate.3mf</b> (every part on the bed) or one STL or 3MF per part. "
+        "The <b>assembly</b> files place the parts as they mesh, touching: they are for checking the fit.</p>"
+        f"<table><tr><th>file</th><th>kind</th><th>what</th><th>size</th></tr>{rows}</table>"
+    )
+
+
+def _page(title: str, body: str) -> str:
+    return (
+        '<!DOCTYPE html>\n<html lang="en">\n<head>\n<meta charset="utf-8">\n'
+        '<meta name="viewport" content="width=device-width, initial-scale=1">\n'
+        f"<title>{escape(title)}</title>\n<style>{CSS}</style>\n</head>\n<body>\n<main>\n{body}\n</main>\n"
+        "</body>\n</html>\n"
+    )
+
+
+def write_profile_page(
+    path: Path, design: Design, files: Mapping[str, Mapping], *, index: str | None = "../index.html"
+) -> None:
+    """Write a profile's ``index.html`` into the folder of its files.
+
+    Parameters
+    ----------
+    path : Path
+        The page to write, in the same folder as ``files`` (links are relative to it).
+    design : Design
+        The design the files were written from.
+    files : mapping of file name to entry
+        The report's files block (``write_design``'s result): every file is linked; PNG charts
+        and the GIF animation are shown by relative links.
+    index : str or None
+        Relative link to the page over all profiles (None: no link).
+    """
+    path = Path(path)
+    report = design.report(dict(files))
+    counts = Counter(pl.part for pl in design.placements)
+    figures = Figures(design)
+    warnings = len(report["warnings"])
+    fits = report["assembly"].get("fits")
+    badges = [
+        f"<span>{escape(design.mechanism)}</span>",
+        f"<span>{len(design.parts())} part{'s' * (len(design.parts()) != 1)}, {len(design.placements)} placed</span>",
+        f'<span class="{"bad" if warnings else "good"}">{warnings} finding{"s" * (warnings != 1)}</span>',
+        f'<span class="{"good" if fits else "bad"}">assembly {"fits" if fits else "does not fit"}</span>',
+    ]
+    sections = [
+        ("parts", "Parts", _section_parts(design, figures, report, counts)),
+        ("assembly", "Assembly", _section_assembly(design, figures, report, files)),
+        ("findings", "Findings", _section_findings(report)),
+        ("numbers", "Key numbers", _section_numbers(design, report, counts)),
+        ("layouts", "Sheet and plate", _section_layouts(design, figures, files)),
+        ("charts", "Charts", _section_charts(files)),
+        ("report", "Report", _section_report(report, files)),
+        ("files", "Files", _section_files(files, path.name)),
+    ]
+    nav = "".join(f'<a href="#{key}">{label}</a>' for key, label, text in sections if text)
+    up = f' · <a href="{escape(quote(index))}">all profiles</a>' if index else ""
+    header = (
+        f"<header><h1>{escape(report['title'] or design.name)}</h1>"
+        f'<p class="sub">{escape(design.name)} · gearcad report{up}</p>'
+        f'<div class="summary">{escape(design.summary)}</div><div class="badges">{"".join(badges)}</div>'
+        f"<nav>{nav}</nav></header>"
+    )
+    footer = (
+        "<footer>Written by gearcad. This page is one file and loads nothing from the network; its charts and "
+        "animation are the PNG and GIF files beside it, linked relatively.</footer>"
+    )
+    body = "\n".join([header, figures.defs(), *(text for _, _, text in sections if text), footer])
+    path.write_text(_page(f"{design.name}: gearcad report", body), encoding="utf-8")
+
+
+def index_entry(report: Mapping, link: str, summary: str = "") -> dict:
+    """An entry for :func:`write_index` from a profile's report (``report.json`` as a dict), the
+    relative link to its page (e.g. ``"walker/index.html"``) and its one-line summary; its picture
+    is the profile's animation, else its first chart, if any."""
+    files = report.get("files", {})
+    pictures = [n for n, e in files.items() if e.get("kind") == "gif"] + [
+        n for n, e in files.items() if e.get("kind") == "png"
+    ]
+    entry = {
+        "name": report["name"],
+        "title": report.get("title") or report["name"],
+        "mechanism": report.get("mechanism", ""),
+        "summary": summary,
+        "warnings": len(report.get("warnings", [])),
+        "codes": sorted({w["code"] for w in report.get("warnings", [])}),
+        "link": link,
+    }
+    if pictures:  # the animation, else the first chart: beside the page it links to
+        entry["image"] = f"{link.rsplit('/', 1)[0]}/{pictures[0]}" if "/" in link else pictures[0]
+    return entry
+
+
+def write_index(path: Path, entries: Sequence[Mapping]) -> None:
+    """Write the ``index.html`` over all profiles of a build.
+
+    Parameters
+    ----------
+    path : Path
+        The page to write; every entry's ``link`` is relative to its folder.
+    entries : sequence of mappings
+        One per profile, in the order shown: ``name``, ``title``, ``mechanism``, ``summary``,
+        ``warnings`` (the count) and ``link`` (relative, e.g. ``"walker/index.html"``); optional
+        ``codes`` (the findings' codes) and ``image`` (a relative link to a picture of it).
+    """
+    rows = []
+    total = 0
+    for e in entries:
+        count = int(e.get("warnings", 0))
+        total += count
+        codes = " ".join(
+            f'<span class="code" title="{escape(CODES.get(c, ""))}">{escape(c)}</span>' for c in e.get("codes", ())
+        )
+        link = escape(quote(e["link"]))
+        image = (
+            f'<a href="{link}"><img class="thumb" src="{escape(quote(e["image"]))}" alt=""></a>'
+            if e.get("image")
+            else ""
+        )
+        rows.append(
+            f'<tr><td class="thumb">{image}</td><td><a href="{link}"><b>{escape(e["name"])}</b></a></td>'
+            f"<td>{escape(e.get('title', ''))}<br><span class='note'>{escape(e.get('summary', ''))}</span></td>"
+            f"<td class='nowrap'>{escape(e.get('mechanism', ''))}</td>"
+            f'<td><span class="count {"bad" if count else "good"}">{count}</span> {codes}</td></tr>'
+        )
+    body = (
+        f"<header><h1>gearcad build</h1><p class='sub'>{len(entries)} profile{'s' * (len(entries) != 1)}, "
+        f"{total} finding{'s' * (total != 1)} in all. Each profile's page shows its parts, assembly, findings, "
+        "key numbers and files.</p></header>"
+        "<table><tr><th></th><th>profile</th><th>title and summary</th><th>mechanism</th><th>findings</th></tr>"
+        + "".join(rows)
+        + "</table><footer>Written by gearcad; one file, nothing loaded from the network.</footer>"
+    )
+    Path(path).write_text(_page("gearcad build", body), encoding="utf-8")
