@@ -7,6 +7,7 @@ profile has built are the folders published into ``out``, each folder atomically
 
 from __future__ import annotations
 
+import json
 import multiprocessing
 import os
 import signal
@@ -16,6 +17,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from .errors import GearcadError, ProfileError
+from .export.html import index_entry, write_index
 from .export.write import write_design
 from .findings import Finding
 from .mechanisms import Design, design
@@ -112,4 +114,21 @@ def build(
                 pool.terminate()
                 pool.join()
         publisher.commit()
+    _write_index(out)
     return results
+
+
+def _write_index(out: Path) -> None:
+    """``out/index.html`` over every profile folder in ``out`` (this build's and earlier ones'),
+    replaced in one step."""
+    entries = []
+    for report_path in sorted(out.glob("*/report.json")):
+        try:
+            report = json.loads(report_path.read_text(encoding="utf-8"))
+        except (OSError, ValueError):
+            continue  # a folder that is not a build of ours
+        name = report_path.parent.name
+        entries.append(index_entry(report, f"{name}/index.html", report.get("summary", "")))
+    staged = out / ".index.html.tmp"
+    write_index(staged, entries)
+    os.replace(staged, out / "index.html")

@@ -281,7 +281,14 @@ def bench_builds(quick: bool, folder: Path, progress: _Progress | None) -> list[
         seconds, mb = _child_build(
             root / "spur_pair.toml",
             folder / "scaling",
-            [f"teeth.count={z}", f"gear1.radius={z}", "output.charts=false", "output.animation=false"],
+            [
+                f"teeth.count={z}",
+                f"gear1.radius={z}",
+                "output.charts=false",
+                "output.animation=false",
+                "output.sheet=[5000, 5000]",
+                "output.bed=[5000, 5000]",
+            ],
         )
         rows.append(
             {

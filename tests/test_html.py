@@ -125,10 +125,16 @@ def test_profile_page_says_what_marks_each_pivot(site):
     out, designs = site
     d = designs["roller_body_m3"]
     body, roller = d.part("body"), d.part("roller")
-    # the profile's [bore] diameter = 8.0; both parts carry an engraved cross at the pivot
+    # the profile's [bore] diameter = 8.0; the rollers get the default 1 mm pilot hole; both parts
+    # carry an engraved cross at the pivot, and the report says the same
     assert pivot_marking(d, body).startswith("Ø8 mm bore and engraved cross ±")
-    assert pivot_marking(d, roller).startswith("engraved cross ±")
-    assert pivot_marking(d, roller, {"pivot": "a 3 mm pilot hole"}) == "a 3 mm pilot hole"  # the report's word wins
+    assert pivot_marking(d, roller).startswith("Ø1 mm pilot hole")
+    report = {p["name"]: p["pivot"] for p in d.report()["parts"]}
+    assert report["body"]["marked_by"] == "bore" and report["roller"] == {
+        "marked_by": "pilot",
+        "diameter": 1.0,
+        "cross": pytest.approx(roller.pivot_mark),
+    }
     text = unescape((out / "roller_body_m3" / "index.html").read_text(encoding="utf-8"))
     assert "Pivot: Ø8 mm bore and engraved cross" in re.sub(r"<[^>]+>", "", text)
     assert "roller × 3" in text  # placed three times

@@ -20,12 +20,13 @@ import gearcad
 from gearcad.errors import DesignError
 from gearcad.export.dxf import write_dxf
 from gearcad.export.mesh import extrude
-from gearcad.export.plate import plate_layout, write_plate
-from gearcad.export.sheet import pack, sheet_drawing, sheet_layout
+from gearcad.export.plate import write_plate
+from gearcad.export.sheet import sheet_drawing
 from gearcad.export.svg import write_svg
 from gearcad.geometry.arcfit import arc_points
 from gearcad.geometry.outline import rotate
-from gearcad.mechanisms import Placement
+from gearcad.mechanisms import Placement, layouts
+from gearcad.mechanisms.layouts import pack
 
 from .conftest import ROOT
 
@@ -50,6 +51,14 @@ def resized(design, **output):
     """The same design with other [output] sizes (the layouts read nothing else of the profile)."""
     params = design.params
     return replace(design, params=params.model_copy(update={"output": params.output.model_copy(update=output)}))
+
+
+def sheet_layout(design):
+    return layouts.sheet_layout(design.parts(), design.placements, design.params.output)
+
+
+def plate_layout(design):
+    return layouts.plate_layout(design.parts(), design.placements, design.params.output)
 
 
 def placed_polygon(part, placement: Placement) -> shapely.Polygon:
@@ -158,11 +167,11 @@ def test_sheet_files_read_back_to_the_designed_areas(design, tmp_path):
     write_dxf(tmp_path / "sheet.dxf", drawing, flavour=out.dxf)
     write_svg(tmp_path / "sheet.svg", drawing, cut_layer=out.cut_layer, mark_layer=out.mark_layer, title="sheet")
     expected = designed_area(design)  # the body with its bore, and three rollers
-    # the rollers are circles of the profile's radius, 0.1 R with R = 100 mm
-    assert design.part("roller").outline.area == pytest.approx(math.pi * 10.0**2, rel=1e-3)
+    # the rollers are circles of the profile's radius, 0.1 R with R = 100 mm, with a 1 mm pilot hole
+    assert design.part("roller").outline.area == pytest.approx(math.pi * (10.0**2 - 0.5**2), rel=1e-3)
     from_dxf = cut_rings_from_dxf(tmp_path / "sheet.dxf", out.cut_layer)
     from_svg = cut_rings_from_svg(tmp_path / "sheet.svg")
-    assert len(from_dxf) == len(from_svg) == 5  # body, its bore, three rollers
+    assert len(from_dxf) == len(from_svg) == 8  # body, its bore, three rollers and their pilot holes
     assert even_odd_area(from_dxf) == pytest.approx(expected, rel=0.005)
     assert even_odd_area(from_svg) == pytest.approx(expected, rel=0.005)
 

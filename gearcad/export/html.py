@@ -17,16 +17,12 @@ from html import escape
 from pathlib import Path
 from urllib.parse import quote
 
-import numpy as np
-
 from ..findings import CODES
 from ..mechanisms import Design, Part, Placement
 from .bounds import drawing_bounds
 from .drawing import assembly_drawing, part_drawing
 from .html_figures import Figures
 from .html_style import CSS
-from .plate import plate_layout
-from .sheet import sheet_layout
 
 __all__ = ["pivot_marking", "write_profile_page", "index_entry", "write_index"]
 
@@ -79,33 +75,22 @@ def _value(value, depth: int = 0) -> str:
 
 
 def pivot_marking(design: Design, part: Part, report_part: Mapping | None = None) -> str:
-    """What shows where ``part`` turns: its bore, an engraved cross, both or nothing.
-
-    ``report_part`` is the part's entry of ``design.report()``: when it carries a ``pivot`` entry
-    (a sentence, or a mapping of what marks the pivot), that is what is shown.  Otherwise the
-    bore is found as a hole of the part's outline about the pivot no larger than the profile's
-    ``[bore]``, and the cross from ``part.pivot_mark``.
-    """
-    given = (report_part or {}).get("pivot")
-    if isinstance(given, str) and given:
-        return given
-    if isinstance(given, Mapping) and given:
-        return "; ".join(f"{k} {_fmt(v)}" for k, v in given.items())
+    """What shows where ``part`` turns: its bore, a pilot hole, an engraved cross, or the ring's
+    concentric teeth (``part.pivot``, the same as the report's ``parts[].pivot``)."""
     out = design.params.output
     marks = []
-    bore = getattr(design.params, "bore", None)
-    if bore is not None and bore.diameter > 0:
-        reach = bore.diameter / 2 + bore.keyway_depth + 2 * out.tolerance
-        for hole in part.outline.rings[1:]:
-            r = np.hypot(hole[:, 0], hole[:, 1])
-            if r.max() <= reach:
-                text = f"Ø{bore.diameter:g} mm bore"
-                if bore.keyway_width > 0:
-                    text += f" with a {bore.keyway_width:g} × {bore.keyway_depth:g} mm keyway"
-                elif bore.flat > 0:
-                    text += f" with a D-flat {bore.flat:g} mm from the centre"
-                marks.append(text)
-                break
+    if part.pivot == "bore":
+        bore = design.params.bore
+        text = f"Ø{bore.diameter:g} mm bore"
+        if bore.keyway_width > 0:
+            text += f" with a {bore.keyway_width:g} × {bore.keyway_depth:g} mm keyway"
+        elif bore.flat > 0:
+            text += f" with a D-flat {bore.flat:g} mm from the centre"
+        marks.append(text)
+    elif part.pivot == "pilot":
+        marks.append(f"Ø{part.pivot_diameter:g} mm pilot hole (no bore given: drill or ream it to the shaft)")
+    elif part.pivot == "hole":
+        marks.append("its inner teeth, concentric with the pivot")
     if part.pivot_mark > 0:
         marks.append(f"engraved cross ±{part.pivot_mark:.3g} mm (layer {out.mark_layer})")
     return " and ".join(marks) if marks else "not marked: no bore and no engraved cross"
@@ -265,9 +250,9 @@ def _section_layouts(design: Design, figures: Figures, files: Mapping) -> str:
     layouts = []
     sheets = [n for n in files if n.startswith("sheet.")]
     if sheets:
-        layouts.append(("cutting sheet", out.sheet, sheet_layout(design), sheets))
+        layouts.append(("cutting sheet", out.sheet, design.sheet, sheets))
     if "plate.3mf" in files:
-        layouts.append(("print plate (top view)", out.bed, plate_layout(design), ["plate.3mf"]))
+        layouts.append(("print plate (top view)", out.bed, design.plate, ["plate.3mf"]))
     shown = []
     for noun, (w, h), layout, names in layouts:
         svg = figures.view(layout, (0.0, 0.0, w, h), label=noun, frame=(w, h))

@@ -21,27 +21,12 @@ import numpy as np
 
 from ..errors import DesignError
 from ..geometry.outline import rotate
-from ..mechanisms import Design, Placement
+from ..mechanisms import Design
 from .mesh import _CONTENT_TYPES, _RELS, Solid, _xml_name
-from .sheet import footprint_box, lay_out
 
-__all__ = ["plate_layout", "write_plate"]
+__all__ = ["write_plate"]
 
 _ON_BED = 1e-6  # mm: how far a placed solid may stray past the bed's edge by rounding
-
-
-def plate_layout(design: Design) -> tuple[Placement, ...]:
-    """Every placed part of the design laid out on ``output.bed`` (front-left corner at the
-    origin), footprints at least ``output.gap`` apart and from the bed's edges.
-
-    Raises
-    ------
-    DesignError
-        When they do not fit (one line naming ``output.bed``).
-    """
-    out = design.params.output
-    boxes = {p.name: footprint_box(p) for p in design.parts()}
-    return lay_out([boxes[pl.part] for pl in design.placements], tuple(out.bed), out.gap, key="output.bed", what="bed")
 
 
 def _matrix(angle: float, offset: tuple[float, float, float]) -> str:
@@ -56,7 +41,7 @@ def _metadata(name: str, value: str) -> str:
 
 
 def write_plate(path: Path, design: Design, solids: Mapping[str, Solid]) -> int:
-    """Write ``plate.3mf``: the design's solids laid out by :func:`plate_layout`.
+    """Write ``plate.3mf``: the design's solids laid out as ``design.plate``.
 
     Parameters
     ----------
@@ -78,7 +63,7 @@ def write_plate(path: Path, design: Design, solids: Mapping[str, Solid]) -> int:
         When the parts do not fit on the bed (naming ``output.bed``).
     """
     out = design.params.output
-    layout = plate_layout(design)
+    layout = design.plate
     names = list(dict.fromkeys(pl.part for pl in layout))
     ids = {name: k for k, name in enumerate(names, 1)}
     bed_w, bed_h = out.bed

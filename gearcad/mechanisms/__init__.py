@@ -11,6 +11,7 @@ from dataclasses import replace
 from importlib import import_module
 
 from ..profiles import ProfileParams
+from . import layouts
 from .base import Design
 from .parts import Part, Placement, cut_paths
 
@@ -30,5 +31,9 @@ def design(params: ProfileParams) -> Design:
     """The checked design of any mechanism's profile parameters."""
     start = time.perf_counter()
     result = import_module(f".{_MODULES[params.mechanism]}", __name__).design(params)
-    parts = cut_paths(result.part_list, params.output)
-    return replace(result, part_list=parts, seconds=time.perf_counter() - start)
+    out = params.output
+    parts = cut_paths(result.part_list, out)
+    formats = set(out.formats)
+    sheet = layouts.sheet_layout(parts, result.placements, out) if formats & {"dxf", "svg"} else ()
+    plate = layouts.plate_layout(parts, result.placements, out) if "3mf" in formats else ()
+    return replace(result, part_list=parts, sheet=sheet, plate=plate, seconds=time.perf_counter() - start)

@@ -106,6 +106,10 @@ class Design:
     """More lines for ``gearcad check``, after the summary."""
     motion: Motion | None = None
     tables: tuple[Table, ...] = ()
+    sheet: tuple[Placement, ...] = ()
+    """Every placed part laid out flat on ``output.sheet`` (when DXF or SVG is written)."""
+    plate: tuple[Placement, ...] = ()
+    """Every placed part laid out on the printer's ``output.bed`` (when 3MF is written)."""
     seconds: float = field(default=0.0, compare=False)
 
     @property
@@ -128,6 +132,7 @@ class Design:
             "name": p.name,
             "title": p.title,
             "mechanism": self.mechanism,
+            "summary": self.summary,
             "units": self.units,
             "tolerance": out.tolerance,
             **self.data,

@@ -1,0 +1,250 @@
+"""Layouts of a design's parts: flat on a cutting sheet (``output.sheet``) and on a printer's bed
+(``output.bed``), apart by ``output.gap``; made with the design, so ``check`` refuses what does
+not fit exactly as ``build`` does.
+
+Each part is laid out as often as the assembly places it (three rollers are three rollers on
+the sheet).  A part is first turned to the angle of its smallest bounding rectangle, then the
+parts, largest first, are packed by a skyline packer (bottom-left: lowest top edge, then
+leftmost) that tries each part as it is and a quarter turn further.  Boxes are the exact
+extents of the written paths (arcs included), so parts whose boxes are ``gap`` apart are at
+least ``gap`` apart; the sheet's edges keep the same margin.  The packer is deterministic:
+the same design always gives the same sheet.
+"""
+
+from __future__ import annotations
+
+import math
+from collections import Counter
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+import numpy as np
+import shapely
+
+from ..errors import DesignError
+from ..geometry.arcfit import ArcRing
+from ..geometry.bounds import ring_bounds
+from ..geometry.outline import rotate
+from .parts import Part, Placement
+
+__all__ = ["Box", "pack", "upright_angle", "part_box", "footprint_box", "lay_out", "sheet_layout", "plate_layout"]
+
+_TURN_GAIN = 0.05
+"""A part is turned to its smallest bounding rectangle only when that saves more than 5 % of its
+box's area: round parts (toothed or not) stay as designed."""
+_EPS = 1e-9  # mm: boxes that touch the sheet's edge to within this fit
+
+
+@dataclass(frozen=True)
+class Box:
+    """A part's extents when turned by ``angle`` (rad) about its pivot: ``(xmin, ymin, xmax,
+    ymax)`` in mm, relative to the pivot."""
+
+    part: str
+    angle: float
+    bounds: tuple[float, float, float, float]
+
+    @property
+    def width(self) -> float:
+        return self.bounds[2] - self.bounds[0]
+
+    @property
+    def height(self) -> float:
+        return self.bounds[3] - self.bounds[1]
+
+    def turned(self) -> Box:
+        """The same part a quarter turn further (counter-clockwise): (x, y) → (−y, x)."""
+        x0, y0, x1, y1 = self.bounds
+        return Box(self.part, self.angle + math.pi / 2, (-y1, x0, -y0, x1))
+
+    def placed_at(self, x: float, y: float) -> Placement:
+        """The placement that puts this box's lower-left corner at ``(x, y)``."""
+        return Placement(self.part, self.angle, (x - self.bounds[0], y - self.bounds[1]))
+
+
+def pack(sizes: Sequence[tuple[float, float]], width: float, height: float) -> list[tuple[float, float, bool]] | None:
+    """Skyline bottom-left packing of rectangles into ``width`` × ``height``, in the given order.
+
+    Parameters
+    ----------
+    sizes : sequence of (w, h), mm
+        The rectangles, gap included (callers add it to each and to the region).
+    width, height : float, mm
+        The region.
+
+    Returns
+    -------
+    list of (x, y, turned) or None
+        Each rectangle's lower-left corner and whether it is turned a quarter (then it occupies
+        h × w); None when some rectangle finds no place.
+
+    Examples
+    --------
+    >>> pack([(2.0, 1.0), (2.0, 1.0)], 2.0, 2.0)
+    [(0.0, 0.0, False), (0.0, 1.0, False)]
+    >>> pack([(3.0, 1.0)], 2.0, 2.0) is None
+    True
+    """
+    skyline = [[0.0, 0.0, width]]  # segments [x, y, w] left to right, covering [0, width]
+    spots = []
+    for w0, h0 in sizes:
+        best = None
+        for turned, (w, h) in ((False, (w0, h0)), (True, (h0, w0))):
+            if turned and w0 == h0:
+                break
+            for i, (x, _, _) in enumerate(skyline):
+                if x + w > width + _EPS:
+                    break
+                top, j = 0.0, i
+                while j < len(skyline) and skyline[j][0] < x + w - _EPS:
+                    top = max(top, skyline[j][1])
+                    j += 1
+                if top + h > height + _EPS:
+                    continue
+                key = (top + h, x, turned)
+                if best is None or key < best[0]:
+                    best = (key, x, top, w, h, turned)
+        if best is None:
+            return None
+        _, x, y, w, h, turned = best
+        spots.append((x, y, turned))
+        _raise(skyline, x, w, y + h)
+    return spots
+
+
+def _raise(skyline: list[list[float]], x: float, w: float, top: float) -> None:
+    """Set the skyline to ``top`` over [x, x + w], merging equal neighbours."""
+    end = x + w
+    pieces = []
+    for sx, sy, sw in skyline:
+        if sx < x:
+            pieces.append([sx, sy, min(sw, x - sx)])
+        if sx + sw > end:
+            start = max(sx, end)
+            pieces.append([start, sy, sx + sw - start])
+    pieces.append([x, top, w])
+    pieces.sort()
+    merged: list[list[float]] = []
+    for piece in pieces:
+        if piece[2] <= 0:
+            continue
+        if merged and merged[-1][1] == piece[1]:
+            merged[-1][2] = piece[0] + piece[2] - merged[-1][0]
+        else:
+            merged.append(piece)
+    skyline[:] = merged
+
+
+def upright_angle(points: np.ndarray) -> float:
+    """The turn (rad, in [−π/2, π/2)) that lays ``points`` ((n, 2) float, mm) in their smallest
+    bounding rectangle with its long side along x; 0 unless that saves over 5 % of the box."""
+    hull = shapely.MultiPoint(points).convex_hull
+    upright = np.array(hull.bounds)
+    rect = np.asarray(shapely.oriented_envelope(hull).exterior.coords)[:4]
+    edges = np.diff(np.vstack([rect, rect[:1]]), axis=0)
+    lengths = np.hypot(edges[:, 0], edges[:, 1])
+    if lengths[0] * lengths[1] >= (1 - _TURN_GAIN) * np.prod(upright[2:] - upright[:2]):
+        return 0.0
+    long = edges[int(np.argmax(lengths[:2]))]
+    angle = -math.atan2(long[1], long[0])  # the long side turned onto the x axis
+    return (angle + math.pi / 2) % math.pi - math.pi / 2  # the nearer of the two ways
+
+
+def _extents(boxes: list[np.ndarray]) -> tuple[float, float, float, float]:
+    b = np.array(boxes)
+    return (float(b[:, 0].min()), float(b[:, 1].min()), float(b[:, 2].max()), float(b[:, 3].max()))
+
+
+def part_box(part: Part) -> Box:
+    """The part turned by :func:`upright_angle` and the exact extents of what a sheet draws of it:
+    cut and mark paths with their arcs, and the pivot cross."""
+    angle = upright_angle(part.outline.outer)
+    boxes = [ring_bounds(ArcRing(rotate(r.vertices, angle), r.bulges)) for r in (*part.cut, *part.mark)]
+    if part.pivot_mark > 0:
+        boxes.append(np.array([-1.0, -1.0, 1.0, 1.0]) * part.pivot_mark)
+    return Box(part.name, angle, _extents(boxes))
+
+
+def footprint_box(part: Part) -> Box:
+    """The part turned by :func:`upright_angle` and the extents of its outline: the footprint of
+    its solid on a printer's bed."""
+    angle = upright_angle(part.outline.outer)
+    return Box(part.name, angle, _extents([ring_bounds(rotate(part.outline.outer, angle))]))
+
+
+def lay_out(
+    boxes: Sequence[Box], size: tuple[float, float], gap: float, *, key: str, what: str
+) -> tuple[Placement, ...]:
+    """Place every box (one per part laid out) on ``size`` = (w, h) mm, ``gap`` apart and from the edges.
+
+    Largest boxes go first (ties by name, so the result is reproducible).  ``key`` is the profile
+    key named when they do not fit (``output.sheet``, ``output.bed``), ``what`` the noun
+    ("sheet", "bed").
+
+    Raises
+    ------
+    DesignError
+        One line naming ``key``: which part is too large on its own, or the size that would take
+        all of them.
+    """
+    w, h = size
+    order = sorted(boxes, key=lambda b: (-b.width * b.height, b.part))
+    spots = _try(order, w, h, gap)
+    if spots is not None:
+        return tuple(
+            (b.turned() if turned else b).placed_at(gap + x, gap + y) for b, (x, y, turned) in zip(order, spots)
+        )
+    counts = Counter(b.part for b in boxes)
+    listed = ", ".join(f"{name} ×{n}" if n > 1 else name for name, n in counts.items())
+    where = f"{key} = [{w:g}, {h:g}] mm with output.gap = {gap:g} mm"
+    alone = [b for b in order if _try([b], w, h, gap) is None]
+    if alone:
+        b = alone[0]
+        raise DesignError(
+            f"{where}: {b.part} ({b.width:.1f} × {b.height:.1f} mm) does not fit on the {what} even alone; "
+            f"give a {what} of at least {math.ceil(max(b.width, b.height) + 2 * gap)} × "
+            f"{math.ceil(min(b.width, b.height) + 2 * gap)} mm"
+        )
+    lo, hi = 1.0, 2.0
+    while _try(order, w * hi, h * hi, gap) is None:
+        lo, hi = hi, hi * 2
+    while hi - lo > 0.005:
+        mid = (lo + hi) / 2
+        lo, hi = (mid, hi) if _try(order, w * mid, h * mid, gap) is None else (lo, mid)
+    raise DesignError(
+        f"{where}: the {len(boxes)} parts ({listed}) do not fit on the {what}; "
+        f"a {what} of {math.ceil(w * hi)} × {math.ceil(h * hi)} mm takes them"
+    )
+
+
+def _try(order: Sequence[Box], w: float, h: float, gap: float):
+    # each box grows by the gap to its right and top; the region by one gap less than the margins
+    return pack([(b.width + gap, b.height + gap) for b in order], w - gap, h - gap)
+
+
+def sheet_layout(parts: Sequence[Part], placements: Sequence[Placement], output) -> tuple[Placement, ...]:
+    """Every placed part laid out on ``output.sheet`` (lower-left corner at the origin), each turned
+    about its pivot and moved; at least ``output.gap`` apart and from the edges.
+
+    Raises
+    ------
+    DesignError
+        When they do not fit (one line naming ``output.sheet``).
+    """
+    boxes = {p.name: part_box(p) for p in parts}
+    laid = [boxes[pl.part] for pl in placements]
+    return lay_out(laid, tuple(output.sheet), output.gap, key="output.sheet", what="sheet")
+
+
+def plate_layout(parts: Sequence[Part], placements: Sequence[Placement], output) -> tuple[Placement, ...]:
+    """Every placed part laid out on ``output.bed`` (front-left corner at the origin), footprints at
+    least ``output.gap`` apart and from the bed's edges.
+
+    Raises
+    ------
+    DesignError
+        When they do not fit (one line naming ``output.bed``).
+    """
+    boxes = {p.name: footprint_box(p) for p in parts}
+    laid = [boxes[pl.part] for pl in placements]
+    return lay_out(laid, tuple(output.bed), output.gap, key="output.bed", what="bed")
