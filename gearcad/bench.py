@@ -318,6 +318,8 @@ def stability_map(quick: bool = False) -> list[dict]:
     def attempt(label: str, value, data: dict, teeth: bool = True) -> dict:
         start = time.perf_counter()
         try:
+            # large designs need a sheet and a bed to match: the map is about the design
+            data = {**data, "output": {"sheet": [1e5, 1e5], "bed": [1e5, 1e5], **data.get("output", {})}}
             params = parse_profile(data)
             if not teeth and getattr(params, "teeth", None) is not None:
                 params = parse_profile({k: v for k, v in data.items() if k != "teeth"})
