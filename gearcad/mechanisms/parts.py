@@ -7,6 +7,7 @@ and then verified: every cut ring is simple and within the tolerance of the exac
 
 from __future__ import annotations
 
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, replace
 from typing import Protocol
 
@@ -140,8 +141,12 @@ def _cut_ring(ring: np.ndarray, tolerance: float, fine_tol: float, *, flat: bool
     if not flat:
         for attempt in range(3):
             arcs = fit_arcs(ring, budget / 2**attempt)
-            drawn = arc_points(arcs, fine_tol / 4)
-            if is_simple(drawn) and max_distance(drawn, ring, limit=budget) <= budget:
+            # an independent re-check of the fit: the arcs flattened finely must not cross, and
+            # points on them (at most half the fine tolerance apart in sag) stay within the budget
+            if (
+                is_simple(arc_points(arcs, fine_tol / 4))
+                and max_distance(arc_points(arcs, fine_tol / 2), ring) <= budget
+            ):
                 return arcs
     chords = decimate(ring, budget)
     if not is_simple(chords):
@@ -222,7 +227,10 @@ def cut_paths(parts: tuple[Part, ...], output: CutSpec) -> tuple[Part, ...]:
             f"output.kerf = {output.kerf:g}: the laser's path would fill the tooth spaces or holes of "
             f"{', '.join(failed)}; the largest kerf every part takes is {largest:.3f} mm"
         )
-    return tuple(
-        replace(p, cut=tuple(_cut_ring(r, tol, fine_tol, flat=flat, part=p.name) for r in k.rings))
-        for p, k in zip(parts, kerfed)
-    )
+    # fitting is numpy work on large arrays, which releases the GIL: the parts go side by side
+    with ThreadPoolExecutor(max_workers=2) as pool:
+        cuts = [
+            pool.submit(lambda p=p, k=k: tuple(_cut_ring(r, tol, fine_tol, flat=flat, part=p.name) for r in k.rings))
+            for p, k in zip(parts, kerfed)
+        ]
+        return tuple(replace(p, cut=c.result()) for p, c in zip(parts, cuts))

@@ -153,14 +153,13 @@ def cut_pair(
         )
     shifts = (params.profile_shift, -params.profile_shift)
     fine_tol = tol.outline_mm * tol.fine_fraction
-    fine = tuple(
-        _with_clearance(
-            cut_teeth(frame, _rack(params, plan.module, shift), z, phase, tolerance=fine_tol),
-            params.clearance,
-            fine_tol,
-        )
-        for frame, z, phase, shift in zip(frames, plan.teeth, plan.phases, shifts)
-    )
+
+    def cut(frame, z, phase, shift):
+        gear = cut_teeth(frame, _rack(params, plan.module, shift), z, phase, tolerance=fine_tol)
+        return _with_clearance(gear, params.clearance, fine_tol)
+
+    with ThreadPoolExecutor(max_workers=2) as pool:  # the two gears side by side
+        fine = tuple(pool.map(cut, frames, plan.teeth, plan.phases, shifts))
     toothed = tuple(_thinned(g, tol.outline_mm - fine_tol) for g in fine)
     play = params.backlash + 4 * params.clearance / math.cos(params.pressure_angle)
     # the mesh proof and the play measurement are independent, and shapely's vectorised GEOS
