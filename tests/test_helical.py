@@ -381,18 +381,17 @@ def test_helical_benchmark_rows():
     assert row["study"] == "helical" and row["n"] > 1000 and row["seconds"] > 0 and row["sections"] >= 2
 
 
-def test_solid_picture(spur, tmp_path):
-    """The rendered pair: a PNG of the figure's size showing both gears' colours."""
+def test_solid_picture(tmp_path):
+    """The rendered solids: a PNG of the figure's size showing both items' colours."""
     from PIL import Image
 
     from gearcad.export.charts.solid import draw_solids
     from gearcad.export.mesh import SolidItem
 
-    tol, pitch, toothed, _ = spur
-    straight = pair_sections(toothed, helix_angle=0.0, herringbone=False, face_width=6.0, tolerance=tol)
-    solids = [loft(g.heights, g.rings, name=f"gear{i}") for i, g in enumerate(straight.gears)]
+    square = np.array([[-10.0, -10.0], [10.0, -10.0], [10.0, 10.0], [-10.0, 10.0]])
+    solid = loft([0.0, 4.0], np.stack([square, rotate(square, 0.3)]), name="twisted")
     path = tmp_path / "solid.png"
-    draw_solids(path, [SolidItem(s, 0.0, (*g.pivot, 0.0)) for s, g in zip(solids, pitch.gears)], title="pair")
+    draw_solids(path, [SolidItem(solid), SolidItem(solid, 0.5, (30.0, 0.0, 0.0))], title="pair")
     image = np.asarray(Image.open(path).convert("RGB")).astype(int)
     assert image.shape == (660, 1100, 3)
     orange = (image[..., 0] > image[..., 2] + 60).sum()
