@@ -1,0 +1,174 @@
+"""A solid lofted through transverse sections: the helical and herringbone gears' solids.
+
+Every section has the same number of vertices, vertex j of each the same point of the same tooth
+(``teeth/correspond.py``).  Consecutive sections are joined by a strip of quads, each split along its
+shorter diagonal (the one that follows the twist: a triangle then spans the larger of the
+section's chord and the twist's sideways step, never their sum); the end sections are capped with
+manifold3d's triangulation; bores are straight walls from bottom to top.  manifold3d checks the
+result, whose status must be ``NoError``.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from collections.abc import Sequence
+from dataclasses import replace
+
+import manifold3d as m3d
+import numpy as np
+import shapely
+
+from ..errors import DesignError
+from ..geometry.inset import inset_ring
+from ..teeth.correspond import rising_diagonals
+from .mesh import Solid, _check
+
+__all__ = ["loft", "helical_benchmark"]
+
+
+def _strip(lo: np.ndarray, hi: np.ndarray, lo_xy: np.ndarray, hi_xy: np.ndarray) -> np.ndarray:
+    """Triangles joining two rings of equal length (vertex indices ``lo`` and ``hi``, one height
+    each), facing out for a ring with its material on its left; each quad split along its
+    shorter diagonal."""
+    nxt = np.roll(np.arange(len(lo)), -1)
+    a, b, c, d = lo, lo[nxt], hi[nxt], hi
+    rise = rising_diagonals(lo_xy, hi_xy)[:, None]
+    first = np.where(rise, np.column_stack([a, b, c]), np.column_stack([a, b, d]))
+    second = np.where(rise, np.column_stack([a, c, d]), np.column_stack([b, c, d]))
+    return np.vstack([first, second])
+
+
+def loft(
+    heights: Sequence[float] | np.ndarray,
+    rings: np.ndarray,
+    *,
+    name: str,
+    holes: Sequence[np.ndarray] = (),
+    chamfer: float = 0.0,
+) -> Solid:
+    """The solid through ``rings[k]`` (counter-clockwise, (n, m, 2) mm) at ``heights[k]``
+    (increasing), with straight ``holes`` (clockwise rings, mm) through it.
+
+    With ``chamfer`` > 0 every top and bottom edge is cut at 45°: the section at height z is inset
+    by max(0, chamfer − z, z − (b − chamfer)), so sections at z = chamfer and b − chamfer should be
+    among ``heights`` (``section_heights(..., chamfer=)`` puts them there).
+    """
+    z = np.asarray(heights, dtype=float)
+    rings = np.asarray(rings, dtype=float)
+    levels, m = rings.shape[:2]
+    if levels != len(z) or levels < 2 or np.any(np.diff(z) <= 0):
+        raise DesignError(f"{name}: a loft needs two or more sections at increasing heights")
+    bottom, top = float(z[0]), float(z[-1])
+    holes = [np.asarray(h, dtype=float) for h in holes]
+    if chamfer > 0:
+        if 2 * chamfer >= top - bottom:
+            raise DesignError(f"output.chamfer = {chamfer:g}: must be under half the thickness {top - bottom:g}")
+        depth = np.maximum(0.0, np.maximum(chamfer - (z - bottom), chamfer - (top - z)))
+        rings = np.stack([inset_ring(r, d) if d > 0 else r for r, d in zip(rings, depth)])
+        hole_z = np.array([bottom, bottom + chamfer, top - chamfer, top])
+        hole_depth = np.array([chamfer, 0.0, 0.0, chamfer])
+        for k in (0, levels - 1):
+            cap = shapely.Polygon(rings[k], [inset_ring(h, chamfer) for h in holes])
+            if not cap.is_valid:
+                raise DesignError(
+                    f"output.chamfer = {chamfer:g}: too large for the teeth of {name} (the inset crosses itself)"
+                )
+    else:
+        hole_z, hole_depth = np.array([bottom, top]), np.zeros(2)
+    verts = [np.column_stack([rings.reshape(-1, 2), np.repeat(z, m)])]
+    tris = []
+    index = np.arange(levels * m).reshape(levels, m)
+    for k in range(levels - 1):
+        tris.append(_strip(index[k], index[k + 1], rings[k], rings[k + 1]))
+    base = levels * m
+    hole_index = []
+    for h in holes:
+        rows = [inset_ring(h, d) if d > 0 else h for d in hole_depth]
+        level_xyz = [np.column_stack([r, np.full(len(h), hz)]) for r, hz in zip(rows, hole_z)]
+        idx = base + np.arange(len(hole_z) * len(h)).reshape(len(hole_z), len(h))
+        for k in range(len(hole_z) - 1):
+            tris.append(_strip(idx[k], idx[k + 1], rows[k], rows[k + 1]))
+        verts.extend(level_xyz)
+        hole_index.append(idx)
+        base += idx.size
+    vertices = np.vstack(verts)
+    # caps: the bottom and top sections with the holes' end rings, each triangulated (facing
+    # down at the bottom, up at the top)
+    for level, end, down in ((0, 0, True), (levels - 1, -1, False)):
+        ids = np.concatenate([index[level]] + [idx[end] for idx in hole_index])
+        tri = ids[
+            np.asarray(m3d.triangulate([vertices[i, :2] for i in [index[level]] + [idx[end] for idx in hole_index]]))
+        ]
+        tris.append(tri[:, ::-1] if down else tri)
+    mesh = m3d.Mesh64(vert_properties=vertices, tri_verts=np.vstack(tris).astype(np.uint64))
+    solid = m3d.Manifold(mesh)
+    _check(solid, name)
+    out = solid.to_mesh64()
+    return Solid(
+        name,
+        np.asarray(out.vert_properties)[:, :3].copy(),
+        np.asarray(out.tri_verts).astype(np.int64),
+        float(solid.volume()),
+    )
+
+
+def helical_benchmark(
+    *, quick: bool = False, face_widths: Sequence[float] | None = None, tolerances: Sequence[float] | None = None
+) -> list[dict]:
+    """Solid generation time and triangle count of the herringbone focus-ellipse pair (a = 25,
+    b = 15 mm, m_n = 1, β = 25°) against face width and tolerance: rows for ``gearcad bench``
+    (study "helical"; ``n`` the triangles of both solids, ``seconds`` sections + both lofts,
+    ``error`` the tolerance)."""
+    from ..mechanisms.pair_pitch import pitch_design
+    from ..profiles import parse_profile
+    from ..teeth.helical import pair_sections, transverse_teeth
+    from ..teeth.pair import cut_pair
+    from ..tolerances import DEFAULT
+
+    if face_widths is None:
+        face_widths = (5.0, 10.0) if quick else (5.0, 10.0, 20.0)
+    if tolerances is None:
+        tolerances = (0.02,) if quick else (0.04, 0.02, 0.01, 0.005)
+    beta = math.radians(25)
+    rows = []
+    for tol in tolerances:
+        params = parse_profile(
+            {
+                "gear1": {"name": "driver", "curve": "ellipse", "pivot": "focus", "a": 25.0, "b": 15.0},
+                "gear2": {"name": "follower", "lobes": 1},
+                "teeth": {"module": 1.0},
+                "output": {"tolerance": tol},
+            },
+            default_name="helical_bench",
+        )
+        t = replace(DEFAULT, outline_mm=tol)
+        pitch = pitch_design(params, tol=t)
+        teeth = cut_pair(
+            pitch.pair, pitch.gears, transverse_teeth(params.teeth, beta), mate_rotation=pitch.mate_rotation, tol=t
+        )
+        for width in face_widths:
+            start = time.perf_counter()
+            sections = pair_sections(teeth, helix_angle=beta, herringbone=True, face_width=width, tolerance=tol)
+            cut = time.perf_counter()
+            solids = [loft(g.heights, g.rings, name=f"gear{i + 1}") for i, g in enumerate(sections.gears)]
+            end = time.perf_counter()
+            g = sections.gears[0]
+            triangles = sum(s.triangle_count for s in solids)
+            rows.append(
+                {
+                    "study": "helical",
+                    "method": f"herringbone pair, b = {width:g} mm",
+                    "n": triangles,
+                    "seconds": end - start,
+                    "error": tol,
+                    "face_width": width,
+                    "tolerance": tol,
+                    "sections": len(g.heights),
+                    "section_vertices": g.rings.shape[1],
+                    "spacing": sections.spacing.spacing,
+                    "sections_seconds": cut - start,
+                    "loft_seconds": end - cut,
+                }
+            )
+    return rows
