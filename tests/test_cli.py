@@ -33,7 +33,7 @@ def _tree(folder: Path) -> dict:
 def _pair_reports(built):
     reports = [json.loads(p.read_text()) for p in sorted(built.glob("*/report.json"))]
     pairs = [r for r in reports if r["mechanism"] == "gear-pair"]
-    assert len(pairs) == 5
+    assert len(pairs) == 6
     return pairs
 
 

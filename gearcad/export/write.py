@@ -66,9 +66,24 @@ def write_design(design: Design, folder: Path) -> dict[str, dict]:
             n = write_svg(path, sheet, title=f"{design.name}: cutting sheet", **layers)
             files[path.name] = _entry(path, kind="svg", part="sheet", segments=n)
     if formats & {"stl", "3mf"}:
+        from .loft import loft
         from .mesh import SolidItem, extrude, write_3mf, write_stl
 
-        solids = {p.name: extrude(p.outline, out.thickness, name=p.name, chamfer=out.chamfer) for p in parts}
+        def solid(part):
+            twisted = design.sections.get(part.name)
+            if twisted is None:
+                return extrude(part.outline, out.thickness, name=part.name, chamfer=out.chamfer)
+            holes = part.outline.rings[1:]
+            return loft(twisted.heights, twisted.rings, name=part.name, holes=holes, chamfer=out.chamfer)
+
+        solids = {p.name: solid(p) for p in parts}
+        if design.sections and out.charts:  # twisted teeth are best seen: a rendered picture
+            from .charts.solid import draw_solids
+
+            path = folder / "solid.png"
+            scene = [SolidItem(solids[pl.part], pl.angle, (*pl.offset, 0.0)) for pl in design.placements]
+            draw_solids(path, scene, title=design.params.title or design.name)
+            files[path.name] = _entry(path, kind="png")
         for name, solid in solids.items():
             if "stl" in formats:
                 path = folder / f"{name}.stl"

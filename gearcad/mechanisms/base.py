@@ -110,6 +110,9 @@ class Design:
     """Every placed part laid out flat on ``output.sheet`` (when DXF or SVG is written)."""
     plate: tuple[Placement, ...] = ()
     """Every placed part laid out on the printer's ``output.bed`` (when 3MF is written)."""
+    sections: dict = field(default_factory=dict)
+    """Part name → its twisted sections (``teeth.helical.GearSections``): such a part's solid
+    is lofted through them instead of extruded."""
     seconds: float = field(default=0.0, compare=False)
 
     @property

@@ -15,6 +15,7 @@ from ..geometry.arcfit import decimate
 from ..pitch.discretize import polyline
 from ..pitch.gear import GearData
 from ..profiles import GearPairParams
+from ..teeth.helical import HelicalSections, helix_data, pair_sections, section_mesh, transverse_teeth
 from ..teeth.pair import ToothedPairData, cut_pair
 from ..tolerances import DEFAULT
 from .base import Assembly, Design, Motion, Table, assembly_overlap
@@ -83,7 +84,45 @@ def _teeth_block(t: ToothedPairData, i: int) -> dict:
     }
 
 
-def _report_data(params: GearPairParams, pitch: PairDesign, teeth: ToothedPairData | None, parts) -> dict:
+def _helix_block(params: GearPairParams, teeth: ToothedPairData, helical: HelicalSections, proofs) -> dict:
+    out, s = params.output, helical.spacing
+    h = helix_data(
+        teeth.plan.module,
+        params.teeth.helix_angle,
+        face_width=out.thickness,
+        herringbone=params.teeth.herringbone,
+        normal_pressure_angle=params.teeth.pressure_angle,
+    )
+    first = helical.gears[0]
+    return {
+        "helix_angle": h.helix_angle,
+        "herringbone": h.herringbone,
+        "hands": [g.hand for g in helical.gears],
+        "normal_module": h.normal_module,
+        "transverse_module": h.transverse_module,
+        "normal_pressure_angle": h.normal_pressure_angle,
+        "transverse_pressure_angle": h.transverse_pressure_angle,
+        "axial_pitch": h.axial_pitch,
+        "overlap_ratio": h.overlap_ratio,
+        "total_shift": h.total_shift,
+        "mirror_parts": teeth.plan.identical,
+        "sections": len(first.heights),
+        "section_vertices": [int(g.rings.shape[1]) for g in helical.gears],
+        "section_spacing": s.spacing,
+        "spacing_bound": s.bound,
+        "spacing_floor": s.floor,
+        "loft_deviation": None if math.isnan(s.measured) else s.measured,
+        "section_deviation": max(g.deviation for g in helical.gears),
+        "mesh_levels": [
+            {"z": z, "meshes": m.meshes, "max_overlap": m.max_overlap, "nudged_min_overlap": m.nudged_min_overlap}
+            for z, m in proofs
+        ],
+    }
+
+
+def _report_data(
+    params: GearPairParams, pitch: PairDesign, teeth: ToothedPairData | None, parts, helical=None, proofs=None
+) -> dict:
     pair, kin = pitch.pair, pitch.kinematics
     n1, n2 = pair.lobes
     data = {
@@ -120,7 +159,7 @@ def _report_data(params: GearPairParams, pitch: PairDesign, teeth: ToothedPairDa
             data["gears"][i]["teeth"] = _teeth_block(teeth, i)
         mesh = teeth.mesh
         data["pair"]["teeth"] = {
-            "identical_parts": teeth.plan.identical,
+            "identical_parts": teeth.plan.identical and helical is None,
             "identical_deviation": teeth.identical_deviation,
             "backlash_design": params.teeth.backlash,
             "clearance": params.teeth.clearance,
@@ -136,6 +175,8 @@ def _report_data(params: GearPairParams, pitch: PairDesign, teeth: ToothedPairDa
                 "nudged_min_overlap": mesh.nudged_min_overlap,
             },
         }
+    if helical is not None:
+        data["pair"]["teeth"]["helix"] = _helix_block(params, teeth, helical, proofs)
     if pitch.claim is not None:
         c = pitch.claim
         data["claim"] = {
@@ -197,23 +238,27 @@ def design(params: GearPairParams) -> Design:
     tol = replace(DEFAULT, outline_mm=out.tolerance)
     fine_tol = out.tolerance * DEFAULT.fine_fraction
     pitch = pitch_design(params, tol=tol)
-    teeth = None
+    teeth = helical = proofs = None
     if params.teeth is not None:
-        spec = params.teeth
-        estimate = [
-            (g.perimeter / (math.pi * spec.module), spec.module)
-            if spec.module
-            else (
-                spec.count * g.perimeter / pitch.gears[0].perimeter,
-                pitch.gears[0].perimeter / (math.pi * spec.count),
-            )
-            for g in pitch.gears
-        ]
-        check_teeth_work(estimate, out.tolerance)
+        beta = params.teeth.helix_angle
+        spec = transverse_teeth(params.teeth, beta) if beta > 0 else params.teeth
+        module = spec.module or pitch.gears[0].perimeter / (math.pi * spec.count)
+        check_teeth_work([(g.perimeter / (math.pi * module), module) for g in pitch.gears], out.tolerance)
         alike = pitch.mate_shape_difference is not None and pitch.mate_shape_difference < 1e-6
-        teeth = cut_pair(
-            pitch.pair, pitch.gears, params.teeth, mate_rotation=pitch.mate_rotation if alike else None, tol=tol
-        )
+        teeth = cut_pair(pitch.pair, pitch.gears, spec, mate_rotation=pitch.mate_rotation if alike else None, tol=tol)
+        if beta > 0:
+            helical = pair_sections(
+                teeth,
+                helix_angle=beta,
+                herringbone=params.teeth.herringbone,
+                face_width=out.thickness,
+                tolerance=out.tolerance,
+                clearance=params.teeth.clearance,
+                chamfer=out.chamfer,
+                names=(pitch.gears[0].name, pitch.gears[1].name),
+            )
+            play = spec.backlash + 4 * spec.clearance / math.cos(spec.pressure_angle)  # as cut_pair's
+            proofs = section_mesh(pitch.pair, helical, teeth.frames, tolerance=out.tolerance, play=play)
     pitch_fine = [polyline(g.curve, fine_tol) for g in pitch.gears]
     parts = []
     for i, gear in enumerate(pitch.gears):
@@ -232,8 +277,12 @@ def design(params: GearPairParams) -> Design:
     overlap = assembly_overlap({p.name: p for p in parts}, list(placements), [(0, 1)])
     if teeth is not None:
         mesh = teeth.mesh
+        meshes = [mesh] + ([m for _, m in proofs] if proofs else [])
         assembly = Assembly(
-            max(overlap, mesh.max_overlap), mesh.allowed_overlap, mesh.nudged_min_overlap, mesh.positions
+            max([overlap] + [m.max_overlap for m in meshes]),
+            mesh.allowed_overlap,
+            min(m.nudged_min_overlap for m in meshes),
+            mesh.positions,
         )
     else:
         assembly = Assembly(overlap, 2 * out.tolerance * pitch.gears[0].r_min)
@@ -255,7 +304,8 @@ def design(params: GearPairParams) -> Design:
         part_list=tuple(parts),
         placements=placements,
         assembly=assembly,
-        data=_report_data(params, pitch, teeth, parts),
+        data=_report_data(params, pitch, teeth, parts, helical, proofs),
+        sections={} if helical is None else {p.name: g for p, g in zip(parts, helical.gears)},
         units=UNITS,
         detail=GearPairDetail(pitch, teeth, rings),
         details=tuple(_details(pitch, teeth)),

@@ -9,7 +9,19 @@ from pydantic import model_validator
 
 from .common import BoreParams, OutputParams, ParamsModel, distinct_names
 from .curves import Curve, Lobes, RatioParams, WalkerParams
-from .values import Length, LengthOrZero, Must, PartName, PressureAngleDeg, Problems, Speed, Text, integer, number
+from .values import (
+    Flag,
+    Length,
+    LengthOrZero,
+    Must,
+    PartName,
+    PressureAngleDeg,
+    Problems,
+    Speed,
+    Text,
+    integer,
+    number,
+)
 
 __all__ = ["Gear2Params", "PairParams", "ClaimParams", "TeethParams", "GearPairParams"]
 
@@ -20,6 +32,7 @@ Addendum = number("a coefficient (× module)", gt=0, le=2)
 Dedendum = number("a coefficient (× module)", gt=0, le=3)
 TipRadius = number("a coefficient (× module)", ge=0, le=0.6)
 ProfileShift = number("a coefficient (× module)", ge=-0.8, le=0.8)
+HelixAngleDeg = number("an angle in degrees", ge=0, le=45)
 
 
 class Gear2Params(ParamsModel):
@@ -72,6 +85,16 @@ class TeethParams(ParamsModel):
     """Backlash of the pair on the pitch curves, mm."""
     clearance: LengthOrZero = 0.0
     """Every toothed outline is offset inwards by this, mm."""
+    helix_angle_deg: HelixAngleDeg = 0.0
+    """Helix angle β of the teeth, degrees (0: straight teeth); with β > 0, module is the normal
+    module and the solids are lofted through twisted sections."""
+    herringbone: Flag = False
+    """The helix reverses at mid-height (needs helix_angle_deg > 0)."""
+
+    @property
+    def helix_angle(self) -> float:
+        """β in radians."""
+        return math.radians(self.helix_angle_deg)
 
     @property
     def pressure_angle(self) -> float:
@@ -85,6 +108,8 @@ class TeethParams(ParamsModel):
             problems.missing("module", "give teeth.module (mm) or teeth.count (teeth on gear 1)")
         elif self.module is not None and self.count is not None:
             problems.add("count", self.count, "give teeth.module or teeth.count, not both")
+        if self.herringbone and self.helix_angle_deg == 0:
+            problems.add("herringbone", True, "needs teeth.helix_angle_deg > 0 (a herringbone is two opposite helices)")
         if self.dedendum < self.addendum:
             problems.add(
                 "dedendum", self.dedendum, f"must be ≥ teeth.addendum = {self.addendum:g} (the mate's tips need room)"
