@@ -2,6 +2,7 @@
 method, tooth planning, and the mesh proof (which must be able to fail)."""
 
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -246,3 +247,21 @@ def test_measured_play_matches_the_designed_one(backlash, clearance):
     low, high = teeth.backlash_range
     assert low == pytest.approx(expected, abs=0.002) and high == pytest.approx(expected, abs=0.002)
     assert teeth.mesh.max_overlap == 0 and teeth.mesh.meshes
+
+
+def test_printed_clearance_on_an_eccentric_pair_meshes_and_plays_as_designed():
+    """The README's printing settings on the focus ellipse (ratio 1/9 … 9): the nudge turns gear 2
+    by the same arc at the contact wherever it is, so it neither skips a tooth where gear 2 is
+    large nor misses contact where it is small, and the measured play stays near 4c/cos α."""
+    from gearcad.mechanisms import design
+    from gearcad.profiles import load_profile
+
+    params = load_profile(
+        Path(__file__).parent.parent / "profiles" / "elliptic_focus.toml",
+        {"teeth.clearance": 0.05, "output.tolerance": 0.01, "output.formats": ["dxf"]},
+    )
+    teeth = design(params).detail.teeth
+    expected = 4 * 0.05 / math.cos(ALPHA)
+    assert teeth.mesh.meshes
+    low, high = teeth.backlash_range
+    assert expected * 0.95 < low and high < 3 * expected

@@ -27,7 +27,8 @@ class MeshData:
     allowed_overlap: float
     """Tolerance-level area it is held to, mm²."""
     nudge: float
-    """Extra turn given to gear 2 (rad) for the nudged test."""
+    """How far gear 2 is turned for the nudged test, as arc length on its pitch curve at the
+    contact (mm): the turn is this over gear 2's radius at each position."""
     nudged_min_overlap: float
     """Smallest (over positions) of the larger overlap when nudged either way, mm²."""
     worst_phi: float
@@ -94,11 +95,17 @@ def _overlap_function(pair: PairData, gears, frames, phi1: np.ndarray):
     return overlap
 
 
-def nudge_angle(pair: PairData, *, module: float, tolerance: float, play: float) -> float:
-    """Gear 2's extra turn for the nudged test: more than the designed ``play`` by an overlap
-    that dwarfs the allowance (~0.44·δ/tol times it), capped for coarse tolerances."""
-    phi1 = np.linspace(0.0, pair.cycle, 360, endpoint=False)
-    return (play + min(200 * tolerance, 0.5 * module)) / float(np.min(pair.center_distance - pair.gear1.r(phi1)))
+def nudge_arc(*, module: float, tolerance: float, play: float) -> float:
+    """Gear 2's extra turn for the nudged test, as arc length at the contact (mm): more than the
+    designed ``play`` by an overlap that dwarfs the allowance (~0.44·δ/tol times it), capped for
+    coarse tolerances well under a pitch, so that the turn never carries a tooth past a space."""
+    return play + min(200 * tolerance, 0.5 * module)
+
+
+def nudge_turns(pair: PairData, phi1: np.ndarray, arc: float) -> np.ndarray:
+    """The turn of gear 2 (rad) that moves it ``arc`` mm at the contact, at each driver angle: the
+    contact sits on gear 2's pitch curve at radius E − r1(φ1), which varies on a noncircular pair."""
+    return arc / (pair.center_distance - pair.gear1.r(phi1))
 
 
 def mesh_check(
@@ -118,10 +125,11 @@ def mesh_check(
     # tolerance-level overlap: each of the two flanks in contact may stray by the tolerance
     # over its working depth (ha + hf ≈ 2.25 m)
     allowed = 2 * tolerance * 2.25 * m
-    nudge = nudge_angle(pair, module=m, tolerance=tolerance, play=play)
+    nudge = nudge_arc(module=m, tolerance=tolerance, play=play)
+    turns = nudge_turns(pair, phi1[::4], nudge)
     assembled = _overlap_function(pair, gears, frames, phi1)(0.0)
     nudged_at = _overlap_function(pair, gears, frames, phi1[::4])
-    nudged = np.maximum(nudged_at(nudge), nudged_at(-nudge))
+    nudged = np.maximum(nudged_at(turns), nudged_at(-turns))
     worst = int(np.argmax(assembled))
     return MeshData(
         positions=positions,
@@ -139,14 +147,16 @@ def backlash_range(
     """Smallest and largest free play of the pair, measured on gear 2's pitch curve (mm).
 
     At each of ``positions`` driver angles, gear 2 is turned each way until it first overlaps
-    gear 1 (bisection up to ``limit`` rad); the two free turns add up to the play.
+    gear 1 (bisection up to ``limit`` mm of arc at the contact); the two free turns add up to the
+    play.
     """
     phi1 = np.linspace(0.0, pair.cycle, positions, endpoint=False)
+    limit = nudge_turns(pair, phi1, limit)
     overlap = _overlap_function(pair, gears, frames, phi1)
     touching = 1e-9 * gears[0].rack.pitch ** 2
     total = np.zeros(positions)
     for sign in (1.0, -1.0):
-        lo, hi = np.zeros(positions), np.full(positions, limit)
+        lo, hi = np.zeros(positions), limit.copy()
         for _ in range(steps):
             mid = 0.5 * (lo + hi)
             hit = overlap(sign * mid) > touching

@@ -21,7 +21,7 @@ from ..pitch.pair import PairData
 from ..tolerances import DEFAULT, Tolerances
 from .frame import ArcFrame, arc_frame
 from .gear import ToothedGear, cut_teeth
-from .mesh import MeshData, backlash_range, mesh_check, nudge_angle
+from .mesh import MeshData, backlash_range, mesh_check, nudge_arc
 from .plan import ToothPlan, plan_teeth
 from .rack import Rack, RackParams
 
@@ -166,7 +166,7 @@ def cut_pair(
     # calls release the GIL: run them side by side on the machine's two cores
     with ThreadPoolExecutor(max_workers=2) as pool:
         mesh_job = pool.submit(mesh_check, pair, toothed, frames, tolerance=tol.outline_mm, play=play)
-        limit = 2 * nudge_angle(pair, module=plan.module, tolerance=tol.outline_mm, play=play)
+        limit = 2 * nudge_arc(module=plan.module, tolerance=tol.outline_mm, play=play)
         play_job = pool.submit(backlash_range, pair, toothed, frames, limit=limit)
         mesh, play_range = mesh_job.result(), play_job.result()
     limits = tuple(
