@@ -112,3 +112,32 @@ def test_speed_with_round_gears_the_papers_pair_and_the_rolling_pair():
     assert out["round"]["variation"] == pytest.approx(3 * G.b / 4 / mean, rel=1e-9)  # 32.1 %
     blended = S.speed_comparison(G, i_paper=i_paper, law=W.ratio_law(G, blend_width=math.radians(12)))
     assert 0.03 < blended["rolling"]["variation"] < 0.032  # the README's 3.08 % for a 12° blend
+
+
+def test_walker_charts(tmp_path):
+    from gearcad.export.charts import papers
+    from gearcad.pitch import walker_polar
+    from gearcad.pitch.pair import conjugate_pair
+
+    i_paper = 3.207678
+    law = W.ratio_law(G)
+    papers.walker_speed_chart(S.speed_comparison(G, i_paper=i_paper, law=law), tmp_path / "speed.png")
+    paper = walker_polar.paper_polar(G, i_paper)
+    # the paper's wheel is four copies of its quarter law: largest radius at 0°, 90°, …
+    r = np.array(paper["wheel_r"])
+    assert r[0] == pytest.approx(61.37, abs=0.005) and r[180] == pytest.approx(61.37, abs=0.005)
+    assert r[90] == pytest.approx(57.18, abs=0.005)  # Table 1 at φ = ±45°
+    pair = conjugate_pair(
+        W.wheel_curve(W.ratio_law(G, blend_width=math.radians(12))), mate_lobes=1, center_distance=G.L
+    )
+    rolling = walker_polar.pair_polar(pair)
+    # at the start the wheel's largest radius meets the pinion's smallest: they sum to L
+    assert rolling["wheel_r"][0] + rolling["pinion_r"][360] == pytest.approx(G.L, abs=1e-9)
+    papers.walker_pitch_chart(paper, rolling, tmp_path / "pitch.png")
+    ring = S.shoe_ring(G, tolerance=0.01)
+    hubs = np.radians([-45, -20, 0, 20, 45])
+    poses = [(p, p, tuple(S.crank_pin(G, p)[0])) for p in hubs]
+    papers.shoe_chart(ring, poses, K, tmp_path / "shoe.png")
+    for name in ("speed.png", "pitch.png", "shoe.png"):
+        data = (tmp_path / name).read_bytes()
+        assert data[:8] == b"\x89PNG\r\n\x1a\n" and len(data) > 20000, name

@@ -230,10 +230,12 @@ def test_simple_limits_fall_with_the_roller_radius_and_bound_the_loops(table, di
             assert not shapely.LinearRing(_contour(direction, 1.02 * limit, m, r, tau)).is_simple, (m, r)
 
 
-def test_the_bare_vertical_roller_path_never_crosses_itself(table):
-    """x = sin τ is shared only by τ and π − τ, whose y differ by 2cos τ: no crossing for any a,
-    so the r = 0 simple limit is reported as none (inf / None)."""
-    assert math.isinf(table.simple["vertical"][0, 0])
+def test_the_bare_vertical_roller_path_never_crosses_itself_for_odd_m(table):
+    """x = sin τ is shared only by τ and π − τ, whose y differ by 2cos τ when m is odd: no
+    crossing for any a, so the r = 0 simple limit is reported as none (inf / None).  For even m
+    the difference is 2cos τ + 2a·sin mτ, which does vanish: a finite limit."""
+    assert math.isinf(table.simple["vertical"][0, 0]) and math.isinf(table.simple["vertical"][2, 0])
+    assert math.isfinite(table.simple["vertical"][1, 0])
     assert table.as_dict()["simple"]["vertical"][0][0] is None
 
 
@@ -268,3 +270,21 @@ def test_shape_family_kinds_and_orientation():
         assert np.allclose(pts[0], pts[-1])
         if f["kind"] != "looped":
             assert shapely.Polygon(pts).is_valid and shapely.LinearRing(pts).is_ccw
+
+
+def _png_size(path):
+    from PIL import Image
+
+    assert path.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    with Image.open(path) as im:
+        return im.size
+
+
+def test_charts_of_the_limits_against_r_and_the_shape_families(table, tmp_path):
+    from gearcad.export.charts import papers
+
+    papers.limits_vs_r_chart(table.as_dict(), tmp_path / "limits_r.png", paper_by_eye=C.PAPER_BY_EYE)
+    family = C.shape_family("vertical", 3, [0.1, 0.15, 0.2], [0.0, 0.2, 0.4], samples=181)
+    papers.shape_family_chart(family, tmp_path / "family.png", title="m = 3")
+    assert _png_size(tmp_path / "limits_r.png")[0] > 1000
+    assert _png_size(tmp_path / "family.png") == (792, 792)  # 3 × 2.4 in at 110 dpi

@@ -148,3 +148,11 @@ def test_omega2_from_90_to_270_is_neither_constant_nor_a_tenth(checks):
     assert got["max"] / got["min"] > 1.9
     assert not checks["from 90° to 270° ω2 "]["holds"]
     assert checks["max/min of ω2: 81 fo"]["holds"]
+
+
+def test_type2_chart(tmp_path):
+    from gearcad.export.charts import papers
+
+    papers.elliptic_type2_chart(E.type2_comparison(samples=181).as_dict(), tmp_path / "type2.png")
+    data = (tmp_path / "type2.png").read_bytes()
+    assert data[:8] == b"\x89PNG\r\n\x1a\n" and len(data) > 20000
