@@ -12,6 +12,7 @@ from scipy.optimize import brentq, minimize_scalar
 from scipy.stats import linregress
 
 from gearcad.bodies import claims as C
+from gearcad.bodies import limits as LM
 
 W = 3 * math.pi  # the paper's example: 90 rpm
 TWO_PI = 2 * math.pi
@@ -164,7 +165,7 @@ def _convex_limit_closed_form(direction, m):
 
 @pytest.fixture(scope="module")
 def table():
-    return C.amplitude_limit_table(ms=(3, 6, 9), radii=(0.0, 0.1, 0.2, 0.3, 0.4))
+    return LM.amplitude_limit_table(ms=(3, 6, 9), radii=(0.0, 0.1, 0.4))
 
 
 @pytest.mark.parametrize("direction", ["horizontal", "vertical"])
@@ -179,9 +180,9 @@ def test_convex_limits_do_not_depend_on_r_and_match_the_closed_form(table, direc
 
 def test_convex_limits_exact_values():
     assert _convex_limit_closed_form("vertical", 3) == pytest.approx(2 / (9 * math.sqrt(3)), rel=1e-12)
-    assert C.amplitude_limit("vertical", 3, r=0.1, test="convex") == pytest.approx(2 / (9 * math.sqrt(3)), rel=1e-10)
-    assert C.amplitude_limit("horizontal", 3, r=0.1, test="convex") == pytest.approx(1 / 9, rel=1e-10)
-    assert C.amplitude_limit("horizontal", 15, r=0.1, test="convex") == pytest.approx(1 / 225, rel=1e-10)
+    assert LM.amplitude_limit("vertical", 3, r=0.1, test="convex") == pytest.approx(2 / (9 * math.sqrt(3)), rel=1e-10)
+    assert LM.amplitude_limit("horizontal", 3, r=0.1, test="convex") == pytest.approx(1 / 9, rel=1e-10)
+    assert LM.amplitude_limit("horizontal", 15, r=0.1, test="convex") == pytest.approx(1 / 225, rel=1e-10)
 
 
 def test_large_roller_reaches_a_cusp_before_a_concave_stretch(table):
@@ -195,7 +196,7 @@ def test_large_roller_reaches_a_cusp_before_a_concave_stretch(table):
         return float(np.max(num / np.hypot(x1, y1) ** 3))
 
     cusp = brentq(lambda a: max_kappa(a) - 1 / 0.4, 0.01, 0.128, xtol=1e-14)
-    assert table.convex["vertical"][0, 4] == pytest.approx(cusp, rel=1e-5)
+    assert table.convex["vertical"][0, -1] == pytest.approx(cusp, rel=1e-5)  # r = 0.4
     assert cusp < _convex_limit_closed_form("vertical", 3)
 
 
@@ -240,7 +241,7 @@ def test_the_bare_vertical_roller_path_never_crosses_itself_for_odd_m(table):
 
 
 def test_roller_radius_claim_fails_with_numbers():
-    check = C.radius_claim_check("vertical", 0.1, 3)
+    check = LM.radius_claim_check("vertical", 0.1, 3)
     assert not check["holds"] and check["code"] == "paper-claim"
     rows = check["computed"]["rows"]
     tau = np.linspace(0, TWO_PI, 4096, endpoint=False)
@@ -254,15 +255,15 @@ def test_roller_radius_claim_fails_with_numbers():
 
 
 def test_nodal_points_at_a_0_2_only_for_the_larger_rollers():
-    check = C.nodal_points_check("vertical", 3, 0.2)
+    check = LM.nodal_points_check("vertical", 3, 0.2)
     tau = np.linspace(0, TWO_PI, 40000, endpoint=False)
-    looped = [r for r in C.PAPER_RADII if not shapely.LinearRing(_contour("vertical", 0.2, 3, r, tau)).is_simple]
+    looped = [r for r in LM.PAPER_RADII if not shapely.LinearRing(_contour("vertical", 0.2, 3, r, tau)).is_simple]
     assert check["computed"]["looped_for_r"] == looped == [0.2, 0.3, 0.4]
     assert not check["holds"]
 
 
 def test_shape_family_kinds_and_orientation():
-    family = C.shape_family("vertical", 3, [0.1, 0.2], [0.0, 0.4])
+    family = LM.shape_family("vertical", 3, [0.1, 0.2], [0.0, 0.4])
     kinds = {(f["amplitude"], f["r"]): f["kind"] for f in family}
     assert kinds == {(0.1, 0.0): "convex", (0.1, 0.4): "convex", (0.2, 0.0): "concave", (0.2, 0.4): "looped"}
     for f in family:
@@ -284,7 +285,7 @@ def test_charts_of_the_limits_against_r_and_the_shape_families(table, tmp_path):
     from gearcad.export.charts import papers
 
     papers.limits_vs_r_chart(table.as_dict(), tmp_path / "limits_r.png", paper_by_eye=C.PAPER_BY_EYE)
-    family = C.shape_family("vertical", 3, [0.1, 0.15, 0.2], [0.0, 0.2, 0.4], samples=181)
+    family = LM.shape_family("vertical", 3, [0.1, 0.2], [0.0, 0.4], samples=181)
     papers.shape_family_chart(family, tmp_path / "family.png", title="m = 3")
     assert _png_size(tmp_path / "limits_r.png")[0] > 1000
-    assert _png_size(tmp_path / "family.png") == (792, 792)  # 3 × 2.4 in at 110 dpi
+    assert _png_size(tmp_path / "family.png") == (528, 528)  # 2 × 2.4 in at 110 dpi

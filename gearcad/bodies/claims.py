@@ -14,9 +14,8 @@ f = a·sin mτ, g = 0 at uniform rotation φ = w·t, with α = (m + 1)w, β = (m
   fit of the by-eye limits and is reproduced; √3/m² exceeds it by 7.5–20.3 % on m = 3…15 (the
   paper says 12–25 %); and in units of the roller spacing R√3 the law is a1 = a/√3 = 1/m², not
   3/m².  The exact convex limit tends to 1/m² (units of R) for large m;
-* "the roller radius does not affect the body's shape": the convex ('oval') limit is indeed
-  independent of r (the contour's curvature has the sign of the roller path's) until the offset
-  grows a cusp, but the shape itself and the simple (loop-free) limit depend on r strongly.
+* "the roller radius does not affect the body's shape" and the amplitude limits against r:
+  :mod:`gearcad.bodies.limits`.
 
 Every function takes plain numbers and returns plain numbers, arrays or report-ready dicts.
 """
@@ -24,19 +23,14 @@ Every function takes plain numbers and returns plain numbers, arrays or report-r
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 import numpy as np
-import shapely
-from scipy.optimize import brentq, minimize_scalar
-from scipy.spatial import cKDTree
 
 from . import rollers as RB
 
 __all__ = [
     "PAPER_BY_EYE",
     "PAPER_M",
-    "PAPER_RADII",
     "paper_speed_modulus",
     "paper_acceleration_modulus",
     "acceleration_modulus",
@@ -47,28 +41,15 @@ __all__ = [
     "approximation_gap",
     "paper_a1",
     "a1_from_law",
+    "paper_check",
     "kinematics_checks",
     "amplitude_law_checks",
-    "AMPLITUDE_CAP",
-    "amplitude_limit",
-    "LimitTable",
-    "amplitude_limit_table",
-    "radius_effect",
-    "radius_claim_check",
-    "nodal_points_check",
-    "shape_family",
 ]
 
 PAPER_BY_EYE = {3: 0.15, 6: 0.05, 9: 0.025, 12: 0.01, 15: 0.005}
 """The paper's largest 'oval' amplitudes (units of R), judged by eye."""
 PAPER_M = (3, 6, 9, 12, 15)
-PAPER_RADII = (0.0, 0.1, 0.2, 0.3, 0.4)
-"""The roller radii of the paper's Figs. 1–2 (units of R)."""
 TWO_PI = 2 * math.pi
-AMPLITUDE_CAP = 1.0
-"""Amplitudes are searched up to R: a body whose centre swings out to the roller circle is no
-body.  A contour still simple there (the bare roller path of a vertical oscillation always is)
-has no simple limit, reported as ``inf`` (``None`` in JSON)."""
 
 
 def _angles(m: int, w: float):
@@ -172,7 +153,7 @@ def a1_from_law(m) -> np.ndarray:
     return math.sqrt(3) / np.asarray(m, dtype=float) ** 2 / math.sqrt(3)
 
 
-def _check(code: str, claim: str, paper, computed, holds: bool, message: str) -> dict:
+def paper_check(code: str, claim: str, paper, computed, holds: bool, message: str) -> dict:
     """One report entry: the statement, the paper's value, gearcad's, whether it holds, and the
     finding's message (the code to emit when it does not hold)."""
     return {
@@ -215,7 +196,7 @@ def kinematics_checks(*, a: float, m: int, w: float, radius: float = 1.0, sample
     tol_v, tol_a = 1e-9 * max(v_scale, 1e-300), 1e-9 * max(a_scale, 1e-300)
     amax_ok = bool(np.allclose(np.hypot(*acc_at.T), amax, rtol=1e-9))
     return [
-        _check(
+        paper_check(
             "paper-formula",
             "eq. 9: |V| of a body point",
             "as printed",
@@ -223,7 +204,7 @@ def kinematics_checks(*, a: float, m: int, w: float, radius: float = 1.0, sample
             gap_v <= tol_v,
             f"printed eq. 9 differs from the differentiated motion by up to {gap_v:.3g}",
         ),
-        _check(
+        paper_check(
             "paper-formula",
             "eq. 10: |A| of a body point",
             "+w²a[x1β²sin(wt+βt) − x1α²sin(wt−αt) + y1β²cos(wt+βt) − y1α²cos(wt−αt)]",
@@ -234,7 +215,7 @@ def kinematics_checks(*, a: float, m: int, w: float, radius: float = 1.0, sample
             f"y1α²cos(wt−αt)]; as printed it is off by up to {gap_a:.4g} "
             f"({100 * gap_a / max(a_scale, 1e-300):.0f}% of the largest |A|) here",
         ),
-        _check(
+        paper_check(
             "paper-formula",
             "instants of the centre's largest speed a·m·w",
             "t = πk/(2wm)",
@@ -243,7 +224,7 @@ def kinematics_checks(*, a: float, m: int, w: float, radius: float = 1.0, sample
             f"printed t = πk/(2wm) includes the instants of the smallest speed a·w = {a * w:.4g} (odd k); "
             f"cos(α + β)t = 1 needs t = πk/(wm) (speed a·m·w = {vmax:.4g})",
         ),
-        _check(
+        paper_check(
             "paper-formula",
             "instants of the centre's largest acceleration a·w²(m² + 1)",
             "t = (2k + 1)π/(2wm)",
@@ -261,7 +242,7 @@ def amplitude_law_checks(ms=PAPER_M, by_eye=None) -> list[dict]:
     coefficient, exponent, r2 = power_law_fit(m, [by_eye[int(k)] for k in ms])
     gap = approximation_gap(ms)
     return [
-        _check(
+        paper_check(
             "paper-claim",
             "eq. 4: a = 1.74·m^−2.07 with R² = 0.97, fitted to the by-eye limits",
             {"coefficient": 1.74, "exponent": -2.07, "r2": 0.97},
@@ -269,7 +250,7 @@ def amplitude_law_checks(ms=PAPER_M, by_eye=None) -> list[dict]:
             round(coefficient, 2) == 1.74 and round(exponent, 2) == -2.07 and round(r2, 2) == 0.97,
             f"eq. 4 reproduced as a log–log fit: {coefficient:.4f}·m^{exponent:.4f}, R² = {r2:.4f}",
         ),
-        _check(
+        paper_check(
             "paper-claim",
             "√3/m² replaces eq. 4 with an error of 12–25 % for m = 3…15",
             [0.12, 0.25],
@@ -278,7 +259,7 @@ def amplitude_law_checks(ms=PAPER_M, by_eye=None) -> list[dict]:
             f"√3/m² exceeds eq. 4 by {100 * gap.min():.1f}% (m = {int(m[0])}) to {100 * gap.max():.1f}% "
             f"(m = {int(m[-1])}), not 12–25%",
         ),
-        _check(
+        paper_check(
             "paper-formula",
             "in units of the roller spacing R√3 the law reads a1 = 3/m²",
             "a1 = 3/m²",
@@ -288,178 +269,3 @@ def amplitude_law_checks(ms=PAPER_M, by_eye=None) -> list[dict]:
             "times larger: a = 3√3/m²); eq. 4 itself gives a1 = 1.005·m^−2.07",
         ),
     ]
-
-
-def _json(values: np.ndarray) -> list:
-    return [[None if math.isinf(x) else float(x) for x in row] for row in values]
-
-
-@dataclass(frozen=True)
-class LimitTable:
-    """Largest amplitudes (units of R) keeping the contour convex / simple, per direction,
-    frequency m and roller radius r: ``convex[direction]`` is an (len(m), len(r)) array."""
-
-    m: tuple[int, ...]
-    r: tuple[float, ...]
-    convex: dict[str, np.ndarray]
-    simple: dict[str, np.ndarray]
-
-    def as_dict(self) -> dict:
-        return {
-            "m": list(self.m),
-            "r": list(self.r),
-            "convex": {d: _json(v) for d, v in self.convex.items()},
-            "simple": {d: _json(v) for d, v in self.simple.items()},
-        }
-
-
-def _convex_margin(direction: str, m: int, r: float, a: float) -> float:
-    """min over τ of κ_P and of 1/r − κ_P (roller-path curvature), each grid minimum refined by
-    Brent's method so that the margin is exact to round-off, not to the grid."""
-    osc = RB.harmonic(direction, a, m)
-    tau = np.linspace(0, TWO_PI, 4096, endpoint=False)
-    step = tau[1]
-
-    def kappa(s):
-        return float(RB.contour_curvature(osc, np.array([s]), r=0.0)[0])
-
-    margins = []
-    for sign, offset in ((1.0, 0.0), (-1.0, 1 / r if r > 0 else math.inf)):
-        if math.isinf(offset):
-            continue
-        k = int(np.argmin(offset + sign * RB.contour_curvature(osc, tau, r=0.0)))
-        res = minimize_scalar(
-            lambda s, sign=sign, offset=offset: offset + sign * kappa(s),
-            bounds=(tau[k] - step, tau[k] + step),
-            method="bounded",
-            options={"xatol": 1e-12},
-        )
-        margins.append(float(res.fun))
-    return min(margins)
-
-
-def amplitude_limit(direction: str, m: int, *, r: float, test: str) -> float:
-    """:func:`rollers.amplitude_limit` searched within ``AMPLITUDE_CAP`` (``inf`` if none below);
-    the convex limit is then polished on the refined curvature margin (the grid's minimum is
-    ~1e-7 high)."""
-    if test == "simple" and RB.is_simple(RB.harmonic(direction, AMPLITUDE_CAP, m), r=r):
-        return math.inf
-    a0 = RB.amplitude_limit(direction, m, r=r, test=test, hi=AMPLITUDE_CAP)
-    if test != "convex":
-        return a0
-    lo, hi = 0.999 * a0, 1.001 * a0
-    if _convex_margin(direction, m, r, lo) <= 0 or _convex_margin(direction, m, r, hi) >= 0:
-        return a0  # pragma: no cover - the grid value is within 0.1 % of the root
-    return brentq(lambda a: _convex_margin(direction, m, r, a), lo, hi, xtol=1e-15)
-
-
-def amplitude_limit_table(directions=("horizontal", "vertical"), ms=PAPER_M, radii=PAPER_RADII) -> LimitTable:
-    """Exact convex and simple amplitude limits for every direction, m and roller radius r."""
-    convex, simple = {}, {}
-    for d in directions:
-        convex[d] = np.array([[amplitude_limit(d, m, r=r, test="convex") for r in radii] for m in ms])
-        simple[d] = np.array([[amplitude_limit(d, m, r=r, test="simple") for r in radii] for m in ms])
-    return LimitTable(tuple(int(m) for m in ms), tuple(float(r) for r in radii), convex, simple)
-
-
-def _normalised(points: np.ndarray) -> np.ndarray:
-    """The contour scaled about the body centre to unit area-equivalent radius."""
-    return points / math.sqrt(abs(shapely.Polygon(points).area) / math.pi)
-
-
-def _hausdorff(p: np.ndarray, q: np.ndarray) -> float:
-    """Hausdorff distance of two densely sampled closed curves (to the sample spacing)."""
-    return float(max(cKDTree(q).query(p)[0].max(), cKDTree(p).query(q)[0].max()))
-
-
-def _finite(x: float) -> float | None:
-    return None if math.isinf(x) else x
-
-
-def radius_effect(direction: str, amplitude: float, m: int, radii=PAPER_RADII, samples: int = 4096) -> list[dict]:
-    """What the roller radius does to the body, one row per r (units of R).
-
-    ``out_of_round`` is (ρmax − ρmin)/(ρmax + ρmin) of the distance from the body centre;
-    ``shape_distance`` the Hausdorff distance between the contour and the roller path (r = 0),
-    both scaled to unit area-equivalent radius — zero if r only scaled the body.
-    """
-    osc = RB.harmonic(direction, amplitude, m)
-    tau = np.linspace(0, TWO_PI, samples, endpoint=False)
-    reference = _normalised(RB.roller_path(osc, tau))
-    rows = []
-    for r in radii:
-        pts = RB.contour(osc, tau, r=r)
-        rho = np.hypot(*pts.T)
-        simple = RB.is_simple(osc, r=r)
-        rows.append(
-            {
-                "r": float(r),
-                "convex": RB.is_convex(osc, r=r),
-                "simple": simple,
-                "out_of_round": float((rho.max() - rho.min()) / (rho.max() + rho.min())),
-                "shape_distance": _hausdorff(reference, _normalised(pts)) if simple else None,
-                "convex_limit": amplitude_limit(direction, m, r=r, test="convex"),
-                "simple_limit": _finite(amplitude_limit(direction, m, r=r, test="simple")),
-            }
-        )
-    return rows
-
-
-def radius_claim_check(direction: str = "vertical", amplitude: float = 0.1, m: int = 3, radii=PAPER_RADII) -> dict:
-    """'The roller radius does not affect the body's shape' (about Fig. 1), with the numbers."""
-    rows = radius_effect(direction, amplitude, m, radii)
-    simple = [math.inf if row["simple_limit"] is None else row["simple_limit"] for row in rows]
-    convex = [row["convex_limit"] for row in rows]
-    oor = [row["out_of_round"] for row in rows]
-    message = (
-        f"the roller radius changes the body ({direction}, m = {m}, a = {amplitude:g}): over r = "
-        f"{rows[0]['r']:g}…{rows[-1]['r']:g} R the out-of-roundness goes {oor[0]:.4f}→{oor[-1]:.4f} and the "
-        f"largest loop-free amplitude {simple[0]:.4f}→{simple[-1]:.4f}; the convex ('oval') limit "
-        f"{min(convex):.4f}…{max(convex):.4f} depends on r only where the offset grows a cusp"
-    )
-    return _check(
-        "paper-claim",
-        "the roller radius does not affect the body's shape",
-        "no effect",
-        {"rows": rows},
-        max(simple) - min(simple) < 1e-6 and max(oor) - min(oor) < 1e-6,
-        message,
-    )
-
-
-def nodal_points_check(direction: str = "vertical", m: int = 3, amplitude: float = 0.2, radii=PAPER_RADII) -> dict:
-    """'At a = 0.2 nodal points appear on the contour' (m = 3, Fig. 1, all radii drawn)."""
-    osc = RB.harmonic(direction, amplitude, m)
-    looped = [float(r) for r in radii if not RB.is_simple(osc, r=r)]
-    clean = [float(r) for r in radii if float(r) not in looped]
-    return _check(
-        "paper-claim",
-        f"at a = {amplitude:g} (m = {m}) the contour has nodal points",
-        "for every roller radius of the figure",
-        {"looped_for_r": looped, "loop_free_for_r": clean},
-        not clean,
-        f"at a = {amplitude:g} ({direction}, m = {m}) the contour has loops only for r in {looped}; "
-        f"for r in {clean} it has none",
-    )
-
-
-def shape_family(direction: str, m: int, amplitudes, radii, samples: int = 721) -> list[dict]:
-    """Contours for the paper's Figs. 1–2: one entry per (amplitude, r) with its kind.
-
-    ``kind`` is "convex" (the paper's 'oval'), "concave" (simple with concave stretches) or
-    "looped" (self-crossing or cusped: the paper's nodal points).  ``points`` (n, 2) in units of
-    R, counter-clockwise, closed (first point repeated).
-    """
-    tau = np.linspace(0, TWO_PI, samples)
-    out = []
-    for a in amplitudes:
-        osc = RB.harmonic(direction, a, m)
-        for r in radii:
-            if not RB.is_simple(osc, r=r):
-                kind = "looped"
-            elif RB.is_convex(osc, r=r):
-                kind = "convex"
-            else:
-                kind = "concave"
-            out.append({"amplitude": float(a), "r": float(r), "kind": kind, "points": RB.contour(osc, tau, r=r)[::-1]})
-    return out
