@@ -18,6 +18,8 @@ CODES: dict[str, str] = {
     "blend": "corners were blended: the ratio law differs from the required one near the seams",
     "paper-table": "a printed table value differs from the paper's own formula",
     "paper-formula": "a printed formula does not follow from the paper's own equations; the derived one is used",
+    "paper-claim": "a statement in a paper's text does not hold against its own equations; the report has the numbers",
+    "paper-root": "a printed closed form takes the wrong root over part of the allowed range; the right root is used",
     "teeth-fit": "a dimension was adjusted so that a whole number of teeth fits (the report gives both)",
     "undercut": "the rack cuts into the lower flanks of some teeth (weaker teeth, shorter contact)",
     "pointed": "some teeth have pointed or nearly pointed tips (under 0.2 module of tip land)",

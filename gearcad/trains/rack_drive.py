@@ -11,6 +11,14 @@ l² = L² + H² − (R − r)² (the printed eq. 2 has + (R − r)²: it does no
 Rates: ω2 = (r/R)·ω1/(1 + cos β) (eq. 8), ω3 = β̇ = (r/l)·ω1·tan(β/2) (eq. 11) and
 ε2 = (r/R)·[ε1/(1 + cos β) + ω1·ω3·sin β/(1 + cos β)²] — the printed eq. 9 lacks the square.
 
+Eq. 10 as printed, sin β = L(R − r)/(L² + H²)·[√(1 + (L² + H²)/L²·(H²/(R − r)² − 1)) − 1], is
+the quadratic's root with the square root's sign taken as sgn(L·(R − r)): it is the rack's
+root only where L·(R − r)·H > 0 — with R < r (or the driver behind or below the wheel) it is
+the other root, the lower common tangent, which runs under the wheels.  It is undefined for
+L = 0 or R = r.  The paper's second method (eqs. 12–13: equal projections of the velocities
+of the tangent points A and B on the rack, and the rack's instantaneous centre) is
+:func:`velocity_projections`, an independent check of eqs. 8 and 11.
+
 The motion law φ2(φ1) two ways: from the closed contour (eqs. 3, 5 with L1 = L − R·Δφ2),
 which is explicit in β and inverted by a bracketed root finder; and by integrating eq. 8
 with β updated from eq. 10 (an ODE solved with DOP853).  They must agree.
@@ -36,6 +44,13 @@ __all__ = [
     "law_by_contour",
     "law_by_rates",
     "rates",
+    "inclination_roots",
+    "paper_inclination_at",
+    "paper_root_is_right",
+    "eq10_check",
+    "Projections",
+    "velocity_projections",
+    "projection_check",
 ]
 
 
@@ -142,3 +157,158 @@ def law_by_rates(d: RackDrive, phi1: np.ndarray) -> np.ndarray:
     if not sol.success:
         raise DesignError(f"the motion law could not be integrated: {sol.message}")
     return sol.y[0]
+
+
+def inclination_roots(d: RackDrive, L=None) -> tuple[np.ndarray, np.ndarray]:
+    """Both roots of H·cos β − L·sin β = R − r: the rack's (upper common tangent, as drawn)
+    and the other one (lower common tangent), each in (−π, π]."""
+    L = d.L if L is None else np.asarray(L, dtype=float)
+    rho = np.hypot(L, d.H)
+    ratio = (d.R - d.r) / rho
+    if np.any(np.abs(ratio) > 1):
+        raise DesignError("the rack cannot touch both wheels: (R − r) exceeds the distance between the centres")
+    gamma = np.arctan2(L, d.H)
+    upper = np.arccos(ratio) - gamma
+    lower = -np.arccos(ratio) - gamma
+    return np.angle(np.exp(1j * upper)), np.angle(np.exp(1j * lower))
+
+
+def paper_inclination_at(d: RackDrive, L=None) -> np.ndarray:
+    """Eq. 10 as printed, vectorised over L; NaN where it is undefined (L = 0 or R = r)."""
+    L = np.atleast_1d(np.asarray(d.L if L is None else L, dtype=float))
+    k = d.R - d.r
+    out = np.full(L.shape, np.nan)
+    if k == 0:
+        return out
+    ok = L != 0
+    Lo = L[ok]
+    rho2 = Lo * Lo + d.H * d.H
+    s = Lo * k / rho2 * (np.sqrt(1 + rho2 / (Lo * Lo) * (d.H * d.H / (k * k) - 1)) - 1)
+    out[ok] = np.arcsin(np.clip(s, -1.0, 1.0))
+    return out
+
+
+def paper_root_is_right(d: RackDrive, L=None) -> np.ndarray:
+    """Where the printed eq. 10 gives the rack's root: L·(R − r)·H > 0."""
+    L = np.asarray(d.L if L is None else L, dtype=float)
+    return L * (d.R - d.r) * d.H > 0
+
+
+def eq10_check(d: RackDrive, L_values) -> dict:
+    """Eq. 10 as printed against the rack's β over the horizontal distances ``L_values`` (mm).
+
+    Report-ready: the largest |Δβ| (rad), the L range where the printed form picks the other
+    root or is undefined, and whether it holds over the whole range.
+    """
+    L_values = np.asarray(L_values, dtype=float)
+    beta, other = inclination_roots(d, L_values)
+    printed = paper_inclination_at(d, L_values)
+    gap = np.abs(printed - beta)
+    wrong = ~np.isfinite(printed) | (gap > 1e-9)
+    on_other = np.isfinite(printed) & (np.abs(np.sin(printed) - np.sin(other)) < 1e-9) & wrong
+    where = L_values[wrong]
+    holds = not bool(np.any(wrong))
+    parts = []
+    if np.any(on_other):
+        parts.append(
+            f"for L in [{L_values[on_other].min():g}, {L_values[on_other].max():g}] mm it gives the other root "
+            f"(the lower common tangent, under the wheels), off by up to {np.degrees(np.max(gap[on_other])):.3f}°"
+        )
+    if np.any(~np.isfinite(printed)):
+        parts.append("it is undefined at L = 0" if d.R != d.r else "it is undefined for R = r")
+    message = (
+        "printed eq. 10 gives the rack's inclination over the whole range"
+        if holds
+        else f"printed eq. 10 takes the square root with the sign of L·(R − r) (R − r = {d.R - d.r:g} mm, "
+        f"H = {d.H:g} mm): " + "; ".join(parts) + ". The rack's root is "
+        "sin β = (H·√(L² + H² − (R − r)²) − L(R − r))/(L² + H²)"
+    )
+    return {
+        "code": "paper-root",
+        "claim": "eq. 10: sin β in closed form",
+        "holds": holds,
+        "largest_difference_rad": float(np.nanmax(np.where(np.isfinite(printed), gap, np.nan), initial=0.0)),
+        "wrong_for_L": [float(where.min()), float(where.max())] if where.size else None,
+        "undefined": bool(np.any(~np.isfinite(printed))),
+        "message": message,
+    }
+
+
+@dataclass(frozen=True)
+class Projections:
+    """The rates from the paper's second method (eqs. 12–13), in the fixed frame: wheel 2 at
+    the origin rolling on y = −R, wheel 1 at (L, H), both turning clockwise (ω > 0)."""
+
+    omega2: np.ndarray
+    """From v_A·u = v_B·u (eq. 13), rad/s."""
+    omega3: np.ndarray
+    """The rack's counter-clockwise rate about its instantaneous centre, rad/s."""
+    centre: np.ndarray
+    """(n, 2) the rack's instantaneous centre of velocities, mm (NaN where it translates)."""
+    A: np.ndarray
+    """(n, 2) tangent point on wheel 2, mm."""
+    B: np.ndarray
+    """(n, 2) tangent point on wheel 1, mm."""
+
+
+def velocity_projections(d: RackDrive, L, *, omega1: float) -> Projections:
+    """ω2 and ω3 from velocities, not from eqs. 8 and 11 (the paper's eqs. 12–13 and the rack's
+    instantaneous centre).
+
+    The rack is tangent above both wheels at A = C2 + R·n and B = C1 + r·n (n its upward normal,
+    u = (cos β, sin β) along it).  B moves with wheel 1: v_B = ω1 × (B − C1); A moves with wheel
+    2, v_A = v_C2 + ω2 × (A − C2), v_C2 = (ω2·R, 0).  The rack is rigid: v_A·u = v_B·u fixes ω2
+    (eq. 13), and its instantaneous centre P is where the normals to v_A at A and to v_B at B
+    meet; ω3 = v_B·(ẑ × (B − P))/|B − P|².
+    """
+    L = np.atleast_1d(np.asarray(L, dtype=float))
+    beta = np.atleast_1d(inclination(d, L))
+    u = np.column_stack([np.cos(beta), np.sin(beta)])
+    n = np.column_stack([-np.sin(beta), np.cos(beta)])
+    C1 = np.column_stack([L, np.full_like(L, d.H)])
+    A, B = d.R * n, C1 + d.r * n
+
+    def cw(omega, arm):  # velocity of a point at ``arm`` from the centre, clockwise rate ω
+        return omega * np.column_stack([arm[:, 1], -arm[:, 0]])
+
+    v_B = cw(omega1, B - C1)
+    # v_A = ω2·[(R, 0) + cw(1, A − C2)] is linear in ω2
+    unit_A = np.column_stack([np.full_like(L, d.R), np.zeros_like(L)]) + cw(1.0, A)
+    omega2 = np.einsum("ij,ij->i", v_B, u) / np.einsum("ij,ij->i", unit_A, u)
+    v_A = omega2[:, None] * unit_A
+    # P = A + s·perp(v_A) = B + t·perp(v_B): solve the 2×2 system for (s, t)
+    perp_A = np.column_stack([-v_A[:, 1], v_A[:, 0]])
+    perp_B = np.column_stack([-v_B[:, 1], v_B[:, 0]])
+    rhs = B - A
+    det = perp_A[:, 0] * -perp_B[:, 1] + perp_A[:, 1] * perp_B[:, 0]
+    # parallel velocities (a horizontal rack translates): no finite centre, ω3 = 0
+    turning = (
+        np.abs(det) > 1e-12 * np.einsum("ij,ij->i", perp_A, perp_A) ** 0.5 * np.einsum("ij,ij->i", v_B, v_B) ** 0.5
+    )
+    safe = np.where(turning, det, 1.0)
+    s = (rhs[:, 0] * -perp_B[:, 1] + rhs[:, 1] * perp_B[:, 0]) / safe
+    P = np.where(turning[:, None], A + s[:, None] * perp_A, np.nan)
+    arm = np.where(turning[:, None], B - P, 1.0)
+    omega3 = np.where(
+        turning,
+        np.einsum("ij,ij->i", v_B, np.column_stack([-arm[:, 1], arm[:, 0]])) / np.einsum("ij,ij->i", arm, arm),
+        0.0,
+    )
+    return Projections(omega2, omega3, P, A, B)
+
+
+def projection_check(d: RackDrive, L_values, *, omega1: float) -> dict:
+    """Eqs. 8 and 11 against the velocity projections over ``L_values``: report-ready."""
+    L_values = np.asarray(L_values, dtype=float)
+    proj = velocity_projections(d, L_values, omega1=omega1)
+    w2, w3, _ = rates(d, L_values, omega1=omega1)
+    turning = np.abs(w3) > 1e-12 * abs(omega1)  # a horizontal rack has no finite centre
+    gap2 = float(np.max(np.abs(proj.omega2 - w2)))
+    gap3 = float(np.max(np.abs(proj.omega3[turning] - w3[turning]), initial=0.0))
+    scale = float(np.max(np.abs(w2)))
+    return {
+        "claim": "eqs. 12–13: ω2 from the projections of v_A and v_B, ω3 from the rack's instantaneous centre",
+        "omega2_difference": gap2,
+        "omega3_difference": gap3,
+        "holds": gap2 <= 1e-12 * scale and gap3 <= 1e-12 * scale,
+    }
