@@ -39,6 +39,7 @@ thickness = 4.0
 chamfer = {chamfer}
 kerf = {kerf}
 dxf = "{dxf}"
+formats = {formats}
 [bore]
 diameter = {bore}
 {bore_extra}
@@ -56,11 +57,19 @@ def build(
     bore_extra="",
     animation="false",
     name="out",
+    formats='["dxf", "svg", "stl", "3mf"]',
 ):
     path = tmp_path / f"{name}.toml"
     path.write_text(
         SMALL.format(
-            tol=tol, chamfer=chamfer, kerf=kerf, dxf=dxf, bore=bore, bore_extra=bore_extra, animation=animation
+            tol=tol,
+            chamfer=chamfer,
+            kerf=kerf,
+            dxf=dxf,
+            bore=bore,
+            bore_extra=bore_extra,
+            animation=animation,
+            formats=formats,
         )
     )
     out = tmp_path / name
@@ -81,7 +90,7 @@ def cut_polygon(path: Path) -> shapely.Polygon:
 
 
 def test_dxf_reads_back_as_the_outline_within_tolerance(tmp_path):
-    folder, report = build(tmp_path)
+    folder, report = build(tmp_path, formats='["dxf"]')
     for gear in report["gears"]:
         doc = ezdxf.readfile(folder / f"{gear['name']}.dxf")
         assert not doc.audit().has_errors and doc.units == 4
@@ -162,7 +171,16 @@ def test_counts_fall_as_the_tolerance_loosens(tmp_path):
 def test_chamfer_removes_a_45_degree_edge(tmp_path):
     """On a friction wheel (pitch curve part, no teeth) every edge takes the 45° chamfer."""
     path = tmp_path / "wheel.toml"
-    text = SMALL.format(tol=0.001, chamfer=0.3, kerf=0, dxf="polyline", bore=3.0, bore_extra="", animation="false")
+    text = SMALL.format(
+        tol=0.001,
+        chamfer=0.3,
+        kerf=0,
+        dxf="polyline",
+        bore=3.0,
+        bore_extra="",
+        animation="false",
+        formats='["dxf", "svg", "stl", "3mf"]',
+    )
     path.write_text(text.replace("[teeth]\ncount = 25\n", ""))
     assert main(["build", str(path), "--out", str(tmp_path / "out")]) == 0
     folder = tmp_path / "out" / "small"
@@ -194,7 +212,16 @@ def test_chamfer_on_toothed_gears(tmp_path):
 def test_chamfer_the_teeth_cannot_take_is_refused(tmp_path, capsys):
     path = tmp_path / "p.toml"
     path.write_text(
-        SMALL.format(tol=0.001, chamfer=0.9, kerf=0, dxf="polyline", bore=3.0, bore_extra="", animation="false")
+        SMALL.format(
+            tol=0.001,
+            chamfer=0.9,
+            kerf=0,
+            dxf="polyline",
+            bore=3.0,
+            bore_extra="",
+            animation="false",
+            formats='["dxf", "svg", "stl", "3mf"]',
+        )
     )
     assert main(["build", str(path), "--out", str(tmp_path / "out")]) == 2
     assert "output.chamfer = 0.9" in capsys.readouterr().err
@@ -228,7 +255,9 @@ def test_bore_that_leaves_no_wall_is_refused(tmp_path, capsys):
     # the near apex of a focus-pivoted ellipse a = 20, b = 16 is 8 mm from the pivot, its root
     # about 6.2 mm: an 11 mm bore leaves 0.7 mm, under one module
     path.write_text(
-        SMALL.format(tol=0.001, chamfer=0, kerf=0, dxf="polyline", bore=11.0, bore_extra="", animation="false")
+        SMALL.format(
+            tol=0.001, chamfer=0, kerf=0, dxf="polyline", bore=11.0, bore_extra="", animation="false", formats='["dxf"]'
+        )
     )
     assert main(["build", str(path), "--out", str(tmp_path / "out")]) == 2
     err = capsys.readouterr().err
@@ -251,7 +280,7 @@ def test_a_manifold_error_is_a_clear_error():
 def test_every_flavour_describes_the_same_outline(tmp_path):
     shapes = {}
     for flavour in ("polyline", "lines-arcs", "polyline-flat"):
-        folder, _ = build(tmp_path, dxf=flavour, name=flavour.replace("-", "_"))
+        folder, _ = build(tmp_path, dxf=flavour, name=flavour.replace("-", "_"), formats='["dxf"]')
         doc = ezdxf.readfile(folder / "a.dxf")
         assert not doc.audit().has_errors
         if flavour == "lines-arcs":

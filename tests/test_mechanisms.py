@@ -98,7 +98,8 @@ def test_roller_body_profile_builds(tmp_path):
     r, scale = teeth["roller_radius"], report["body"]["scale"]
     assert teeth["module"] == pytest.approx(2 * r * scale / 12, rel=1e-12)
     assert abs(r - 0.1) < 0.1 * 2 / teeth["body_teeth"]  # nudged by less than a tooth's worth
-    assert [w["code"] for w in report["warnings"]] == ["teeth-fit"]
+    codes = [w["code"] for w in report["warnings"]]
+    assert "teeth-fit" in codes and all(c == "teeth-fit" or c.startswith("paper-") for c in codes)
     # as assembled every roller meshes: no overlap, and turned slightly either way it bites
     allowed = 2 * 0.001 * 2.25 * teeth["module"]
     assembly = report["assembly"]

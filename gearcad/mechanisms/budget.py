@@ -21,6 +21,15 @@ POINT_BUDGET = 600_000
 """Outline points (fine cut, every gear of a design) one build may need."""
 POINTS_PER_TOOTH = 2.0
 """Points per tooth per √(module / fine tolerance): above the largest seen on the profiles."""
+MAX_TEETH = 5000
+"""Most teeth on one gear: beyond the points, each tooth space costs ~4 ms of its own (its loops
+are removed one space at a time), so 5000 teeth take ~25 s on the reference machine (measured
+on roller bodies: 5032 teeth 24 s, 8050 teeth 36 s, 40 252 teeth over 120 s)."""
+FINEST_TOLERANCE = 1e-4
+"""The smallest output.tolerance a profile accepts, mm: never suggest a finer one."""
+MODULE_PER_TOLERANCE = 4.0
+"""Smallest module per output.tolerance: a flank 2.25·m deep drawn within a tolerance of more
+than a quarter module is no flank (on the spur pair the mesh proof fails below ~3)."""
 
 
 def teeth_points(teeth: int, module: float, tolerance: float) -> float:
@@ -28,8 +37,24 @@ def teeth_points(teeth: int, module: float, tolerance: float) -> float:
     return POINTS_PER_TOOTH * teeth * math.sqrt(module / (tolerance * DEFAULT.fine_fraction))
 
 
-def check_teeth_work(gears: list[tuple[int, float]], tolerance: float) -> None:
-    """Refuse gears ((teeth, module) each) whose cut would take more than the point budget."""
+def check_teeth_work(
+    gears: list[tuple[int, float]], tolerance: float, *, keys: str = "teeth.module / teeth.count"
+) -> None:
+    """Refuse gears ((teeth, module) each) whose teeth the tolerance cannot draw, or whose cut
+    would take more than the point budget; ``keys`` name what sizes the teeth in the profile."""
+    most = max(z for z, _ in gears)
+    if most > MAX_TEETH:
+        raise DesignError(
+            f"a gear would carry {most:.0f} teeth (at most {MAX_TEETH}); use fewer or larger teeth ({keys})"
+        )
+    smallest = min(m for _, m in gears)
+    if smallest < MODULE_PER_TOLERANCE * tolerance:
+        finer = smallest / MODULE_PER_TOLERANCE
+        raise DesignError(
+            f"output.tolerance = {tolerance:g}: teeth of module {smallest:.4g} mm cannot be drawn within it; use "
+            + (f"output.tolerance ≤ {finer:.2g} mm, or " if finer >= FINEST_TOLERANCE else "")
+            + f"larger teeth ({keys})"
+        )
     need = sum(teeth_points(z, m, tolerance) for z, m in gears)
     if need <= POINT_BUDGET:
         return
@@ -39,7 +64,7 @@ def check_teeth_work(gears: list[tuple[int, float]], tolerance: float) -> None:
     raise DesignError(
         f"output.tolerance = {tolerance:g}: {teeth} teeth of module {max(m for _, m in gears):.4g} mm would need "
         f"about {need / 1e6:.1f} million outline points (the budget is {POINT_BUDGET / 1e6:.1f} million); use "
-        f"output.tolerance ≥ {fits:.2g} mm, or fewer or smaller teeth (teeth.count / teeth.module)"
+        f"output.tolerance ≥ {fits:.2g} mm, or fewer or smaller teeth ({keys})"
     )
 
 

@@ -82,7 +82,7 @@ def _phases(p: CarrierTrainParams) -> list[float]:
 def design(p: CarrierTrainParams) -> Design:
     """Speeds, accelerations, parts and assembly of a train on a carrier."""
     radii, centres, ring = layout(p)
-    check_teeth_work([(z, p.module) for z in p.teeth], p.output.tolerance)
+    check_teeth_work([(z, p.module) for z in p.teeth], p.output.tolerance, keys="train.module / train.teeth")
     train = CT.solve_train(
         radii,
         p.meshes,

@@ -11,6 +11,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from ..bodies import shoe as S
 from ..geometry.arcfit import decimate
 from ..pitch.discretize import polyline
 from ..pitch.gear import GearData
@@ -20,6 +21,7 @@ from ..teeth.pair import ToothedPairData, cut_pair
 from ..tolerances import DEFAULT
 from .base import Assembly, Design, Motion, Table, assembly_overlap
 from .budget import check_teeth_work
+from .pair_papers import PaperExtras, paper_extras
 from .pair_pitch import PairDesign, pitch_design
 from .parts import Placement, make_part
 
@@ -36,6 +38,8 @@ class GearPairDetail:
     teeth: ToothedPairData | None
     pitch_rings: tuple[np.ndarray, np.ndarray]
     """Each pitch curve as a polyline within the tolerance, about its pivot (mm)."""
+    papers: PaperExtras | None = None
+    """What the papers add: seed 004's statements, seed 002's shoe and vehicle speed."""
 
 
 def frames_for(cycle: float, teeth: int | None) -> int:
@@ -275,6 +279,10 @@ def design(params: GearPairParams) -> Design:
         )
     placements = tuple(Placement(g.name, 0.0, g.pivot) for g in pitch.gears)
     overlap = assembly_overlap({p.name: p for p in parts}, list(placements), [(0, 1)])
+    papers = paper_extras(params, pitch)
+    if papers.shoe is not None:  # the walker's leg, standing at hub angle 0 below the wheel's pivot
+        parts.append(make_part("shoe", papers.shoe, output=out))
+        placements += (Placement("shoe", 0.0, tuple(S.crank_pin(papers.geometry, 0.0)[0])),)
     if teeth is not None:
         mesh = teeth.mesh
         meshes = [mesh] + ([m for _, m in proofs] if proofs else [])
@@ -286,7 +294,7 @@ def design(params: GearPairParams) -> Design:
         )
     else:
         assembly = Assembly(overlap, 2 * out.tolerance * pitch.gears[0].r_min)
-    findings = pitch.findings + (teeth.findings if teeth is not None else ())
+    findings = pitch.findings + (teeth.findings if teeth is not None else ()) + papers.findings
     cycle = pitch.pair.cycle
     phi1 = np.linspace(0.0, cycle, frames_for(cycle, teeth.plan.teeth[0] if teeth else None), endpoint=False)
     kin = pitch.kinematics
@@ -304,10 +312,10 @@ def design(params: GearPairParams) -> Design:
         part_list=tuple(parts),
         placements=placements,
         assembly=assembly,
-        data=_report_data(params, pitch, teeth, parts, helical, proofs),
+        data={**_report_data(params, pitch, teeth, parts, helical, proofs), **papers.data},
         sections={} if helical is None else {p.name: g for p, g in zip(parts, helical.gears)},
         units=UNITS,
-        detail=GearPairDetail(pitch, teeth, rings),
+        detail=GearPairDetail(pitch, teeth, rings, papers),
         details=tuple(_details(pitch, teeth)),
         motion=Motion((parts[0].name, parts[1].name), np.column_stack([-phi1, pitch.pair.angle_map(phi1)])),
         tables=(table,),

@@ -8,6 +8,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..bodies import claims as C
+from ..bodies import limits as LM
 from ..bodies import rollers as RB
 from ..errors import DesignError
 from ..findings import Finding, finding
@@ -19,6 +21,7 @@ from ..teeth.gear import cut_teeth
 from ..teeth.rack import Rack, RackParams
 from ..tolerances import DEFAULT
 from .base import Assembly, Design, assembly_overlap
+from .budget import check_teeth_work
 from .parts import Placement, make_part
 
 __all__ = ["RollerBodyDetail", "design", "PAPER_M"]
@@ -71,6 +74,7 @@ def _toothed_body(osc: RB.Oscillation, p: RollerBodyParams) -> dict:
     if not RB.is_simple(osc, r=r):
         raise DesignError(f"teeth.roller_count = {z_r}: the roller radius it needs ({r:.4f} R) breaks the contour")
     module = 2 * r * p.scale / z_r
+    check_teeth_work([(z_b, module), (3 * z_r, module)], p.output.tolerance, keys="teeth.roller_count / body.scale")
     frame = ParametricFrame(RB.contour(osc, -u, r=r) * p.scale)
     if not math.isclose(frame.perimeter, z_b * math.pi * module, rel_tol=1e-9):
         raise DesignError("the body's perimeter does not fit its teeth (the contour is not a parallel of its path)")
@@ -163,6 +167,14 @@ def design(p: RollerBodyParams) -> Design:
             "paper_regression": [1.74 * m**-2.07 for m in ms],
             "power_law_convex": {"coefficient": float(math.exp(logc)), "exponent": float(k)},
         }
+    # the paper's printed formulas and statements, each against an independent computation
+    checks = C.kinematics_checks(a=p.amplitude * p.scale, m=p.m, w=w, radius=p.scale) if p.direction != "series" else []
+    checks += C.amplitude_law_checks() + [LM.radius_claim_check(), LM.nodal_points_check()]
+    data["paper_checks"] = checks
+    findings += [finding(c["code"], c["message"], "body") for c in checks if not c["holds"]]
+    if p.direction != "series":
+        radii = sorted({*LM.PAPER_RADII, p.roller_radius})
+        data["limits_vs_r"] = LM.amplitude_limit_table((p.direction,), radii=radii).as_dict()
     summary = (
         f"{'convex' if convex else 'not convex'}, "
         + (f"amplitude limits convex {limits[p.m][0]:.5f} / simple {limits[p.m][1]:.5f} R, " if limits else "")

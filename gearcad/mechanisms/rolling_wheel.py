@@ -85,6 +85,11 @@ def design(p: RollingWheelParams) -> Design:
         )
     if difference > 1e-9:
         findings.append(finding("not-closed", f"the two motion laws differ by {difference:.3g} rad", "drive"))
+    along = p.L - p.R * motion.by_contour  # horizontal distances over the travel
+    checks = {"eq10": RD.eq10_check(d, along), "projections": RD.projection_check(d, along, omega1=w1)}
+    for check in checks.values():
+        if not check.get("holds", True) and check.get("code"):
+            findings.append(finding(check["code"], check["message"], "drive"))
     paper_beta = RD.paper_inclination(d) if p.R != p.r else None
     data = {
         "drive": {"r": p.r, "R": p.R, "L": p.L, "H": p.H, "travel": p.travel, "driver_rpm": p.driver_rpm},
@@ -108,6 +113,7 @@ def design(p: RollingWheelParams) -> Design:
             "ratio_start": float(w2[0] / w1),
             "ratio_horizontal_rack": p.r / (2 * p.R),
         },
+        "checks": checks,
     }
     out = p.output
     fine = out.tolerance * DEFAULT.fine_fraction

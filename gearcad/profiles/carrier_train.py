@@ -8,7 +8,7 @@ from typing import Annotated, Literal
 from pydantic import model_validator
 
 from .common import BoreParams, OutputParams, ParamsModel, distinct_names
-from .values import Must, PartName, PressureAngleDeg, Problems, Text, choice, integer, number
+from .values import Must, PartName, Problems, StandardRackPressureAngleDeg, Text, choice, integer, number
 
 __all__ = ["TrainParams", "CarrierTrainParams"]
 
@@ -45,7 +45,7 @@ class TrainParams(ParamsModel):
     """Angular acceleration of gear 1, rad/s²."""
     carrier_eps: Acceleration = 0.0
     """Angular acceleration of the carrier, rad/s²."""
-    pressure_angle_deg: PressureAngleDeg = 20.0
+    pressure_angle_deg: StandardRackPressureAngleDeg = 20.0
     """Pressure angle of the rack, degrees."""
 
     @model_validator(mode="after")

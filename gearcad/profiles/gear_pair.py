@@ -41,7 +41,7 @@ class Gear2Params(ParamsModel):
     name: PartName = "gear2"
     """The mate's name: its files are named after it."""
     lobes: Lobes | None = None
-    """Lobes of the mate (default: gear1's): it turns lobes1/lobes2 of a turn per driver turn."""
+    """Lobes of the mate (default: gear1's; 1 for a walker wheel): it turns lobes1/lobes2 of a turn per driver turn."""
 
 
 class PairParams(ParamsModel):
@@ -146,7 +146,9 @@ class GearPairParams(ParamsModel):
 
     @property
     def gear2_lobes(self) -> int:
-        return self.gear2.lobes if self.gear2.lobes is not None else self.gear1.lobes
+        if self.gear2.lobes is not None:
+            return self.gear2.lobes
+        return 1 if isinstance(self.gear1, WalkerParams) else self.gear1.lobes
 
     @property
     def center_distance(self) -> float | None:
@@ -179,6 +181,13 @@ class GearPairParams(ParamsModel):
                 "solve",
                 f"must be a length in mm for a {gear1.curve} gear: its law fixes the shape, "
                 "the centre distance its size",
+            )
+        if isinstance(gear1, WalkerParams) and lobes2 != 1:
+            problems.add(
+                "gear2.lobes",
+                lobes2,
+                "must be 1 for a walker wheel: its law turns the pinion once per quarter turn of the wheel "
+                "(4:1), so the pinion has one lobe",
             )
         if self.claim is not None and lobes2 != lobes1:
             problems.add(

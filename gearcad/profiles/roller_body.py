@@ -6,7 +6,7 @@ import math
 from typing import Literal
 
 from .common import BoreParams, OutputParams, ParamsModel
-from .values import PartName, PressureAngleDeg, Speed, Text, choice, integer, number, terms
+from .values import PartName, Speed, StandardRackPressureAngleDeg, Text, choice, integer, number, terms
 
 __all__ = ["BodyParams", "KinematicsParams", "RollerTeethParams", "RollerBodyParams"]
 
@@ -52,7 +52,7 @@ class RollerTeethParams(ParamsModel):
 
     roller_count: RollerCount
     """Teeth on each roller (the roller radius is nudged so that they fit)."""
-    pressure_angle_deg: PressureAngleDeg = 20.0
+    pressure_angle_deg: StandardRackPressureAngleDeg = 20.0
     """Pressure angle of the rack, degrees."""
 
 

@@ -33,6 +33,7 @@ __all__ = [
     "NAME_RULE",
     "Speed",
     "PressureAngleDeg",
+    "StandardRackPressureAngleDeg",
     "close_enough",
 ]
 
@@ -161,6 +162,13 @@ Size = Annotated[tuple[Length, Length], Must("[width, height]: two lengths in mm
 """A rectangle, mm: a sheet or a printer bed."""
 Speed = number("a speed in rev/min", gt=0)
 PressureAngleDeg = number("an angle in degrees", ge=10, le=35)
+StandardRackPressureAngleDeg = number(
+    "an angle in degrees",
+    ge=10,
+    le=23,
+    why=" (the standard rack, tip rounding 0.38·m and dedendum 1.25·m, comes to a point beyond 23.1°)",
+)
+"""The pressure angle of a mechanism whose rack has no other keys (carrier trains, roller bodies)."""
 Text = Annotated[str, Field(strict=True), Must("a string")]
 Flag = Annotated[bool, Field(strict=True), Must("true or false")]
 

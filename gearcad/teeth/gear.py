@@ -162,6 +162,8 @@ def remove_loops(points: np.ndarray) -> tuple[np.ndarray, int]:
 
     Where segment i crosses a later segment j, the vertices between them form a loop that
     both sides of the rack removed; the polyline goes straight through the crossing instead.
+    Every outermost loop found in one pass is cut at once (a loop starts after the previous
+    one ends); passes repeat until no crossing is left.
     """
     removed = 0
     while len(points) > 3:
@@ -170,10 +172,16 @@ def remove_loops(points: np.ndarray) -> tuple[np.ndarray, int]:
         i, j, t = _crossings(a, d)
         if not len(i):
             break
-        k = np.lexsort((-j, i))[0]  # earliest segment, outermost loop
-        cross = a[i[k]] + t[k] * d[i[k]]
-        points = np.vstack([points[: i[k] + 1], cross, points[j[k] + 1 :]])
-        removed += 1
+        order = np.lexsort((-j, i))  # by first segment, the outermost loop first
+        keep, start, after = [], 0, -1
+        for k in order:
+            if i[k] <= after:
+                continue  # inside (or overlapping) a loop already cut
+            keep += [points[start : i[k] + 1], (a[i[k]] + t[k] * d[i[k]])[None, :]]
+            start, after = j[k] + 1, j[k]
+            removed += 1
+        keep.append(points[start:])
+        points = np.vstack(keep)
     return points, removed
 
 

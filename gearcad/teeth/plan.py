@@ -17,7 +17,10 @@ import numpy as np
 from ..errors import DesignError
 from .frame import ArcFrame
 
-__all__ = ["ToothPlan", "plan_teeth"]
+__all__ = ["ToothPlan", "plan_teeth", "COUNT_RANGE"]
+
+COUNT_RANGE = (6, 2000)
+"""The tooth counts a profile's teeth.count accepts: what a message may suggest."""
 
 
 @dataclass(frozen=True)
@@ -73,11 +76,20 @@ def plan_teeth(
                 f"the count must be a multiple of {step}"
             )
         if fraction is not None and not _identical_ok(z1, fraction):
-            options = [z for z in range(max(3, count - 8), count + 9) if valid(z)]
+            # only counts that teeth.count itself accepts, nearest first
+            near = sorted(
+                range(max(COUNT_RANGE[0], count - 64), min(COUNT_RANGE[1], count + 64) + 1),
+                key=lambda z: (abs(z - count), z),
+            )
+            options = [z for z in near if valid(z)][:4]
             raise DesignError(
                 f"teeth.count = {count}: the two gears are identical, so a tooth must meet a space "
-                f"at the apexes, which {count} teeth cannot do; nearest counts that can: "
-                + ", ".join(map(str, sorted(options, key=lambda z: (abs(z - count), z))[:4]))
+                f"at the apexes, which {count} teeth cannot do; "
+                + (
+                    f"nearest counts that can: {', '.join(map(str, options))}"
+                    if options
+                    else "give teeth.module instead"
+                )
             )
     else:
         ideal = frame1.perimeter / (math.pi * module)

@@ -69,10 +69,19 @@ class Rack:
         v_c = v_root + rho
         u_c = w0 + v_c * math.tan(a) - rho / math.cos(a)
         if u_c < -1e-12:
-            limit = (w0 + v_root * math.tan(a)) * math.cos(a) / (1 - math.sin(a)) / m
+            # the rack tooth's half width at its tip line: the room the fillet has
+            room = w0 + v_root * math.tan(a)
+            if room <= 0:  # pointed before its tip line: no fillet fits, the tooth is too deep
+                most = p.profile_shift + (w0 - rho * (1 - math.sin(a)) / math.cos(a)) / (m * math.tan(a))
+                raise DesignError(
+                    f"teeth.dedendum = {p.dedendum:g}: the rack tooth comes to a point before that depth at "
+                    f"{math.degrees(a):g}°; at most {max(most, 0):.3f} fits with teeth.tip_radius = {p.tip_radius:g} "
+                    "(or a smaller teeth.pressure_angle_deg)"
+                )
+            limit = room * math.cos(a) / (1 - math.sin(a)) / m
             raise DesignError(
                 f"teeth.tip_radius = {p.tip_radius:g}: the rack tip is too narrow for this fillet; "
-                f"at most {max(limit, 0):.3f} fits"
+                f"at most {limit:.3f} fits"
             )
         return cls(
             params=p,

@@ -11,6 +11,8 @@ from collections.abc import Callable
 
 import numpy as np
 
+from ..errors import DesignError
+
 __all__ = ["sample_curves"]
 
 Curves = Callable[[np.ndarray, np.ndarray], np.ndarray]
@@ -24,12 +26,20 @@ def _distance_to_chord(p, a, b):
     return np.where(length > 1e-300, cross / np.where(length > 1e-300, length, 1.0), far)
 
 
-def sample_curves(func: Curves, t0, t1, tolerance: float, *, start: int = 4, max_rounds: int = 40) -> list[np.ndarray]:
+MAX_POINTS = 400_000
+"""More points than this for one set of curves means they bend more sharply than any part can
+be made: the work is refused rather than refined without end (bounded time and memory)."""
+
+
+def sample_curves(
+    func: Curves, t0, t1, tolerance: float, *, start: int = 4, max_rounds: int = 40, max_points: int = MAX_POINTS
+) -> list[np.ndarray]:
     """Sample curves ``func(ids, t) -> (n, 2)`` on their intervals [t0[i], t1[i]].
 
     Returns, for each curve i, its points (m_i, 2) from t0[i] to t1[i] inclusive, with every
     chord within ``tolerance`` of the curve at the chord's parameter midpoint and at its
-    quarter points (so an inflexion inside a chord is not missed).
+    quarter points (so an inflexion inside a chord is not missed).  Raises
+    :class:`DesignError` when that would take more than ``max_points`` points.
     """
     t0, t1 = np.asarray(t0, dtype=float), np.asarray(t1, dtype=float)
     n = len(t0)
@@ -52,6 +62,12 @@ def sample_curves(func: Curves, t0, t1, tolerance: float, *, start: int = 4, max
         if np.all(ok):
             break
         bad = ~ok
+        if 2 * np.count_nonzero(bad) + sum(len(k) for k in kept_t) > max_points:
+            raise DesignError(
+                f"the tooth outline would need more than {max_points:,} points within the tolerance: the pitch "
+                "curve bends too sharply for these teeth; use a coarser output.tolerance, or smaller or fewer teeth "
+                "(teeth.module / teeth.count)"
+            )
         m, pm = 0.5 * (a[bad] + b[bad]), pq[1][bad]
         ids = np.concatenate([ids[bad], ids[bad]])
         a, b = np.concatenate([a[bad], m]), np.concatenate([m, b[bad]])

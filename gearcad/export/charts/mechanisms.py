@@ -133,6 +133,20 @@ def draw(design, folder: Path) -> list[str]:
             names.append("amplitude_limits.png")
         field_chart(design.detail.oscillation, p, folder / "velocity_field.png", p.roller_radius)
         names.append("velocity_field.png")
+        if "limits_vs_r" in design.data:
+            from ...bodies import claims as C
+            from ...bodies import limits as LM
+            from . import papers
+
+            table = design.data["limits_vs_r"]
+            papers.limits_vs_r_chart(table, folder / "limits_vs_r.png", paper_by_eye=C.PAPER_BY_EYE)
+            names.append("limits_vs_r.png")
+            # the paper's Figs. 1 and 2: contours for several amplitudes and roller radii
+            for fig, m, amplitudes in ((1, 3, [0.1, 0.15, 0.2]), (2, 6, [0.03, 0.05, 0.1])):
+                family = LM.shape_family(p.direction, m, amplitudes, LM.PAPER_RADII)
+                name = f"shape_family_m{m}.png"
+                papers.shape_family_chart(family, folder / name, title=f"Fig. {fig}: {p.direction}, m = {m}")
+                names.append(name)
     elif design.mechanism == "rolling-wheel":
         rolling_chart(design.detail, p, folder / "motion.png")
         names.append("motion.png")

@@ -112,4 +112,24 @@ def draw(design, folder: Path) -> list[str]:
     if detail.teeth is not None:
         mesh_chart(detail.pitch, detail.teeth, folder / "mesh.png")
         names.append("mesh.png")
+    papers = detail.papers
+    if papers is not None and papers.charts:
+        from . import papers as charts
+
+        extra = papers.charts
+        if "elliptic_type2" in extra:
+            charts.elliptic_type2_chart(extra["elliptic_type2"], folder / "elliptic_type2.png")
+            names.append("elliptic_type2.png")
+        if "walker_speed" in extra:
+            charts.walker_speed_chart(extra["walker_speed"], folder / "vehicle_speed.png")
+            charts.walker_pitch_chart(*extra["walker_pitch"], folder / "paper_pitch_curves.png")
+            names += ["vehicle_speed.png", "paper_pitch_curves.png"]
+        if papers.shoe is not None:
+            from ...bodies.shoe import crank_pin
+            from ...mechanisms.pair_papers import SHOE_POSES
+
+            g = papers.geometry
+            poses = [(phi, phi, crank_pin(g, phi)[0]) for phi in SHOE_POSES]
+            charts.shoe_chart(papers.shoe, poses, g.K, folder / "shoe.png")
+            names.append("shoe.png")
     return names
