@@ -20,7 +20,8 @@ Each program runs where it is installed and skips, naming its install command, w
 
 The slower programs (Inkscape, LibreCAD, PrusaSlicer's slicing) take a representative subset
 of parts by default; ``GEARCAD_CONSUMERS=all`` runs every part of every profile (what
-``tasks.py consumers`` does).
+``tasks.py consumers`` does).  ``GEARCAD_CONSUMERS_REPORT=file.json`` writes every measured area
+error there (docs/consumers.md's table comes from such a run).
 """
 
 from __future__ import annotations
@@ -53,6 +54,20 @@ SHARE = 0.005  # every reader: the designed area within 0.5 %
 INSTALL = "python3 tasks.py consumers"
 INK = "{http://www.inkscape.org/namespaces/inkscape}"
 SVG = "{http://www.w3.org/2000/svg}"
+MEASURED: dict[str, dict[str, float]] = {}  # program -> "profile/part" -> relative area error
+
+
+@pytest.fixture(scope="module", autouse=True)
+def _measurements():
+    """Write what was measured to $GEARCAD_CONSUMERS_REPORT (if set) once the module is done."""
+    yield
+    target = os.environ.get("GEARCAD_CONSUMERS_REPORT")
+    if target and MEASURED:
+        Path(target).write_text(json.dumps(MEASURED, indent=1, sort_keys=True) + "\n", encoding="utf-8")
+
+
+def _record(program: str, profile: str, name: str, measured: float, designed: float) -> None:
+    MEASURED.setdefault(program, {})[f"{profile}/{name}"] = measured / designed - 1
 
 
 def _program(name: str, package: str) -> str:
@@ -126,6 +141,7 @@ def test_openscad_imports_every_part_at_its_area(built, tmp_path, layer):
     for profile, name, area, holes, folder in _parts(built):
         region, warnings = _openscad_region(openscad, folder / f"{name}.dxf", tmp_path, layer)
         where = f"{profile}/{name}.dxf ({layer or 'plain import'})"
+        _record(f"openscad {layer or 'plain'}", profile, name, region.area, area)
         assert region.area == pytest.approx(area, rel=SHARE), where
         assert _region_shape(region) == (1, holes), where
         skipped = {re.search(r"Entity '(\w+)'", w).group(1) for w in warnings if "Unsupported DXF Entity" in w}
@@ -163,6 +179,7 @@ def test_a_reader_ignoring_bulges_still_gets_every_outline(built):
             exact = shapely.Polygon(fine).area
             assert shapely.Polygon(vertices).area == pytest.approx(exact, rel=SHARE), (profile, name)
         chords = _xor_area([v for v, _ in cut])
+        _record("vertices only", profile, name, chords.area, area)
         assert chords.area == pytest.approx(area, rel=SHARE), (profile, name)
         assert _region_shape(chords) == (1, holes)
 
@@ -247,6 +264,7 @@ def test_inkscape_imports_the_dxf_at_the_designed_area(built):
         )
         assert run.returncode == 0 and not run.stderr.strip(), (profile, name, run.stderr)
         region = _xor_area(_svg_layer_rings(run.stdout, "CUT"))
+        _record("inkscape", profile, name, region.area / px**2, area)
         assert region.area / px**2 == pytest.approx(area, rel=SHARE), (profile, name)
         assert _region_shape(region) == (1, holes), (profile, name)
         assert _svg_layer_rings(run.stdout, "MARK"), (profile, name)  # the engraving is there too
@@ -304,6 +322,7 @@ def test_librecad_prints_every_part_at_its_area(built, tmp_path):
         assert png.returncode == 0
         assert _dark_pixels(pdf.with_suffix(".pgm")) > 0, (profile, name)
         region = _pdf_stroke_region(pdf, "rgb(100%,0%,0%)")
+        _record("librecad", profile, name, region.area, area)
         assert region.area == pytest.approx(area, rel=SHARE), (profile, name)
         assert _region_shape(region) == (1, holes), (profile, name)
 
@@ -329,15 +348,31 @@ def _meshes(built: Path, *, subset: bool) -> list[tuple[Path, float | None]]:
     return rows
 
 
+def _prusa_info(slicer: str, path: Path) -> list[dict[str, str]]:
+    """``prusa-slicer --info``: one block of ``key = value`` lines per object."""
+    run = subprocess.run([slicer, "--info", str(path)], capture_output=True, text=True, timeout=120)
+    assert run.returncode == 0, run.stderr
+    blocks = re.split(r"^\[.*\]$", run.stdout, flags=re.M)[1:]
+    return [dict(re.findall(r"^(\w+) = +(.*)$", block, re.M)) for block in blocks]
+
+
 def test_prusaslicer_reads_every_mesh_without_repairs(built):
+    """Every part's STL and 3MF, and the plates and assemblies: each object manifold, nothing
+    repaired (PrusaSlicer lists open edges, reversed or removed facets when it had to), one
+    piece, at the designed volume."""
     slicer = _program("prusa-slicer", "prusa-slicer")
     for path, volume in _meshes(built, subset=not ALL):
-        run = subprocess.run([slicer, "--info", str(path)], capture_output=True, text=True, timeout=120)
-        assert run.returncode == 0, run.stderr
-        info = dict(re.findall(r"^(\w+) = +(.*)$", run.stdout, re.M))
+        (info,) = _prusa_info(slicer, path)
         assert info["manifold"] == "yes" and not set(info) & set(_REPAIRS), (path, info)
         assert info["number_of_parts"].strip() == "1", path
         assert float(info["volume"]) == pytest.approx(volume, rel=1e-4), path  # float32 vertices
+        _record(f"prusa-slicer {path.suffix[1:]}", path.parent.name, path.stem, float(info["volume"]), volume)
+    folders = sorted({f for *_, f in _parts(built, subset=not ALL)})
+    for path in [folder / name for folder in folders for name in ("plate.3mf", "assembly.3mf")]:
+        report = json.loads((path.parent / "report.json").read_text(encoding="utf-8"))
+        objects = _prusa_info(slicer, path)
+        assert objects and all(o["manifold"] == "yes" and not set(o) & set(_REPAIRS) for o in objects), path
+        assert sum(int(o["number_of_facets"]) for o in objects) == report["files"][path.name]["triangles"], path
 
 
 def test_prusaslicer_slices_an_stl_and_a_3mf(built, tmp_path):
@@ -356,7 +391,8 @@ def test_prusaslicer_slices_an_stl_and_a_3mf(built, tmp_path):
             [slicer, "--export-gcode", "-o", str(gcode), str(path)], capture_output=True, text=True, timeout=300
         )
         assert run.returncode == 0 and "Slicing result exported" in run.stdout, run.stdout + run.stderr
-        assert gcode.stat().st_size > 0 and re.search(r"^G1 .*E", gcode.read_text(encoding="utf-8", errors="replace"), re.M), path
+        text = gcode.read_text(encoding="utf-8", errors="replace")
+        assert re.search(r"^G1 .*E", text, re.M), path  # moves that extrude
 
 
 # -------------------------------------------------------------------------------------- lib3mf
