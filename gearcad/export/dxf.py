@@ -22,8 +22,9 @@ What every encoding shares, so that each program reads the part right with its d
   sub-arcs: the same path, more vertices) so that the polygon of the written vertices stays
   within :data:`CHORD_AREA` of each ring's area — the segments between arcs and chords summed,
   a chord of radius r and sweep θ cutting off r²(θ − sin θ)/2 — and of each part's net area
-  (outer ring less its holes, where chords of convex and concave arcs partly cancel).  A bore
-  stays round (a 3–5 arc circle becomes a 52-gon), a toothed outline mostly keeps its arcs.
+  (outer ring less its holes, where chords of convex and concave arcs partly cancel); engraved
+  rings within :data:`MARK_CHORD_AREA` of theirs.  A bore stays round (a 3–5 arc circle becomes
+  a 52-gon), a toothed outline at 0.001 mm keeps its arcs as they are.
   ARC entities (``lines-arcs``) are split alike, so OpenSCAD's own coarse tessellation of an
   ARC (never fewer than one chord) stays within the same bound.
 * **Header:** R2010, ``$INSUNITS`` = mm, ``$MEASUREMENT`` = metric, ``$EXTMIN``/``$EXTMAX`` the
@@ -49,13 +50,16 @@ from ..geometry.arcfit import ArcRing
 from .bounds import drawing_bounds
 from .drawing import Drawing
 
-__all__ = ["FLAVOURS", "CHORD_AREA", "write_dxf", "limit_sweep", "ring_area_with_arcs"]
+__all__ = ["FLAVOURS", "CHORD_AREA", "MARK_CHORD_AREA", "write_dxf", "limit_sweep", "ring_area_with_arcs"]
 
 FLAVOURS = ("polyline", "lines-arcs", "polyline-flat")
 CHORD_AREA = 0.0025
 """Largest share of a ring's (and of a part's) area that the chords of its written arcs may cut
 off: what a reader ignoring bulges loses at most (0.25 %, half the 0.5 % the consumer table
-promises)."""
+promises).  Engraved rings take :data:`MARK_CHORD_AREA`."""
+MARK_CHORD_AREA = 0.004
+"""The same for engraved rings (pitch curves): no part's size depends on them, so only their
+shape is kept — a pitch circle stays round, not a pentagon — within 0.4 % of their area."""
 
 _MIN_SWEEP = math.radians(1.0)
 """No arc is split into pieces under 1° (their chords cut off under 5e-5 of their sector)."""
@@ -292,7 +296,7 @@ def write_dxf(path: Path, drawing: Drawing, *, flavour: str = "polyline", cut_la
                 if any(np.any(_arrays(r)[1]) for r in rings):
                     raise ValueError("the flat encoding takes plain rings sampled within the tolerance")
             else:
-                rings = limit_sweep(list(rings), regions=cut)
+                rings = limit_sweep(list(rings), regions=cut, share=CHORD_AREA if cut else MARK_CHORD_AREA)
             for ring in rings:
                 count += _ring(msp, ring, layer, flavour if cut else "engrave")
         for layer, strokes in drawing.strokes.items():
