@@ -1,18 +1,27 @@
 #!/usr/bin/env python3
 """Set up and run gearcad with nothing but python3 and pip.
 
-    python3 tasks.py build     # build every profile in profiles/ into out/
-    python3 tasks.py test      # run the test suite
+    python3 tasks.py build      # build every profile in profiles/ into out/
+    python3 tasks.py test       # run the test suite
+    python3 tasks.py consumers  # install the makers' programs (Debian) and run every consumer check
 
 Each command first makes .venv (once) and installs gearcad into it (again only when
 pyproject.toml changes), then runs.  Extra arguments are passed on: ``python3 tasks.py build
 profiles/walker.toml --out /tmp/x`` or ``python3 tasks.py test -k walker``.
+
+``consumers`` installs, with apt-get (as root, or through sudo), the programs that
+tests/test_consumers.py drives — OpenSCAD, LibreCAD, Inkscape (with the Python modules its DXF
+import needs), PrusaSlicer, lib3mf, poppler-utils (pdftoppm, pdftocairo) and Chromium (the HTML
+report's browser test) — printing each command before it runs it, then runs that test file on
+every part of every profile (``GEARCAD_CONSUMERS=all``).  ``consumers --install-only`` stops
+after installing; ``consumers --no-install`` only runs the checks.
 """
 
 from __future__ import annotations
 
 import hashlib
 import os
+import shutil
 import subprocess
 import sys
 import venv
@@ -49,10 +58,59 @@ def ensure_environment() -> None:
     STAMP.write_text(want)
 
 
+CONSUMER_PACKAGES = (
+    "openscad",
+    "librecad",
+    "inkscape",
+    "python3-lxml",  # Inkscape's extensions (its DXF import) run on the system python3
+    "python3-numpy",
+    "python3-cssselect",
+    "prusa-slicer",
+    "lib3mf1",
+    "poppler-utils",
+    "chromium",
+)
+
+
+def _run(command: list[str]) -> None:
+    _say("running: " + " ".join(command))
+    subprocess.run(command, check=True)
+
+
+def install_consumers() -> None:
+    """apt-get update, then apt-get install the consumer programs (no recommended extras)."""
+    if shutil.which("apt-get") is None:
+        raise SystemExit(
+            f"tasks: no apt-get here; install these with your package manager: {' '.join(CONSUMER_PACKAGES)}"
+        )
+    sudo = [] if os.name != "nt" and os.geteuid() == 0 else ["sudo"]
+    if sudo and shutil.which("sudo") is None:
+        raise SystemExit("tasks: installing needs root: run this as root, or install sudo")
+    env = ["env", "DEBIAN_FRONTEND=noninteractive"]
+    _run([*sudo, *env, "apt-get", "update"])
+    _run([*sudo, *env, "apt-get", "install", "-y", "--no-install-recommends", *CONSUMER_PACKAGES])
+
+
+def consumers(args: list[str]) -> int:
+    if "--no-install" not in args:
+        install_consumers()
+    if "--install-only" in args:
+        return 0
+    ensure_environment()
+    os.chdir(ROOT)
+    rest = [a for a in args if a not in {"--no-install", "--install-only"}]
+    env = dict(os.environ, GEARCAD_CONSUMERS="all")
+    command = [str(PYTHON), "-m", "pytest", "-q", "tests/test_consumers.py", *rest]
+    _say("running: GEARCAD_CONSUMERS=all " + " ".join(command))
+    return subprocess.run(command, env=env).returncode
+
+
 def main(argv: list[str]) -> int:
-    if not argv or argv[0] not in {"build", "test"}:
+    if not argv or argv[0] not in {"build", "test", "consumers"}:
         print(__doc__.strip())
         return 2
+    if argv[0] == "consumers":
+        return consumers(argv[1:])
     ensure_environment()
     os.chdir(ROOT)
     if argv[0] == "build":
