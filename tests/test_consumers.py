@@ -29,6 +29,7 @@ from __future__ import annotations
 import ctypes
 import ctypes.util
 import json
+import locale
 import os
 import re
 import shutil
@@ -418,6 +419,15 @@ class _Lib3mf:
     def read(self, path: Path) -> tuple[list[str], list[tuple[bool, int]], int]:
         """Warnings of a strict read, (manifold and oriented, triangles) per mesh object, and the
         triangles of every build item (a mesh placed three times counts three times)."""
+        # lib3mf sets the process's C locale to "C" (ASCII), which would make every later
+        # text read of this process ASCII: put back what Python chose at start-up
+        saved = locale.setlocale(locale.LC_ALL)
+        try:
+            return self._read(path)
+        finally:
+            locale.setlocale(locale.LC_ALL, saved)
+
+    def _read(self, path: Path) -> tuple[list[str], list[tuple[bool, int]], int]:
         lib, ref, ptr = self.lib, ctypes.byref, ctypes.c_void_p
         model, reader, it, items = ptr(), ptr(), ptr(), ptr()
         self._ok(lib.lib3mf_createmodel(ref(model)), "createmodel")
