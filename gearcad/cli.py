@@ -46,6 +46,13 @@ def _parser() -> argparse.ArgumentParser:
     bench = sub.add_parser("bench", help="measure speed against accuracy; charts, CSV and markdown")
     bench.add_argument("--out", type=Path, default=Path("out/bench"), help="output folder (default: out/bench)")
     bench.add_argument("--quick", action="store_true", help="fewer points: a smoke run")
+    bench.add_argument(
+        "--skip",
+        action="append",
+        default=[],
+        choices=["peers", "goals"],
+        help="leave out a section that runs whole processes (repeatable)",
+    )
     return parser
 
 
@@ -100,7 +107,7 @@ def _run(args) -> int:
     if args.command == "bench":
         from .bench import run_bench
 
-        rows = run_bench(args.out, quick=args.quick)
+        rows = run_bench(args.out, quick=args.quick, skip=args.skip, echo=print)
         print(f"{len(rows)} measurements written to {args.out}/ (results.md, results.csv, *.png)")
         return 0
     if args.command == "check":

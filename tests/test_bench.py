@@ -1,13 +1,21 @@
-"""The stability map (hard designs end in ok, a warning code or one clear error) and a smoke
-run of ``gearcad bench --quick``.  Benchmarks measure; they are not timed tests."""
+"""The stability map (hard designs end in ok, a warning code or one clear error), a smoke run
+of ``gearcad bench --quick``, the peers section against a stand-in peer, the goals verdicts and
+the speed-against-accuracy chart's ticks.  Benchmarks measure; they are not timed tests."""
 
 import csv
 import math
+import textwrap
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from gearcad.bench import stability_map
+from gearcad.bench.commands import gearcad_commands
+from gearcad.bench.goals import GOALS, goal_rows, goals_table
+from gearcad.bench.outlines import deviation
+from gearcad.bench.peers import PEER, bench_peers
+from gearcad.bench.process import Measured, ProcessRun
 from gearcad.cli import main
 from gearcad.findings import CODES
 
@@ -31,7 +39,7 @@ def test_stability_outcomes_are_the_expected_ones(stability):
     assert stability[("ellipse (centre) eccentricity, 40 teeth", 0.5)] == "ok"
     assert "smaller teeth.module" in stability[("ellipse (centre) eccentricity, 40 teeth", 0.99)]
     assert "undercut" in stability[("spur pair 1:1, tooth count", 6)]
-    assert stability[("spur pair 1:1, tooth count", 400)] == "ok"
+    assert stability[("spur pair 1:1, tooth count", 40)] == "ok"
     assert "corners" in stability[("walker blend width (deg)", 0.0)]
     assert stability[("ratio law mean (1 closes)", 1.0)] == "ok"
     assert "cannot close" in stability[("ratio law mean (1 closes)", 1.2)]
@@ -43,9 +51,9 @@ def test_stability_outcomes_are_the_expected_ones(stability):
 def test_bench_quick_smoke_run(tmp_path: Path, capsys, monkeypatch, stability):
     # the stability map is measured (and tested) above: the smoke run reuses it
     rows = [{"case": c, "value": v, "outcome": o, "seconds": 0.01} for (c, v), o in stability.items()]
-    monkeypatch.setattr("gearcad.bench.stability_map", lambda quick=False: rows)
+    monkeypatch.setattr("gearcad.bench.stability.stability_map", lambda quick=False: rows)
     out = tmp_path / "bench"
-    assert main(["bench", "--quick", "--out", str(out)]) == 0
+    assert main(["bench", "--quick", "--skip", "peers", "--skip", "goals", "--out", str(out)]) == 0
     for name in (
         "speed_accuracy.png",
         "output_size.png",
@@ -60,12 +68,138 @@ def test_bench_quick_smoke_run(tmp_path: Path, capsys, monkeypatch, stability):
         rows = list(csv.DictReader(fh))
     studies = {r["study"] for r in rows}
     assert {"quadrature", "walker-i", "output", "build", "teeth-scaling"} <= studies
+    assert not {"peers", "goals"} & studies
     assert any(s.startswith("envelope") for s in studies)
     for r in rows:
         assert math.isfinite(float(r["seconds"])) and float(r["seconds"]) > 0
+        if r.get("seconds_median"):  # the fastest round is never slower than the median one
+            assert float(r["seconds"]) <= float(r["seconds_median"])
     # the paper's walker method misses the rolling i by its known 0.0247
     walker = next(r for r in rows if r["method"].startswith("paper: trapezoid"))
     assert float(walker["error"]) == pytest.approx(3.207678 - 3.182936, abs=1e-5)
+    # the envelope keeps its promise: within each tolerance of the converged cut
+    for r in rows:
+        if r["method"] == "gearcad closed-form envelope":
+            assert float(r["error"]) <= float(r["n"]) * 1.01
     # peak memory of a whole build stays under 250 MB
     assert all(float(r["peak_mb"]) < 250 for r in rows if r["study"] == "build")
     assert "measurements written" in capsys.readouterr().out
+
+
+_FAKE_PEER = '''
+"""A stand-in for ncgears: it "builds" the bare pitch curve (no teeth) and writes it as DXF."""
+import ezdxf
+import numpy as np
+
+__version__ = "0-fake"
+
+
+class GearPair:
+    def __init__(self, outline, center_distance):
+        self.drive_outline, self.center_distance = outline, center_distance
+
+    def export_dxf(self, path, max_error=0.001):
+        doc = ezdxf.new()
+        doc.layers.add("DRIVE")
+        doc.modelspace().add_lwpolyline(self.drive_outline, format="xy", close=True, dxfattribs={"layer": "DRIVE"})
+        doc.saveas(path)
+
+
+def generate_from_centrode(expression, *, name, output_directory, teeth, module, **rack):
+    phi = np.linspace(0, 2 * np.pi, 20000, endpoint=False)
+    r = eval(expression, {"cos": np.cos, "phi": phi})
+    return GearPair(np.column_stack([r * np.cos(phi), r * np.sin(phi)]), r.max() + r.min())
+'''
+
+
+def test_peers_section_measures_a_stand_in_peer(tmp_path: Path, monkeypatch):
+    """The peers code path end to end, gearcad (DXF only, one run) beside a stand-in peer that
+    writes the exact pitch ellipse without teeth: its largest distance from the toothed outline
+    is the root's depth under the pitch curve, the rack's dedendum 1.25·m (an offset curve)."""
+    fake = tmp_path / "fake"
+    (fake / PEER).mkdir(parents=True)
+    (fake / PEER / "__init__.py").write_text(textwrap.dedent(_FAKE_PEER))
+    monkeypatch.setenv("PYTHONPATH", str(fake))
+    commands = gearcad_commands(tmp_path / "runs")
+    rows, measured = bench_peers({"dxf": commands["dxf"][1]}, tmp_path / "peers", runs=1, warm={}, rack_cut_steps=None)
+    ours, peer = rows
+    assert peer["method"] == f"{PEER} 0-fake, pair + DXF"
+    module = 4 * 25.0 * 1.2763499431699064 / (39 * math.pi)  # perimeter 4a·E(e²), E(0.64) tabulated
+    assert peer["error"] == pytest.approx(1.25 * module, abs=2e-4)
+    assert math.isnan(peer["error_roots"])  # no point of a pitch curve lies as deep as a root
+    assert peer["centre_distance_error"] < 1e-9  # 45 + 5 = 2a
+    assert peer["vertices"] == 20000 and peer["arcs"] == 0
+    # gearcad's written DXF: arcs, within its 0.001 mm of the outline cut at 1e-6 mm, E = 2a
+    assert ours["method"] == "gearcad, DXF only"
+    assert ours["arcs"] > 0.5 * ours["vertices"] > 100
+    assert 0 < ours["error"] <= 1e-3 and ours["error_flanks"] <= 1e-3 and ours["error_roots"] <= 1e-3
+    assert ours["centre_distance_error"] < 1e-9
+    for r in rows:
+        assert r["seconds"] > r["seconds_in_process"] > 0 and r["peak_mb"] > 20 and r["runs"] == 1
+        assert r["seconds_cpu"] > 0.1
+    assert ours["speedup"] == pytest.approx(peer["seconds"] / ours["seconds"])
+    assert set(measured) == {"dxf", PEER}
+
+
+def test_deviation_is_the_distance_between_curves():
+    """Two concentric circles 0.25 mm apart, sampled differently: 0.25 both ways (to the chord
+    sag of the coarser one), and one way on part of the outline."""
+    t = np.linspace(0, 2 * np.pi, 3000, endpoint=False)
+    inner = 10 * np.column_stack([np.cos(t), np.sin(t)])
+    outer = 10.25 * np.column_stack([np.cos(t[::3] + 0.001), np.sin(t[::3] + 0.001)])
+    assert deviation(inner, outer) == pytest.approx(0.25, abs=10.25 * (1 - math.cos(np.pi / 1000)) + 1e-12)
+    assert deviation(outer, inner, outer[:, 0] > 0) == pytest.approx(0.25, abs=1e-4)
+
+
+def _measured(walls, peak):
+    return Measured("x", tuple(ProcessRun(w, 0.1, (w - 0.1,), peak, {}) for w in walls))
+
+
+def test_goals_compare_the_median_and_the_peak():
+    measured = {
+        "dxf": _measured([0.5, 0.9, 0.55], 90),  # median 0.55 ≤ 0.6: met despite one slow run
+        "all": _measured([1.2, 1.1, 0.9], 120),  # median 1.1 > 1.0
+        "profiles": _measured([2.0, 2.5, 2.2], 160),  # fast enough, but 160 MB > 150 MB
+    }
+    labels = {g.key: g.key for g in GOALS}
+    rows = {r["method"]: r for r in goal_rows(measured, labels)}
+    assert set(rows) == {"dxf", "all", "profiles"}  # goals not measured are left out
+    assert rows["dxf"]["met"] and rows["dxf"]["seconds"] == 0.55
+    assert not rows["all"]["met"]
+    assert not rows["profiles"]["met"] and rows["profiles"]["peak_mb"] == 160
+    table = goals_table(list(rows.values()))
+    assert len(table) == 5 and table[2].endswith("| met |") and table[3].endswith("| not met |")
+
+
+def test_speed_accuracy_ticks_do_not_overlap():
+    """The chart of the old circle panel (times 13–800 ms, less than two decades, where
+    matplotlib labelled minor ticks into each other), points joined by tolerance."""
+    from gearcad.export.charts.bench import speed_accuracy_figure
+    from gearcad.export.charts.png import plt
+
+    rows = [
+        {"study": "quadrature", "method": "trapezoid", "n": n, "seconds": ms / 1000, "error": err}
+        for n, ms, err in [(8, 0.01, 0.1), (64, 0.3, 1e-15)]
+    ]
+    for tol, ms, err in [(1e-2, 17, 7e-3), (1e-3, 13, 1e-3), (1e-4, 50, 1e-4)]:
+        rows.append(
+            {"study": "envelope circle z=20", "method": "envelope", "n": tol, "seconds": ms / 1000, "error": err}
+        )
+    for steps, ms in [(6, 25), (12, 45), (24, 90), (48, 190), (96, 800)]:
+        rows.append(
+            {"study": "envelope circle z=20", "method": "boolean", "n": steps, "seconds": ms / 1000, "error": 1e-3}
+        )
+    fig = speed_accuracy_figure(rows)
+    fig.canvas.draw()
+    renderer = fig.canvas.get_renderer()
+    for ax in fig.axes:
+        labels = [t for t in ax.get_xticklabels() + ax.get_xticklabels(minor=True) if t.get_visible() and t.get_text()]
+        boxes = sorted((b.x0, b.x1) for b in (t.get_window_extent(renderer) for t in labels) if b.width > 0)
+        lo, hi = ax.get_window_extent(renderer).x0, ax.get_window_extent(renderer).x1
+        inside = [b for b in boxes if b[1] > lo and b[0] < hi]
+        assert len(inside) >= 2, ax.get_title()
+        assert all(a[1] <= b[0] for a, b in zip(inside, inside[1:])), (ax.get_title(), inside)
+        # the envelope line is drawn coarse to fine, not in the order of its (noisy) times
+        if ax.get_title().startswith("envelope"):
+            assert list(ax.get_lines()[0].get_ydata()) == [7e-3, 1e-3, 1e-4]
+    plt.close(fig)

@@ -1,0 +1,97 @@
+"""``gearcad bench``: every study, the peers and goals sections, then the files."""
+
+from __future__ import annotations
+
+import logging
+from collections.abc import Callable, Collection
+from pathlib import Path
+
+from . import stability
+from .builds import bench_builds
+from .commands import PROFILES, gearcad_commands
+from .envelope import bench_envelope
+from .goals import goal_rows, goals_table
+from .output import bench_output
+from .peers import PEER, bench_peers, peer_version
+from .process import measure
+from .quadrature import bench_quadrature
+from .report import markdown, peer_ratios, peers_table, write_csv
+from .timing import Progress
+
+__all__ = ["run_bench", "SECTIONS"]
+
+SECTIONS = ("peers", "goals")
+"""Sections that can be skipped (they run whole processes: minutes, not seconds)."""
+
+
+def run_bench(
+    out: Path,
+    *,
+    quick: bool = False,
+    skip: Collection[str] = (),
+    echo: Callable[[str], None] | None = None,
+) -> list[dict]:
+    """Run every study and write the charts, CSV and markdown into ``out``.
+
+    ``skip``: sections of :data:`SECTIONS` to leave out.  ``echo`` receives the lines to show
+    (the peers table, the ratios, the goals table, and notes such as a peer that is missing).
+    """
+    from ..export.charts import bench as charts_bench
+
+    say = echo or (lambda line: None)
+    unknown = set(skip) - set(SECTIONS)
+    if unknown:
+        raise ValueError(f"skip: {sorted(unknown)} are not sections; sections are {list(SECTIONS)}")
+    logging.disable(logging.WARNING)
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+        work = out / "work"
+        runs = 1 if quick else 5
+        builds = 1 if quick else len(list(PROFILES.glob("*.toml")))
+        peer = None if "peers" in skip else peer_version()
+        timed = (3 * runs + 3 if peer else 0) + (0 if "goals" in skip else 6 * runs)
+        progress = Progress(7 + builds + timed)
+        rows = bench_quadrature(quick)
+        progress.step("quadrature")
+        rows += bench_envelope(quick)
+        progress.step("envelope")
+        rows += bench_output(quick, work)
+        progress.step("output size")
+        rows += bench_builds(quick, work, progress.step)
+        hard = stability.stability_map(quick)
+        progress.step("stability map")
+        commands = gearcad_commands(work / "runs")
+        labels = {key: text for key, (text, _) in commands.items()}
+        measured, lines = {}, []
+        if "peers" not in skip and peer is None:
+            lines.append(f"peers: {PEER} is not importable here (pip install {PEER}); the section is skipped")
+        elif peer is not None:
+            peer_rows, measured = bench_peers(
+                {key: commands[key][1] for key in ("dxf", "all")},
+                work / "peers",
+                runs=runs,
+                warm={"dxf": 3, "all": 2, PEER: 1},
+                rack_cut_steps=None if quick else 96,
+                step=progress.step,
+            )
+            rows += peer_rows
+            lines += [f"peers: gearcad beside {PEER} {peer}", "", *peers_table(rows), "", *peer_ratios(rows)]
+        if "goals" not in skip:
+            todo = {key: command for key, (_, command) in commands.items() if key not in measured}
+            measured.update(measure(todo, runs=runs, step=progress.step))
+            goals = goal_rows(measured, labels)
+            rows += goals
+            lines += ["", "goals (medians of whole-process runs):", "", *goals_table(goals)]
+        write_csv(rows, out / "results.csv")
+        write_csv(hard, out / "stability.csv")
+        (out / "results.md").write_text(markdown(rows, hard), encoding="utf-8")
+        charts_bench.speed_accuracy(rows, out / "speed_accuracy.png")
+        charts_bench.output_size(rows, out / "output_size.png")
+        charts_bench.builds(rows, out / "builds.png")
+        charts_bench.stability(hard, out / "stability.png")
+        progress.finish()
+        for line in lines:
+            say(line)
+    finally:
+        logging.disable(logging.NOTSET)
+    return rows
