@@ -96,7 +96,8 @@ def test_dxf_files_read_back(built):
         assert doc.units == 4  # mm
         auditor = doc.audit()
         assert not auditor.has_errors, path
-        closed = [e for e in doc.modelspace().query("LWPOLYLINE") if e.closed]
+        # cut paths are closed LWPOLYLINEs; engraved rings closed POLYLINEs (which OpenSCAD skips)
+        closed = [e for e in doc.modelspace().query("LWPOLYLINE POLYLINE") if e.is_closed]
         cut = {tuple(np.round(_flatten(e), 6).ravel()) for e in closed if e.dxf.layer == "CUT"}
         mark = {tuple(np.round(_flatten(e), 6).ravel()) for e in closed if e.dxf.layer == "MARK"}
         assert cut and not cut & mark, path  # something to cut, and no engraving on a cut path
@@ -109,8 +110,8 @@ def test_dxf_files_read_back(built):
 def test_pitch_dxf_matches_the_curve(built):
     report = json.loads((built / "elliptic_focus" / "report.json").read_text())
     doc = ezdxf.readfile(built / "elliptic_focus" / "driver.dxf")
-    ring = next(e for e in doc.modelspace().query("LWPOLYLINE") if e.closed and e.dxf.layer == "MARK")
-    pts = np.array([p[:2] for p in ring.get_points()])
+    ring = next(e for e in doc.modelspace().query("POLYLINE") if e.is_closed and e.dxf.layer == "MARK")
+    pts = np.array([v.dxf.location[:2] for v in ring.vertices])
     r = np.hypot(pts[:, 0], pts[:, 1])
     phi = np.arctan2(pts[:, 1], pts[:, 0])
     np.testing.assert_allclose(r, 15.0**2 / (25 - 20 * np.cos(phi)), atol=1e-9)  # vertices on the ellipse

@@ -193,9 +193,10 @@ def test_engraving_is_written_where_openscad_cannot_mistake_it_for_the_part(buil
         kinds = {(e.dxf.layer, e.dxftype()) for e in doc.modelspace()}
         assert {k for layer, k in kinds if layer == "MARK"} <= {"POLYLINE"}, path
         assert {k for layer, k in kinds if layer == "CUT"} <= {"LWPOLYLINE", "LINE", "ARC"}, path
-        cut = [shapely.Polygon(f) for _, f in _entity_rings(doc, "CUT", "LWPOLYLINE")]
+        # make_valid: a flattened ring may touch itself to round-off, which GEOS would refuse
+        cut = [shapely.make_valid(shapely.Polygon(f)) for _, f in _entity_rings(doc, "CUT", "LWPOLYLINE")]
         for _, fine in _entity_rings(doc, "MARK", "POLYLINE"):
-            mark = shapely.Polygon(fine)
+            mark = shapely.make_valid(shapely.Polygon(fine))
             for ring in cut:
                 assert mark.symmetric_difference(ring).area > 1e-3 * ring.area, path
 
