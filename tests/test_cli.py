@@ -111,7 +111,7 @@ def test_pitch_dxf_matches_the_curve(built):
     report = json.loads((built / "elliptic_focus" / "report.json").read_text())
     doc = ezdxf.readfile(built / "elliptic_focus" / "driver.dxf")
     ring = next(e for e in doc.modelspace().query("POLYLINE") if e.is_closed and e.dxf.layer == "MARK")
-    pts = np.array([v.dxf.location[:2] for v in ring.vertices])
+    pts = np.array([(v.dxf.location.x, v.dxf.location.y) for v in ring.vertices])
     r = np.hypot(pts[:, 0], pts[:, 1])
     phi = np.arctan2(pts[:, 1], pts[:, 0])
     np.testing.assert_allclose(r, 15.0**2 / (25 - 20 * np.cos(phi)), atol=1e-9)  # vertices on the ellipse
