@@ -1,3 +1,4 @@
+import fcntl
 import json
 import logging
 from pathlib import Path
@@ -16,12 +17,24 @@ def seed_tables() -> dict:
 
 
 @pytest.fixture(scope="session")
-def built(tmp_path_factory) -> Path:
-    """Every profile built once, with every output, shared by the tests that read files back."""
+def built(tmp_path_factory, worker_id) -> Path:
+    """Every profile built once, with every output, shared by the tests that read files back —
+    once for the whole run, also when pytest-xdist runs the tests in several processes (the
+    first to arrive builds under a lock, the others wait and read)."""
     from gearcad.cli import main
 
-    out = tmp_path_factory.mktemp("build") / "out"
-    assert main(["build", *map(str, PROFILES), "--out", str(out)]) == 0
+    if worker_id == "master":  # one process
+        out = tmp_path_factory.mktemp("build") / "out"
+        assert main(["build", *map(str, PROFILES), "--out", str(out)]) == 0
+        return out
+    shared = tmp_path_factory.getbasetemp().parent / "built"
+    shared.mkdir(exist_ok=True)
+    out, done = shared / "out", shared / "done"
+    with open(shared / "lock", "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        if not done.exists():
+            assert main(["build", *map(str, PROFILES), "--out", str(out)]) == 0
+            done.write_text("ok")
     return out
 
 
