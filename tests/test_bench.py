@@ -67,7 +67,7 @@ def test_bench_quick_smoke_run(tmp_path: Path, capsys, monkeypatch, stability):
     with (out / "results.csv").open() as fh:
         rows = list(csv.DictReader(fh))
     studies = {r["study"] for r in rows}
-    assert {"quadrature", "walker-i", "output", "build", "teeth-scaling"} <= studies
+    assert {"quadrature", "walker-i", "output", "build", "teeth-scaling", "helical"} <= studies
     assert not {"peers", "goals"} & studies
     assert any(s.startswith("envelope") for s in studies)
     for r in rows:

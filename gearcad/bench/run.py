@@ -6,6 +6,7 @@ import logging
 from collections.abc import Callable, Collection
 from pathlib import Path
 
+from ..export.loft import helical_benchmark
 from . import stability
 from .builds import bench_builds
 from .commands import PROFILES, gearcad_commands
@@ -50,13 +51,15 @@ def run_bench(
         builds = 1 if quick else len(list(PROFILES.glob("*.toml")))
         peer = None if "peers" in skip else peer_version()
         timed = (3 * runs + 3 if peer else 0) + (0 if "goals" in skip else 6 * runs)
-        progress = Progress(7 + builds + timed)
+        progress = Progress(8 + builds + timed)
         rows = bench_quadrature(quick)
         progress.step("quadrature")
         rows += bench_envelope(quick)
         progress.step("envelope")
         rows += bench_output(quick, work)
         progress.step("output size")
+        rows += helical_benchmark(quick=quick)  # twisted solids: time and triangles against width and tolerance
+        progress.step("helical solids")
         rows += bench_builds(quick, work, progress.step)
         hard = stability.stability_map(quick)
         progress.step("stability map")
