@@ -192,11 +192,11 @@ def test_engraving_is_written_where_openscad_cannot_mistake_it_for_the_part(buil
         kinds = {(e.dxf.layer, e.dxftype()) for e in doc.modelspace()}
         assert {k for layer, k in kinds if layer == "MARK"} <= {"POLYLINE"}, path
         assert {k for layer, k in kinds if layer == "CUT"} <= {"LWPOLYLINE", "LINE", "ARC"}, path
-        cut = [shapely.Polygon(f) for _, f in _entity_rings(doc, "CUT", "LWPOLYLINE")]
+        cut = [shapely.LinearRing(f) for _, f in _entity_rings(doc, "CUT", "LWPOLYLINE")]
         for _, fine in _entity_rings(doc, "MARK", "POLYLINE"):
-            mark = shapely.Polygon(fine)
-            for ring in cut:
-                assert mark.symmetric_difference(ring).area > 1e-3 * ring.area, path
+            points = shapely.points(fine)
+            for ring in cut:  # some point of the engraved ring strays from every cut ring
+                assert shapely.distance(points, ring).max() > 0.01, path
 
 
 # ------------------------------------------------------------------------------------ Inkscape
