@@ -216,8 +216,8 @@ def test_build_without_arguments_builds_every_profile(tmp_path, monkeypatch, cap
 BAD = [
     ("gear1.bb=3", "gear1.bb", "unknown key"),
     ('gear1.a="big"', "gear1.a = 'big'", "a length in mm"),
-    ("gear1.b=-3", "gear1.b = -3", "> 0"),
-    ("gear1.a=0", "gear1.a = 0", "> 0"),
+    ("gear1.b=-3", "gear1.b = -3", "from 0.001 to 100000"),
+    ("gear1.a=0", "gear1.a = 0", "from 0.001 to 100000"),
     ("gear1.b=30", "gear1.b = 30", "must not exceed"),
     ("pair.driver_rpm=true", "pair.driver_rpm = true", "rev/min"),
     ('pair.driver="crank"', "pair.driver = 'crank'", "one of"),

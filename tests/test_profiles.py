@@ -93,12 +93,12 @@ def test_flattened_values():
 # (override on elliptic_focus, the whole line after the path)
 BAD = [
     ("gear1.bb=3", "gear1.bb: unknown key (allowed here: a, b, curve, eccentricity, name, pivot)"),
-    ('gear1.a="big"', "gear1.a = 'big': must be a length in mm > 0"),
-    ('gear1.a="3"', "gear1.a = '3': must be a length in mm > 0"),
-    ("gear1.b=-3", "gear1.b = -3: must be a length in mm > 0"),
-    ("gear1.a=0", "gear1.a = 0: must be a length in mm > 0"),
-    ("gear1.a=nan", "gear1.a = nan: must be a length in mm > 0"),
-    ("gear1.a=1e400", "gear1.a = inf: must be a length in mm > 0"),
+    ('gear1.a="big"', "gear1.a = 'big': must be a length in mm from 0.001 to 100000"),
+    ('gear1.a="3"', "gear1.a = '3': must be a length in mm from 0.001 to 100000"),
+    ("gear1.b=-3", "gear1.b = -3: must be a length in mm from 0.001 to 100000"),
+    ("gear1.a=0", "gear1.a = 0: must be a length in mm from 0.001 to 100000"),
+    ("gear1.a=nan", "gear1.a = nan: must be a length in mm from 0.001 to 100000"),
+    ("gear1.a=1e400", "gear1.a = inf: must be a length in mm from 0.001 to 100000"),
     ("gear1.b=30", "gear1.b = 30.0: must not exceed gear1.a = 25 (b is the semi-minor axis)"),
     ("pair.driver_rpm=true", "pair.driver_rpm = true: must be a speed in rev/min > 0"),
     ('pair.driver="crank"', "pair.driver = 'crank': must be one of 'driver', 'follower' (the gears' names)"),
@@ -118,11 +118,11 @@ BAD = [
     ("gear1=3", "gear1 = 3: must be a table ([gear1])"),
     ("teeth.count=2.5", "teeth.count = 2.5: must be an integer from 6 to 2000"),
     ("teeth.dedendum=0.9", "teeth.dedendum = 0.9: must be ≥ teeth.addendum = 1 (the mate's tips need room)"),
-    ("pair.center_distance=-4", 'pair.center_distance = -4: must be a length in mm > 0 or "solve"'),
+    ("pair.center_distance=-4", 'pair.center_distance = -4: must be a length in mm from 0.001 to 100000 or "solve"'),
     ("gear2.name='Driver'", "gear2.name = 'Driver': must differ from gear1.name = 'driver'"),
     ("bore.flat=2", "bore.diameter = 0.0: must be > 0: a keyway or a flat needs a bore"),
     ("mechanism='crank'", "mechanism = 'crank': must be one of 'gear-pair', 'roller-body', 'rolling-wheel'"),
-    ("gear1.a=" + "7" * 400, "gear1.a = <an integer of 400 digits>: must be a length in mm > 0"),
+    ("gear1.a=" + "7" * 400, "gear1.a = <an integer of 400 digits>: must be a length in mm from 0.001 to 100000"),
     ("gear2.lobes=" + "7" * 400, "gear2.lobes = <an integer of 400 digits>: must be an integer from 1 to 24"),
 ]
 
@@ -190,8 +190,8 @@ def test_other_mechanisms_rules():
 def test_several_bad_values_one_line_each(tmp_path):
     path = _write(tmp_path, '[gear1]\ncurve = "ellipse"\na = -1\nb = "x"\nwobble = 2\n')
     assert _lines(load_profile, path) == [
-        f"{path}: gear1.a = -1: must be a length in mm > 0",
-        f"{path}: gear1.b = 'x': must be a length in mm > 0",
+        f"{path}: gear1.a = -1: must be a length in mm from 0.001 to 100000",
+        f"{path}: gear1.b = 'x': must be a length in mm from 0.001 to 100000",
         f"{path}: gear1.wobble: unknown key (allowed here: a, b, curve, eccentricity, name, pivot)",
     ]
 
@@ -221,7 +221,7 @@ def test_byte_order_mark_and_large_integer(tmp_path):
     assert load_profile(bom).gear1.a == 25
     big = _write(tmp_path, f'[gear1]\ncurve = "circle"\nradius = {"1" * 400}\n')
     assert _lines(load_profile, big) == [
-        f"{big}: gear1.radius = <an integer of 400 digits>: must be a length in mm > 0"
+        f"{big}: gear1.radius = <an integer of 400 digits>: must be a length in mm from 0.001 to 100000"
     ]
 
 
@@ -295,7 +295,7 @@ def test_malformed_overrides(override, line):
 def test_params_built_in_python_are_validated():
     with pytest.raises(ValidationError):
         CircleParams(curve="circle", radius=-1)
-    assert _lines(validated, CircleParams, radius=-1) == ["radius = -1: must be a length in mm > 0"]
+    assert _lines(validated, CircleParams, radius=-1) == ["radius = -1: must be a length in mm from 0.001 to 100000"]
     assert _lines(validated, TeethParams, module=1, count=20) == [
         "count = 20: give teeth.module or teeth.count, not both"
     ]
@@ -309,7 +309,7 @@ def test_params_built_in_python_are_validated():
         "teeth.count = 3: must be an integer from 6 to 2000",
     ]
     assert _lines(parse_profile, {"gear1": {"curve": "circle", "radius": -1}}) == [
-        "gear1.radius = -1: must be a length in mm > 0"
+        "gear1.radius = -1: must be a length in mm from 0.001 to 100000"
     ]
     with pytest.raises(ValidationError):
         TrainParams(module=1, teeth=(20,))

@@ -43,7 +43,8 @@ def paper_extras(params: GearPairParams, pitch: PairDesign) -> PaperExtras:
     """The papers' extras for this pair (empty for pairs the papers do not discuss)."""
     g = params.gear1
     omega = params.driver_rpm * 2 * math.pi / 60
-    if isinstance(g, EllipseParams) and g.pivot == "centre" and params.claim is not None:
+    # the paper's comparisons are about eccentric ellipses (a circle has no acceleration to compare)
+    if isinstance(g, EllipseParams) and g.pivot == "centre" and params.claim is not None and g.b < 0.999 * g.a:
         checks = E.comparative_checks(g.a, g.b, omega)
         return PaperExtras(
             {"paper_claims": checks},

@@ -246,6 +246,11 @@ def pitch_design(params: GearPairParams, *, tol: Tolerances = DEFAULT) -> PairDe
     kin = kinematics(pair, driver=params.driver, speed=omega)
     claim = None
     if params.claim is not None:
+        if params.claim.center_distance <= gears[0].r_max:
+            raise DesignError(
+                f"claim.center_distance = {params.claim.center_distance:g}: must exceed {params.gear1_name}'s "
+                f"largest radius {gears[0].r_max:.6g} mm (the mate's pivot would lie on or inside the driver)"
+            )
         claim = identical_mate_claim(curve, params.claim.center_distance, tol=tol)
         if not claim.holds:
             src = f" ({params.claim.source})" if params.claim.source else ""

@@ -8,7 +8,7 @@ from typing import Annotated, Literal
 from pydantic import model_validator
 
 from .common import BoreParams, OutputParams, ParamsModel, distinct_names
-from .values import Must, PartName, Problems, StandardRackPressureAngleDeg, Text, choice, integer, number
+from .values import FASTEST, Must, PartName, Problems, StandardRackPressureAngleDeg, Text, choice, integer, number
 
 __all__ = ["TrainParams", "CarrierTrainParams"]
 
@@ -22,8 +22,8 @@ Teeth = Annotated[
 ]
 Meshes = Annotated[tuple[choice("external", "internal"), ...], Must("a list of 'external' or 'internal', one per mesh")]
 Names = Annotated[tuple[PartName, ...], Must("a list of names, one for each gear")]
-Rpm = number("a speed in rev/min")
-Acceleration = number("an angular acceleration in rad/s²")
+Rpm = number("a speed in rev/min", ge=-FASTEST, le=FASTEST)
+Acceleration = number("an angular acceleration in rad/s²", ge=-1e9, le=1e9)
 
 
 class TrainParams(ParamsModel):

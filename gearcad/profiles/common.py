@@ -6,7 +6,7 @@ from typing import Annotated, Any
 
 from pydantic import BaseModel, ConfigDict, model_validator
 
-from .values import Flag, LayerName, LengthOrZero, Must, Problems, Size, choice, number
+from .values import LARGEST_LENGTH, Flag, LayerName, LengthOrZero, Must, Problems, Size, choice, number
 
 __all__ = ["ParamsModel", "OutputParams", "BoreParams", "DXF_FLAVOURS", "FORMATS", "distinct_names"]
 
@@ -24,7 +24,7 @@ Formats = Annotated[tuple[choice(*FORMATS), ...], Must("a list drawn from " + ",
 DxfFlavour = choice(*DXF_FLAVOURS)
 Thickness = number("a thickness in mm", gt=0, le=1000)
 Kerf = number("a kerf width in mm", ge=0, le=2)
-Diameter = number("a diameter in mm", ge=0)
+Diameter = number("a diameter in mm", ge=0, le=LARGEST_LENGTH)
 
 
 def _require_tag(schema: dict[str, Any], cls: type[BaseModel]) -> None:

@@ -10,6 +10,8 @@ from pydantic import model_validator
 from .common import BoreParams, OutputParams, ParamsModel, distinct_names
 from .curves import Curve, Lobes, RatioParams, WalkerParams
 from .values import (
+    LARGEST_LENGTH,
+    SMALLEST_LENGTH,
     Flag,
     Length,
     LengthOrZero,
@@ -25,8 +27,11 @@ from .values import (
 
 __all__ = ["Gear2Params", "PairParams", "ClaimParams", "TeethParams", "GearPairParams"]
 
-CenterDistance = Annotated[Length | Literal["solve"], Must('a length in mm > 0 or "solve"', whole=True)]
-Module = number("a module in mm", gt=0)
+CenterDistance = Annotated[
+    Length | Literal["solve"],
+    Must(f'a length in mm from {SMALLEST_LENGTH:g} to {LARGEST_LENGTH:g} or "solve"', whole=True),
+]
+Module = number("a module in mm", ge=SMALLEST_LENGTH, le=LARGEST_LENGTH)
 ToothCount = integer(ge=6, le=2000)
 Addendum = number("a coefficient (× module)", gt=0, le=2)
 Dedendum = number("a coefficient (× module)", gt=0, le=3)

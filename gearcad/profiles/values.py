@@ -30,6 +30,9 @@ __all__ = [
     "PartName",
     "LayerName",
     "RESERVED_NAMES",
+    "LARGEST_LENGTH",
+    "SMALLEST_LENGTH",
+    "FASTEST",
     "NAME_RULE",
     "Speed",
     "PressureAngleDeg",
@@ -155,12 +158,21 @@ def terms(*, max_order: int, multiple_of: int = 1, why: str = "") -> Any:
     return Annotated[tuple[term, ...], Must("a list of at most 16 [order, cos, sin] terms", items=(0, 16))]
 
 
-Length = number("a length in mm", gt=0)
-LengthOrZero = number("a length in mm", ge=0)
+LARGEST_LENGTH = 100_000.0
+"""mm: 100 m, far beyond any part and still a number the geometry handles exactly (at 1e12 mm the
+rolling residual of a pair is 1e-4 mm, at 1e300 the curves overflow)."""
+SMALLEST_LENGTH = 0.001
+"""mm: 1 µm, finer than any tolerance (at 1e-6 mm GEOS loses the topology, at 1e-300 the
+polylines are NaN)."""
+FASTEST = 1e6
+"""rev/min: far beyond any mechanism, and the accelerations (∝ speed²) stay finite."""
+
+Length = number("a length in mm", ge=SMALLEST_LENGTH, le=LARGEST_LENGTH)
+LengthOrZero = number("a length in mm", ge=0, le=LARGEST_LENGTH)
 """A length that may be 0: a gap, a chamfer, a keyway (0 means none)."""
 Size = Annotated[tuple[Length, Length], Must("[width, height]: two lengths in mm > 0")]
 """A rectangle, mm: a sheet or a printer bed."""
-Speed = number("a speed in rev/min", gt=0)
+Speed = number("a speed in rev/min", gt=0, le=FASTEST)
 PressureAngleDeg = number("an angle in degrees", ge=10, le=35)
 StandardRackPressureAngleDeg = number(
     "an angle in degrees",

@@ -1,0 +1,783 @@
+"""Fuzz test of the check path: any profile dict ends in a design or one gearcad error, in budget.
+
+Profiles are generated as dicts (the TOML's tables) for every mechanism: the gear pair with
+every curve, the roller body (harmonic and series), the rolling wheel and the carrier train
+(external and internal meshes).  Half of them are built from valid values only, chosen so the
+design is small and quick (coarse tolerance); the other half also draw, for every key, edge
+values — 0, negatives, huge and tiny numbers, NaN and infinity, strings, booleans, None,
+400-digit integers, empty and long lists, tables where a value belongs — unknown keys, and
+whole tables replaced by a value.
+
+``gearcad.check(data)`` must then, within a time and memory budget, either return a
+:class:`~gearcad.mechanisms.Design` whose parts have finite outlines, simple cut paths (as
+drawn: arcs flattened) and a report that is strict JSON, or raise a
+:class:`~gearcad.errors.GearcadError` of short lines, each :class:`~gearcad.errors.ProfileError`
+line naming a dotted key.  Anything else — another exception, a ``MemoryError``, running
+over the budget — fails.
+
+The CI run is small and fixed (``derandomize=True``).  A long campaign::
+
+    GEARCAD_FUZZ_EXAMPLES=300 GEARCAD_FUZZ_WIDE=1 GEARCAD_FUZZ_SEED=1 \\
+    GEARCAD_FUZZ_LOG=/tmp/fuzz.jsonl python -m pytest tests/test_fuzz.py
+
+draws ``GEARCAD_FUZZ_EXAMPLES`` profiles per kind from a random seed, includes the regions
+of known, not yet fixed findings (``GEARCAD_FUZZ_WIDE``: see ``_UNBOUNDED``), and with
+``GEARCAD_FUZZ_LOG`` records every failure as a JSON line and goes on instead of stopping.
+"""
+
+from __future__ import annotations
+
+import base64
+import json
+import logging
+import math
+import os
+import pickle
+import re
+import resource
+import select
+import signal
+import traceback
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
+from typing import Any, get_args
+
+import numpy as np
+import pytest
+from hypothesis import HealthCheck, given, seed, settings
+from hypothesis import strategies as st
+from pydantic import BaseModel
+
+import gearcad
+from gearcad.errors import GearcadError, ProfileError
+from gearcad.geometry.arcfit import arc_points
+from gearcad.geometry.verify import is_simple
+from gearcad.profiles import CarrierTrainParams, GearPairParams, RollerBodyParams, RollingWheelParams
+
+EXAMPLES = int(os.environ.get("GEARCAD_FUZZ_EXAMPLES", "4"))
+"""Profiles per kind (12 kinds)."""
+WIDE = os.environ.get("GEARCAD_FUZZ_WIDE", "") == "1"
+LOG = os.environ.get("GEARCAD_FUZZ_LOG", "")
+SEED = os.environ.get("GEARCAD_FUZZ_SEED", "")
+SECONDS = float(os.environ.get("GEARCAD_FUZZ_SECONDS", "10"))
+"""Time budget of one check on the shared 2-core machine, s."""
+MEMORY = int(float(os.environ.get("GEARCAD_FUZZ_MEMORY_GIB", "2")) * (1 << 30))
+"""Memory budget of one check: address space it may add to the process, bytes."""
+
+OMIT = object()
+"""A key left out of its table."""
+
+_UNBOUNDED: dict[str, str] = {}
+"""Keys whose huge or tiny values are accepted but lead to unbounded work (findings not yet
+fixed): the CI run draws no size extremes for them; ``GEARCAD_FUZZ_WIDE=1`` does."""
+
+# ---------------------------------------------------------------------------------------------
+# values
+
+
+def _floats(lo: float, hi: float) -> st.SearchStrategy[float]:
+    return st.floats(lo, hi, allow_nan=False, allow_infinity=False)
+
+
+_WRONG = st.sampled_from(
+    [
+        -1,
+        -0.5,
+        0,
+        0.0,
+        -0.0,
+        float("nan"),
+        float("inf"),
+        float("-inf"),
+        True,
+        False,
+        None,
+        10**400,
+        -(10**400),
+        2**63,
+        "",
+        "1",
+        "nan",
+        "inf",
+        "solve",
+        "x" * 300,
+        "é\n\x00",
+        [],
+        [1],
+        [1.0] * 300,
+        [[3, 0.1, 0.0]],
+        {},
+        {"a": 1},
+    ]
+)
+"""Values of the wrong kind or sign, which no key should take as a large amount of work."""
+_SIZES = st.sampled_from([1e-300, 5e-324, 1e-12, 1e-6, 1e6, 1e12, 1e300, 10**18])
+"""Size extremes: accepted by some keys (a length > 0 has no upper bound)."""
+_ANY = st.one_of(
+    st.floats(),
+    st.integers(),
+    st.text(max_size=12),
+    st.lists(st.floats(allow_nan=False), max_size=4),
+)
+
+
+_EXTREME_FLOATS = st.one_of(
+    st.floats(-12.0, 12.0).map(lambda e: 10.0**e),
+    st.floats(-12.0, 12.0).map(lambda e: -(10.0**e)),
+    _SIZES,
+)
+"""Accepted or not, numbers far from a key's usual range: 1e-12 … 1e12, either sign."""
+_EXTREME_INTS = st.sampled_from([-1, 0, 1, 2, 3, 5, 6, 7, 8, 24, 25, 60, 64, 200, 2000, 2001, 100_000])
+MODES = ("valid", "wild", "extreme")
+"""How a profile is drawn: valid values only; now and then a value of the wrong kind instead
+(wild); now and then a number far out of the usual range instead (extreme)."""
+
+
+class Gen:
+    """Draws one profile's values in one of :data:`MODES`."""
+
+    def __init__(self, draw: Callable, mode: str):
+        self.draw, self.mode = draw, mode
+
+    @property
+    def wild(self) -> bool:
+        return self.mode == "wild"
+
+    def key(
+        self, name: str, valid: st.SearchStrategy, *, optional: bool = True, edges: tuple = (), known: tuple = ()
+    ) -> Any:
+        """A value for ``name``: valid, left out (when optional), or an edge value.
+
+        ``known`` are edge values that meet a known finding not yet fixed, and the keys in
+        :data:`_UNBOUNDED` get no size extremes: both only when WIDE.
+        """
+        roll = self.draw(st.integers(0, 19))
+        sizes = WIDE or name not in _UNBOUNDED
+        if self.mode == "wild" and roll >= 18:
+            pools = [_WRONG, _ANY]
+            if sizes:
+                pools.append(_SIZES)
+            edges = edges + known if WIDE else edges
+            if edges:
+                pools.append(st.sampled_from(edges))
+            return self.draw(st.one_of(pools))
+        if self.mode == "extreme":
+            value = self.draw(valid)
+            if roll >= 15 and sizes and not isinstance(value, bool):
+                if isinstance(value, float):
+                    return self.draw(_EXTREME_FLOATS)
+                if isinstance(value, int):
+                    return self.draw(_EXTREME_INTS)
+            return value
+        if optional and roll >= 15:
+            return OMIT
+        return self.draw(valid)
+
+    def table(self, name: str, entries: dict[str, Any], *, optional: bool = False) -> Any:
+        """The table of the given entries (OMIT ones left out); when wild, sometimes an unknown
+        key too, or the whole table replaced by a value."""
+        if optional and self.draw(st.integers(0, 9)) >= 8:
+            return OMIT
+        table = {k: v for k, v in entries.items() if v is not OMIT}
+        if self.wild:
+            roll = self.draw(st.integers(0, 39))
+            if roll == 0:
+                return self.draw(_WRONG)
+            if roll == 1:
+                table[self.draw(st.sampled_from(["bogus", "A-1", "x.y", "a b", ""]))] = 1
+        return table
+
+
+def _profile(gen: Gen, mechanism: str | None, tables: dict[str, Any]) -> dict:
+    data: dict[str, Any] = {}
+    if mechanism is not None:
+        data["mechanism"] = gen.key("mechanism", st.just(mechanism), optional=False, edges=("gear-pair", "gear pair"))
+    elif gen.wild and gen.draw(st.integers(0, 19)) == 0:
+        data["mechanism"] = "gear-pair"
+    name = gen.key("name", st.sampled_from(["p", "pair-1", "A_b.c"]), edges=("../x", "/tmp/x", "a/b", "assembly", ".h"))
+    if name is not OMIT:
+        data["name"] = name
+    title = gen.key("title", st.text(max_size=20))
+    if title is not OMIT:
+        data["title"] = title
+    data.update({k: v for k, v in tables.items() if v is not OMIT})
+    if gen.wild and gen.draw(st.integers(0, 19)) == 0:
+        data[gen.draw(st.sampled_from(["extra", "gear3", "Output"]))] = {}
+    return data
+
+
+def _output(gen: Gen) -> Any:
+    """``[output]`` for a small, quick design: a coarse tolerance, no charts or animation."""
+    thickness = gen.draw(_floats(2.0, 10.0))
+    return gen.table(
+        "output",
+        {
+            "tolerance": gen.key(
+                "output.tolerance", _floats(0.01, 0.1), optional=False, edges=(1e-4, 0.5, 0.50001, 9.99e-5)
+            ),
+            "charts": gen.key("output.charts", st.just(False), optional=False),
+            "animation": gen.key("output.animation", st.just(False), optional=False),
+            "formats": gen.key(
+                "output.formats",
+                st.lists(st.sampled_from(["dxf", "svg", "stl", "3mf"]), unique=True),
+                edges=(["dwg"], ["dxf", "dxf"]),
+            ),
+            "dxf": gen.key("output.dxf", st.sampled_from(["polyline", "lines-arcs", "polyline-flat"])),
+            "thickness": gen.key("output.thickness", st.just(thickness), edges=(1000, 1000.1)),
+            "chamfer": gen.key("output.chamfer", st.sampled_from([0.0, 0.2, 0.5]), edges=(thickness / 2,)),
+            "kerf": gen.key("output.kerf", st.sampled_from([0.0, 0.05, 0.1]), edges=(2, 2.01, 1.5)),
+            "cut_layer": gen.key("output.cut_layer", st.sampled_from(["CUT", "cut_1"]), edges=("MARK", "a b")),
+            "mark_layer": gen.key("output.mark_layer", st.sampled_from(["MARK", "$ENGRAVE"]), edges=("CUT",)),
+            "sheet": gen.key("output.sheet", st.tuples(_floats(400, 3000), _floats(400, 3000)).map(list)),
+            "gap": gen.key("output.gap", _floats(0.0, 10.0)),
+            "bed": gen.key("output.bed", st.tuples(_floats(200, 3000), _floats(200, 3000)).map(list)),
+        },
+    )
+
+
+def _bore(gen: Gen) -> Any:
+    diameter = gen.draw(st.sampled_from([0.0, 3.0, 5.0]))
+    shape = gen.draw(st.sampled_from(["round", "keyway", "flat"])) if diameter else "round"
+    width = 1.0 if shape == "keyway" else 0.0
+    flat = 0.35 * diameter if shape == "flat" else 0.0
+    return gen.table(
+        "bore",
+        {
+            "diameter": gen.key("bore.diameter", st.just(diameter), optional=not diameter, edges=(1e4,)),
+            "keyway_width": gen.key("bore.keyway_width", st.just(width), optional=not width),
+            "keyway_depth": gen.key("bore.keyway_depth", st.just(width), optional=not width, edges=(50.0,)),
+            "flat": gen.key("bore.flat", st.just(flat), optional=not flat),
+        },
+        optional=True,
+    )
+
+
+# ---------------------------------------------------------------------------------------------
+# gear pairs
+
+
+def _curve(gen: Gen, curve: str) -> tuple[dict, int]:
+    """``[gear1]`` entries for one curve kind, and its lobes."""
+    entries: dict[str, Any] = {
+        "name": gen.key("gear1.name", st.sampled_from(["driver", "g1"]), edges=("gear2", "DRIVER", "sheet")),
+    }
+    tag = "ellipse" if curve.startswith("ellipse") else curve
+    entries["curve"] = gen.key("gear1.curve", st.just(tag), optional=False, edges=("Ellipse", "spline"))
+    a = gen.draw(_floats(10.0, 60.0))
+    shape = gen.draw(_floats(0.6, 1.0))  # b / a
+    lobes = 1
+    if curve.startswith("ellipse"):
+        pivot = "focus" if curve == "ellipse-focus" else "centre"
+        lobes = 1 if pivot == "focus" else 2
+        entries["a"] = gen.key("gear1.a", st.just(a), optional=False)
+        if gen.draw(st.booleans()):
+            entries["b"] = gen.key("gear1.b", st.just(a * shape), optional=False, edges=(2 * a,))
+        else:
+            entries["eccentricity"] = gen.key(
+                "gear1.eccentricity", _floats(0.0, 0.8), optional=False, edges=(1.0, 0.999999)
+            )
+        entries["pivot"] = gen.key("gear1.pivot", st.just(pivot), optional=pivot == "focus", edges=("center",))
+    elif curve == "oval":
+        lobes = 2
+        entries["a"] = gen.key("gear1.a", st.just(a), optional=False)
+        entries["b"] = gen.key("gear1.b", st.just(a * shape), optional=False, edges=(2 * a,))
+    elif curve == "circle":
+        entries["radius"] = gen.key("gear1.radius", _floats(5.0, 50.0), optional=False)
+    elif curve == "ratio":
+        lobes = gen.draw(st.integers(1, 3))
+        entries["lobes"] = gen.key("gear1.lobes", st.just(lobes), optional=lobes == 1, edges=(25, 24))
+        count = gen.draw(st.integers(0, 3))
+        orders = gen.draw(st.lists(st.integers(1, 4), min_size=count, max_size=count))
+        size = gen.draw(_floats(0.0, 0.3)) / max(count, 1)
+        terms = [
+            [k * lobes, gen.draw(_floats(-size, size)), gen.draw(_floats(-size, size))] for k in orders
+        ]  # scaled by the mean below
+        entries["harmonics"] = (terms, lobes)  # finished once gear 2's lobes are known
+    elif curve == "walker":
+        lobes = 4
+        entries["a"] = gen.key("gear1.a", _floats(95.0, 105.0), optional=False)
+        entries["b"] = gen.key("gear1.b", _floats(47.0, 53.0), optional=False, edges=(200.0,))
+        entries["c"] = gen.key("gear1.c", _floats(310.0, 330.0), optional=False)
+        entries["blend_width_deg"] = gen.key("gear1.blend_width_deg", _floats(0.0, 20.0), edges=(45, 44.999))
+    elif curve == "samples":
+        lobes = gen.draw(st.integers(1, 2))
+        n = gen.draw(st.integers(8 * lobes, 48))
+        mean, amplitude, phase = gen.draw(_floats(15.0, 40.0)), gen.draw(_floats(0.0, 0.15)), gen.draw(_floats(0, 6.3))
+        radii = [mean * (1 + amplitude * math.cos(2 * math.pi * lobes * j / n + phase)) for j in range(n)]
+        entries["radii"] = gen.key(
+            "gear1.radii", st.just(radii), optional=False, edges=([1.0] * 7, [1.0] * 100_001, radii[:-1] + [-1.0])
+        )
+        entries["lobes"] = gen.key("gear1.lobes", st.just(lobes), optional=lobes == 1, edges=(0, 25))
+    return entries, lobes
+
+
+def _teeth(gen: Gen, curve: str) -> Any:
+    by_count = gen.draw(st.booleans())
+    module = (1.2, 3.0) if curve == "walker" else (0.8, 3.0)
+    addendum = gen.draw(_floats(0.7, 1.0))
+    return gen.table(
+        "teeth",
+        {
+            "module": gen.key("teeth.module", _floats(*module), optional=False, edges=(1e-3, 100.0))
+            if not by_count
+            else OMIT,
+            "count": gen.key("teeth.count", st.integers(12, 60), optional=False, edges=(5, 6, 2001, 2000))
+            if by_count
+            else OMIT,
+            "pressure_angle_deg": gen.key("teeth.pressure_angle_deg", _floats(14.5, 30.0), edges=(9.99, 35, 35.01)),
+            "addendum": gen.key("teeth.addendum", st.just(addendum), edges=(2.0, 2.01)),
+            "dedendum": gen.key("teeth.dedendum", _floats(1.25, 1.5), edges=(3.0, 0.5)),
+            "tip_radius": gen.key("teeth.tip_radius", _floats(0.0, 0.38), edges=(0.6,)),
+            "profile_shift": gen.key("teeth.profile_shift", _floats(-0.4, 0.4), edges=(0.8, -0.8)),
+            "backlash": gen.key("teeth.backlash", st.sampled_from([0.0, 0.05, 0.1]), edges=(5.0, 1.0)),
+            "clearance": gen.key("teeth.clearance", st.sampled_from([0.0, 0.02, 0.05]), edges=(5.0, 0.5)),
+        },
+        optional=True,
+    )
+
+
+@st.composite
+def gear_pairs(draw: Callable, curve: str) -> dict:
+    """A gear-pair profile whose driver is ``curve`` (ellipse-focus, ellipse-centre, oval,
+    circle, ratio, walker, samples)."""
+    gen = Gen(draw, draw(st.sampled_from(MODES)))
+    gear1, lobes1 = _curve(gen, curve)
+    lobes2 = draw(st.integers(1, 3)) if curve in ("ratio", "samples", "circle") else 1 if curve == "walker" else lobes1
+    if curve == "ratio":
+        terms, lobes = gear1.pop("harmonics")
+        mean = lobes / lobes2
+        gear1["harmonics"] = gen.key(
+            "gear1.harmonics",
+            st.just([[k, c * mean, s * mean] for k, c, s in terms]),
+            edges=([[1, 2.0, 0.0]], [[65, 0.1, 0.1]], [[lobes, 0.1, 0.1]] * 17, [[1, float("nan"), 0]]),
+        )
+        gear1["mean"] = gen.key("gear1.mean", st.just(mean), edges=(mean * 1.01,)) if draw(st.booleans()) else OMIT
+    name2 = gen.key("gear2.name", st.sampled_from(["follower", "g2"]), edges=("driver",))
+    gear2 = gen.table(
+        "gear2",
+        {
+            "name": name2,
+            "lobes": gen.key(
+                "gear2.lobes",
+                st.just(lobes2),
+                optional=lobes2 == lobes1,
+                edges=(25, 24, 0),
+                known=(4, 2) if curve == "walker" else (),
+            ),
+        },
+    )
+    if lobes2 == lobes1 and draw(st.booleans()):
+        gear2 = OMIT
+    given_names = [gear1["name"], gear2.get("name") if isinstance(gear2, dict) else OMIT]
+    names = [n if isinstance(n, str) else f"gear{k + 1}" for k, n in enumerate(given_names)]
+    if curve in ("ratio", "walker"):
+        distance = _floats(70.0, 80.0) if curve == "walker" else _floats(30.0, 100.0)
+    else:
+        distance = st.one_of(st.just("solve"), st.just("solve"), _floats(20.0, 150.0))
+    pair = gen.table(
+        "pair",
+        {
+            "center_distance": gen.key("pair.center_distance", distance, optional=curve not in ("ratio", "walker")),
+            "driver": gen.key("pair.driver", st.sampled_from(names), edges=("nobody",)),
+            "driver_rpm": gen.key("pair.driver_rpm", _floats(1.0, 600.0)),
+        },
+    )
+    claim = gen.table(
+        "claim",
+        {
+            "center_distance": gen.key("claim.center_distance", _floats(20.0, 120.0), optional=False),
+            "source": gen.key("claim.source", st.text(max_size=20)),
+        },
+        optional=True,
+    )
+    if draw(st.integers(0, 2)) or lobes2 != lobes1:
+        claim = OMIT
+    tables = {
+        "gear1": gen.table("gear1", gear1),
+        "gear2": gear2,
+        "pair": pair,
+        "claim": claim,
+        "teeth": _teeth(gen, curve),
+        "bore": _bore(gen),
+        "output": _output(gen),
+    }
+    return _profile(gen, draw(st.sampled_from([None, "gear-pair"])), tables)
+
+
+# ---------------------------------------------------------------------------------------------
+# the other mechanisms
+
+_ROLLER_AMPLITUDE = {3: 0.18, 6: 0.06, 9: 0.03}
+"""A little over the paper's by-eye limits: some bodies are refused as not simple."""
+
+
+def _series(gen: Gen, name: str) -> Any:
+    count = gen.draw(st.integers(0, 3))
+    terms = [
+        [gen.draw(st.sampled_from([3, 6, 9])), gen.draw(_floats(-0.01, 0.01)), gen.draw(_floats(-0.01, 0.01))]
+        for _ in range(count)
+    ]
+    return gen.key(
+        name,
+        st.just(terms),
+        edges=([[4, 0.1, 0.0]], [[3, float("nan"), 0.0]], [[63, 0.01, 0.0]], [[60, 0.01, 0.0]], [[3, 0.1, 0]] * 17),
+    )
+
+
+@st.composite
+def roller_bodies(draw: Callable, series: bool) -> dict:
+    """A roller-body profile, harmonic (horizontal or vertical) or by a series."""
+    gen = Gen(draw, draw(st.sampled_from(MODES)))
+    m = draw(st.sampled_from([3, 6, 9]))
+    direction = "series" if series else draw(st.sampled_from(["horizontal", "vertical"]))
+    body = {
+        "scale": gen.key("body.scale", _floats(50.0, 150.0)),
+        "roller_radius": gen.key("body.roller_radius", _floats(0.05, 0.2), edges=(0.005, 0.0049, 0.999)),
+        "direction": gen.key("body.direction", st.just(direction), optional=not series, edges=("diagonal",)),
+    }
+    if series:
+        body["f"] = _series(gen, "body.f")
+        body["g"] = _series(gen, "body.g")
+    else:
+        body["amplitude"] = gen.key("body.amplitude", _floats(0.0, _ROLLER_AMPLITUDE[m]), edges=(10.0,))
+        body["m"] = gen.key("body.m", st.just(m), edges=(18, 30, 33, 4, 2))
+    tables = {
+        "body": gen.table("body", body),
+        "kinematics": gen.table("kinematics", {"rpm": gen.key("kinematics.rpm", _floats(1.0, 600.0))}, optional=True),
+        "teeth": gen.table(
+            "teeth",
+            {
+                "roller_count": gen.key("teeth.roller_count", st.integers(8, 24), optional=False, edges=(7, 200, 201)),
+                "pressure_angle_deg": gen.key("teeth.pressure_angle_deg", _floats(14.5, 30.0)),
+            },
+            optional=True,
+        ),
+        "bore": _bore(gen),
+        "output": _output(gen),
+    }
+    if draw(st.booleans()):
+        tables["teeth"] = OMIT
+    return _profile(gen, "roller-body", tables)
+
+
+@st.composite
+def rolling_wheels(draw: Callable) -> dict:
+    """A rolling-wheel profile, sometimes with a horizontal rack (H = R − r)."""
+    gen = Gen(draw, draw(st.sampled_from(MODES)))
+    r, big = draw(_floats(5.0, 50.0)), draw(_floats(10.0, 100.0))
+    length = draw(_floats(100.0, 500.0))
+    low = max(0.0, big - r)
+    height = low if draw(st.integers(0, 4)) == 0 else draw(_floats(low, low + 300.0))
+    drive = {
+        "r": gen.key("drive.r", st.just(r), optional=False),
+        "R": gen.key("drive.R", st.just(big), optional=False, edges=(1e5, 100000.1)),
+        "L": gen.key("drive.L", st.just(length), optional=False),
+        "H": gen.key("drive.H", st.just(height), optional=False, edges=(1e5,)),
+        "driver_rpm": gen.key("drive.driver_rpm", _floats(1.0, 600.0)),
+        "travel": gen.key("drive.travel", _floats(1.0, 0.8 * length), edges=(length,)),
+    }
+    return _profile(gen, "rolling-wheel", {"drive": gen.table("drive", drive), "output": _output(gen)})
+
+
+@st.composite
+def carrier_trains(draw: Callable, internal: bool) -> dict:
+    """A carrier-train profile: external meshes only, or a sun, planet and ring."""
+    gen = Gen(draw, draw(st.sampled_from(MODES)))
+    if internal:
+        sun, planet = draw(st.integers(10, 30)), draw(st.integers(8, 30))
+        teeth = [sun, planet, draw(st.sampled_from([sun + 2 * planet, planet + 12, planet + 40]))]
+        meshes = ["external", "internal"]
+    else:
+        teeth = draw(st.lists(st.integers(8, 60), min_size=2, max_size=4))
+        meshes = ["external"] * (len(teeth) - 1)
+    names = [f"gear{k}" for k in range(len(teeth))]
+    train = {
+        "module": gen.key("train.module", _floats(0.5, 2.0), optional=False, edges=(50.0, 50.01)),
+        "teeth": gen.key("train.teeth", st.just(teeth), optional=False, edges=([8], [2000, 8], [7, 20])),
+        "meshes": gen.key(
+            "train.meshes", st.just(meshes), optional=not internal, edges=(["internal"] * (len(teeth) - 1),)
+        ),
+        "names": gen.key("train.names", st.just(names), edges=(["a", "A"] + names[2:], names[:1])),
+        "gear1_rpm": gen.key("train.gear1_rpm", _floats(-600.0, 600.0)),
+        "carrier_rpm": gen.key("train.carrier_rpm", _floats(-600.0, 600.0)),
+        "gear1_eps": gen.key("train.gear1_eps", _floats(-10.0, 10.0)),
+        "carrier_eps": gen.key("train.carrier_eps", _floats(-10.0, 10.0)),
+        "pressure_angle_deg": gen.key("train.pressure_angle_deg", _floats(14.5, 30.0)),
+    }
+    tables = {"train": gen.table("train", train), "bore": _bore(gen), "output": _output(gen)}
+    return _profile(gen, "carrier-train", tables)
+
+
+KINDS: dict[str, st.SearchStrategy[dict]] = {
+    **{
+        f"gear-pair/{c}": gear_pairs(c)
+        for c in ("ellipse-focus", "ellipse-centre", "oval", "circle", "ratio", "walker", "samples")
+    },
+    "roller-body/harmonic": roller_bodies(False),
+    "roller-body/series": roller_bodies(True),
+    "rolling-wheel": rolling_wheels(),
+    "carrier-train/external": carrier_trains(False),
+    "carrier-train/internal": carrier_trains(True),
+}
+
+# ---------------------------------------------------------------------------------------------
+# the check and its budget
+
+
+class OverBudget(BaseException):  # noqa: N818 - not an error of the code under test: the budget's
+    """The check ran past its time budget (a BaseException, so no ``except Exception`` hides it)."""
+
+
+def _address_space() -> int:
+    with open("/proc/self/status", encoding="ascii") as status:
+        for line in status:
+            if line.startswith("VmSize:"):
+                return int(line.split()[1]) * 1024
+    return 0  # pragma: no cover
+
+
+@contextmanager
+def budget(seconds: float, memory: int) -> Iterator[None]:
+    """Raise :class:`OverBudget` after ``seconds`` (SIGALRM) and ``MemoryError`` beyond ``memory``
+    more bytes of address space (RLIMIT_AS), restoring both afterwards."""
+
+    def alarm(signum, frame):
+        raise OverBudget(f"over the time budget of {seconds:g} s")
+
+    previous = signal.signal(signal.SIGALRM, alarm)
+    soft, hard = resource.getrlimit(resource.RLIMIT_AS)
+    limit = _address_space() + memory
+    if hard != resource.RLIM_INFINITY:
+        limit = min(limit, hard)
+    resource.setrlimit(resource.RLIMIT_AS, (limit, hard))
+    signal.setitimer(signal.ITIMER_REAL, seconds)
+    try:
+        yield
+    finally:
+        signal.setitimer(signal.ITIMER_REAL, 0)
+        signal.signal(signal.SIGALRM, previous)
+        resource.setrlimit(resource.RLIMIT_AS, (soft, hard))
+
+
+_NAME = r'(?:[A-Za-z0-9_-]+|"(?:[^"\\]|\\.)*")(?:\[\d+\])*'
+_KEY = rf"{_NAME}(?:\.{_NAME})*"
+_PROFILE_LINE = re.compile(
+    rf"(?:\[(?P<table>{_KEY})\] is missing: .+"
+    rf"|(?P<key>{_KEY}|the profile)(?: = .+?: .+|: .+| is missing: .+)"
+    r"|the profile must be a table)"
+)
+_MAX_LINE = 1000
+"""Characters: a message shows values shortened, never a whole long list."""
+
+
+def profile_keys(model: Any, prefix: str = "") -> set[str]:
+    """Every dotted key a profile of ``model`` (a params class or union of them) may write."""
+    keys: set[str] = set()
+    for cls in _models(model):
+        for name, field in cls.model_fields.items():
+            key = f"{prefix}{name}"
+            keys.add(key)
+            keys |= profile_keys(field.annotation, f"{key}.")
+    return keys
+
+
+def _models(annotation: Any) -> list[type[BaseModel]]:
+    if isinstance(annotation, type) and issubclass(annotation, BaseModel):
+        return [annotation]
+    return [m for arg in get_args(annotation) for m in _models(arg)]
+
+
+_KEYS = {
+    cls.model_fields["mechanism"].default: profile_keys(cls)
+    for cls in (GearPairParams, RollerBodyParams, RollingWheelParams, CarrierTrainParams)
+}
+_TABLES = sorted({key.split(".")[0] for keys in _KEYS.values() for key in keys if "." in key})
+_MENTION = re.compile(rf"\b(?:{'|'.join(_TABLES)})\.[a-z_0-9]+")
+
+
+def check_error(exc: GearcadError, mechanism: str | None = None) -> None:
+    """One short line per problem; a ProfileError's lines each start with the dotted key; a
+    DesignError names only keys that the ``mechanism``'s profiles have."""
+    text = str(exc)
+    lines = text.split("\n")
+    assert text.strip(), f"{type(exc).__name__} without a message"
+    assert "Traceback" not in text, text
+    for line in lines:
+        assert line.strip() and line == line.strip(), f"blank or padded line in {text!r}"
+        assert len(line) <= _MAX_LINE, f"line of {len(line)} characters: {line[:200]}…"
+    if isinstance(exc, ProfileError):
+        for line in lines:
+            assert _PROFILE_LINE.fullmatch(line), f"ProfileError line names no dotted key: {line!r}"
+        return
+    assert len(lines) == 1, f"{type(exc).__name__} of {len(lines)} lines: {text!r}"
+    if mechanism in _KEYS:
+        for key in _MENTION.findall(text):
+            assert key in _KEYS[mechanism], f"the message names {key}, which a {mechanism} profile has not: {text}"
+
+
+def _non_finite(value: Any, where: str = "") -> Iterator[str]:
+    if isinstance(value, float | np.floating) and math.isnan(value):
+        yield where
+    elif isinstance(value, dict):
+        for k, v in value.items():
+            yield from _non_finite(v, f"{where}.{k}" if where else str(k))
+    elif isinstance(value, list | tuple):
+        for k, v in enumerate(value):
+            yield from _non_finite(v, f"{where}[{k}]")
+
+
+def check_design(design: gearcad.Design) -> None:
+    """Finite outlines, cut paths simple as drawn, the report strict JSON without NaN."""
+    tolerance = design.params.output.tolerance
+    assert design.parts(), "a design without parts"
+    for part in design.parts():
+        for ring in part.outline.rings:
+            assert len(ring) >= 3 and np.all(np.isfinite(ring)), f"{part.name}: outline ring not finite"
+        assert part.outline.area > 0, f"{part.name}: outline area {part.outline.area}"
+        assert part.cut, f"{part.name}: no cut path"
+        for k, ring in enumerate(part.cut):
+            drawn = arc_points(ring, tolerance / 4)
+            assert np.all(np.isfinite(drawn)), f"{part.name}: cut ring {k} not finite"
+            assert is_simple(drawn), f"{part.name}: cut ring {k} crosses itself as drawn"
+    json.dumps(design.report(), allow_nan=False)
+    nan = list(_non_finite(design.data))
+    assert not nan, f"NaN in the report (written as null): {', '.join(nan[:5])}"
+
+
+def run_check(data: dict) -> str:
+    """The check path on ``data`` within the budget: "design", or the error's class and message."""
+    with budget(SECONDS, MEMORY):
+        try:
+            design = gearcad.check(data)
+        except GearcadError as exc:
+            outcome: Any = exc
+        else:
+            outcome = design
+    if isinstance(outcome, GearcadError):
+        mechanism = data.get("mechanism", "gear-pair") if isinstance(data, dict) else None
+        check_error(outcome, mechanism if isinstance(mechanism, str) else None)
+        return f"{type(outcome).__name__}: {outcome}"
+    check_design(outcome)
+    return "design"
+
+
+def _where(exc: BaseException) -> str:
+    """The deepest gearcad frame of the traceback (else the deepest frame)."""
+    frames = traceback.extract_tb(exc.__traceback__)
+    ours = [f for f in frames if "/gearcad/" in f.filename.replace(os.sep, "/")] or frames
+    if not ours:
+        return "?"
+    f = ours[-1]
+    return f"{f.filename.split('/gearcad/')[-1]}:{f.lineno} in {f.name}"
+
+
+def _isolated(data: dict) -> dict:
+    """``run_check(data)`` in a forked child (the campaign): a check that the alarm cannot stop —
+    stuck in C code, or waiting for worker threads — is killed at three times the budget."""
+    read, write = os.pipe()
+    pid = os.fork()
+    if pid == 0:  # pragma: no cover - the child
+        os.close(read)
+        try:
+            result = {"outcome": run_check(data)}
+        except BaseException as exc:  # noqa: BLE001 - every failure is the finding
+            result = {
+                "type": type(exc).__name__,
+                "message": str(exc)[:2000],
+                "where": _where(exc),
+                "traceback": "".join(traceback.format_exception(exc))[-4000:],
+            }
+        with os.fdopen(write, "w", encoding="utf-8") as pipe:
+            pipe.write(json.dumps(result, ensure_ascii=False))
+        os._exit(0)
+    os.close(write)
+    with os.fdopen(read, encoding="utf-8") as pipe:
+        ready, _, _ = select.select([pipe], [], [], 3 * SECONDS)
+        if ready:
+            text = pipe.read()
+        else:
+            os.kill(pid, signal.SIGKILL)
+            text = json.dumps({"type": "Hang", "message": f"killed after {3 * SECONDS:g} s", "where": "?"})
+    os.waitpid(pid, 0)
+    return json.loads(text) if text else {"type": "Crash", "message": "the child died", "where": "?"}
+
+
+def _campaign(kind: str, data: dict) -> None:
+    """Run one check of the campaign and log its outcome, and any failure with its profile."""
+    result = _isolated(data)
+    if "outcome" not in result:
+        entry = {
+            "kind": kind,
+            **result,
+            "data": repr(data)[:20000],
+            "pickle": base64.b64encode(pickle.dumps(data)).decode("ascii"),
+        }
+        with open(LOG, "a", encoding="utf-8") as log:
+            log.write(json.dumps(entry, ensure_ascii=False) + "\n")
+    outcome = result.get("outcome", "FAILED")
+    with open(LOG + ".outcomes", "a", encoding="utf-8") as outcomes:
+        outcomes.write(json.dumps({"kind": kind, "outcome": outcome[:300]}, ensure_ascii=False) + "\n")
+
+
+def _settings(test):
+    test = settings(
+        max_examples=EXAMPLES,
+        deadline=None,
+        derandomize=not SEED,
+        database=None,
+        print_blob=True,
+        suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large, HealthCheck.filter_too_much],
+    )(test)
+    return seed(int(SEED))(test) if SEED else test
+
+
+@pytest.fixture(autouse=True)
+def _quiet_findings():
+    # design warnings are logged; thousands of them would only slow the run down
+    logger = logging.getLogger("gearcad")
+    level, logger.level = logger.level, logging.CRITICAL
+    yield
+    logger.setLevel(level)
+
+
+@pytest.mark.parametrize("kind", sorted(KINDS))
+def test_check_path_never_fails_out_of_bounds(kind):
+    """Any profile of any mechanism ends in a checked design or one short gearcad error, in budget."""
+
+    @_settings
+    @given(data=KINDS[kind])
+    def run(data):
+        if LOG:
+            _campaign(kind, data)
+            return
+        run_check(data)
+
+    run()
+
+
+def test_budget_catches_a_slow_check():
+    """The budget itself can fail: a loop past the time limit is stopped."""
+    with pytest.raises(OverBudget), budget(0.05, MEMORY):
+        while True:
+            pass
+
+
+def test_budget_catches_a_large_allocation():
+    with pytest.raises(MemoryError), budget(5, 1 << 28):
+        np.ones(1 << 27)  # 1 GiB against a budget of 256 MiB
+
+
+@pytest.mark.parametrize(
+    "data",
+    [
+        {"gear1": {"curve": "circle", "radius": -3}},
+        {"gear1": {"curve": "circle", "radius": 20, "bogus": 1}},
+        {"mechanism": "rolling-wheel", "drive": {"r": 10, "R": 20, "L": 100, "H": float("nan")}},
+        {"gear1": 3},
+    ],
+)
+def test_profile_errors_name_a_key(data):
+    """The message check accepts what validation writes: every line starts with the key."""
+    with pytest.raises(ProfileError) as caught:
+        gearcad.check(data)
+    check_error(caught.value)
