@@ -58,7 +58,9 @@ def _gear_part(p: CarrierTrainParams, k: int, ring: bool):
     r = m * z / 2
     addendum, dedendum = (1.25, 1.0) if ring else (1.0, 1.25)
     rack = Rack.from_params(RackParams(module=m, pressure_angle=p.pressure_angle, addendum=addendum, dedendum=dedendum))
-    gear = cut_teeth(arc_frame(shapes.circle(r)), rack, z, rack.pitch / 2, tolerance=fine)  # tooth at angle 0
+    gear = cut_teeth(
+        arc_frame(shapes.circle(r)), rack, z, rack.pitch / 2, tolerance=fine, resize="a smaller train.module"
+    )  # tooth at angle 0
     pitch = circle_ring(r, fine)
     if ring:
         rim = circle_ring(r + 3.75 * m, fine)

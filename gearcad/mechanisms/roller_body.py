@@ -80,8 +80,9 @@ def _toothed_body(osc: RB.Oscillation, p: RollerBodyParams) -> dict:
         raise DesignError("the body's perimeter does not fit its teeth (the contour is not a parallel of its path)")
     fine = p.output.tolerance * DEFAULT.fine_fraction
     rack = Rack.from_params(RackParams(module=module, pressure_angle=p.pressure_angle))
-    body = cut_teeth(frame, rack, z_b, rack.pitch / 2, tolerance=fine)
-    roller = cut_teeth(arc_frame(shapes.circle(r * p.scale)), rack, z_r, rack.pitch / 2, tolerance=fine)
+    resize = "a larger teeth.roller_count (smaller teeth)"
+    body = cut_teeth(frame, rack, z_b, rack.pitch / 2, tolerance=fine, resize=resize)
+    roller = cut_teeth(arc_frame(shapes.circle(r * p.scale)), rack, z_r, rack.pitch / 2, tolerance=fine, resize=resize)
     turns = []
     for k in range(3):
         tau = TWO_PI * k / 3

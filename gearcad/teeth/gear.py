@@ -185,7 +185,13 @@ def remove_loops(points: np.ndarray) -> tuple[np.ndarray, int]:
     return points, removed
 
 
-def cut_teeth(frame: ArcFrame, rack: Rack, teeth: int, phase: float, *, tolerance: float) -> ToothedGear:
+RESIZE = "a smaller teeth.module or a larger teeth.count"
+"""What to change when the teeth overlap, as a gear pair's profile says it."""
+
+
+def cut_teeth(
+    frame: ArcFrame, rack: Rack, teeth: int, phase: float, *, tolerance: float, resize: str = RESIZE
+) -> ToothedGear:
     """Cut ``teeth`` evenly spaced teeth, space k centred at arc length phase + k·pitch.
 
     The perimeter must be exactly teeth × pitch (the caller chooses the module so).
@@ -243,7 +249,7 @@ def cut_teeth(frame: ArcFrame, rack: Rack, teeth: int, phase: float, *, toleranc
             parts.append(tip_of[k][:-1])
             start += len(tip_of[k]) - 1
     ring = np.vstack(parts)
-    _check_ring(ring)
+    _check_ring(ring, resize)
 
     # Undercut by the fold criterion at the lowest straight-flank point of every flank.
     fold = math.sin(rack.params.pressure_angle) ** 2
@@ -272,13 +278,10 @@ def cut_teeth(frame: ArcFrame, rack: Rack, teeth: int, phase: float, *, toleranc
     )
 
 
-def _check_ring(ring: np.ndarray) -> None:
+def _check_ring(ring: np.ndarray, resize: str = RESIZE) -> None:
     """A toothed outline must be one simple counter-clockwise ring: never a wrong shape."""
     if not np.all(np.isfinite(ring)):
         raise DesignError("the tooth outline is not finite (the rack cannot follow this pitch curve)")
     polygon = shapely.Polygon(ring)
     if not polygon.is_valid or ring_area(ring) <= 0:
-        raise DesignError(
-            "the teeth overlap each other: they are too large for this pitch curve; choose a smaller "
-            "teeth.module or a larger teeth.count"
-        )
+        raise DesignError(f"the teeth overlap each other: they are too large for this pitch curve; choose {resize}")
