@@ -37,10 +37,10 @@ def write_design(design: Design, folder: Path) -> dict[str, dict]:
 
         for part in parts:
             path = folder / f"{part.name}.dxf"
-            n = write_dxf(path, part_drawing(design, part), flavour=out.dxf)
+            n = write_dxf(path, part_drawing(design, part), flavour=out.dxf, cut_layer=out.cut_layer)
             files[path.name] = _entry(path, kind="dxf", part=part.name, vertices=n, flavour=out.dxf)
         path = folder / "assembly.dxf"
-        n = write_dxf(path, assembly_drawing(design), flavour=out.dxf)
+        n = write_dxf(path, assembly_drawing(design), flavour=out.dxf, cut_layer=out.cut_layer)
         files[path.name] = _entry(path, kind="dxf", part="assembly", vertices=n, flavour=out.dxf)
     if "svg" in formats:
         from .svg import write_svg
@@ -59,7 +59,7 @@ def write_design(design: Design, folder: Path) -> dict[str, dict]:
         sheet = sheet_drawing(design)
         if "dxf" in formats:
             path = folder / "sheet.dxf"
-            n = write_dxf(path, sheet, flavour=out.dxf)
+            n = write_dxf(path, sheet, flavour=out.dxf, cut_layer=out.cut_layer)
             files[path.name] = _entry(path, kind="dxf", part="sheet", vertices=n, flavour=out.dxf)
         if "svg" in formats:
             path = folder / "sheet.svg"
