@@ -17,8 +17,6 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from .errors import GearcadError, ProfileError
-from .export.html import index_entry, write_index
-from .export.write import write_design
 from .findings import Finding
 from .mechanisms import Design, design
 from .profiles import ProfileParams
@@ -63,6 +61,8 @@ def design_all(profiles: Sequence[ProfileParams]) -> list[Design]:
 def _build_one(job: tuple[ProfileParams, Path]) -> BuildResult:
     params, folder = job
     start = time.perf_counter()
+    from .export.write import write_design  # the file libraries only when files are written
+
     d = _named(params, lambda: design(params))
     files = _named(params, lambda: write_design(d, folder))
     return BuildResult(d.name, d.summary, d.findings, files, time.perf_counter() - start)
@@ -121,6 +121,8 @@ def build(
 def _write_index(out: Path) -> None:
     """``out/index.html`` over every profile folder in ``out`` (this build's and earlier ones'),
     replaced in one step."""
+    from .export.html import index_entry, write_index
+
     entries = []
     for report_path in sorted(out.glob("*/report.json")):
         try:

@@ -26,11 +26,10 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.integrate import simpson
-from scipy.optimize import brentq
 
 from ..geometry.outline import arc_steps
 from ..pitch.walker import WalkerGeometry, shoe_functions
+from ..roots import brentq
 
 __all__ = [
     "STANCE",
@@ -170,7 +169,11 @@ def stance_check(g: WalkerGeometry, phi=None, *, half_range: float = STANCE) -> 
     for p in phi:
         k = int(np.argmin(_placed(g, p, grid)[1]))
         lo, hi = grid[max(k - 1, 0)], grid[min(k + 1, len(grid) - 1)]
-        psi = brentq(slope, lo, hi, args=(p,), xtol=1e-14) if slope(lo, p) * slope(hi, p) < 0 else float(grid[k])
+        psi = (
+            brentq(lambda s, p=p: slope(s, p), lo, hi, xtol=1e-14)
+            if slope(lo, p) * slope(hi, p) < 0
+            else float(grid[k])
+        )
         x0, y0 = (float(v) for v in _placed(g, p, psi))
         # eqs. 1–2 make Y2 (vertical when placed) the surface normal at K1: the placed surface's
         # tangent at the paper's contact (ψ = φ) must be horizontal
@@ -235,8 +238,14 @@ def speed_comparison(g: WalkerGeometry, *, i_paper: float, law=None, samples: in
     if law is not None:
         ratios["rolling"] = np.asarray(law.k(phi), dtype=float)
 
-    def integral(values):
-        return float(simpson(values, x=phi))
+    if samples % 2 == 0:
+        raise ValueError(f"Simpson's rule needs an odd number of samples, got {samples}")
+    weights = np.ones(samples)
+    weights[1:-1:2], weights[2:-1:2] = 4.0, 2.0
+    weights *= (phi[1] - phi[0]) / 3
+
+    def integral(values):  # composite Simpson on the uniform grid
+        return float(weights @ values)
 
     out = {"phi_deg": np.degrees(phi).tolist()}
     for name, ratio in ratios.items():

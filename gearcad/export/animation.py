@@ -7,6 +7,7 @@ from pathlib import Path
 import numpy as np
 from PIL import Image, ImageDraw
 
+from ..geometry.arcfit import decimate
 from ..geometry.outline import rotate
 
 __all__ = ["write_gif"]
@@ -24,6 +25,8 @@ def write_gif(
     hi = np.max([np.asarray(p) + q for p, q in zip(pivots, reach)], axis=0)
     margin = 10
     scale = min((size[0] - 2 * margin) / (hi[0] - lo[0]), (size[1] - 2 * margin) / (hi[1] - lo[1]))
+    # a tenth of a pixel is all a frame can show: thin the rings to that once, not every frame
+    rings = [decimate(r, 0.1 / scale) for r in rings]
     frames = []
     for row in angles:
         # index 0 white (the background every viewer shows), 1 black (outlines), then the parts'
@@ -36,7 +39,7 @@ def write_gif(
             xy = np.column_stack(
                 [(pts[:, 0] - lo[0]) * scale + margin, size[1] - ((pts[:, 1] - lo[1]) * scale + margin)]
             )
-            draw.polygon([tuple(p) for p in xy.round(1)], fill=2 + k % len(_COLOURS), outline=1)
+            draw.polygon(xy.round(1).ravel().tolist(), fill=2 + k % len(_COLOURS), outline=1)
             cx, cy = (pivot[0] - lo[0]) * scale + margin, size[1] - ((pivot[1] - lo[1]) * scale + margin)
             draw.ellipse([cx - 2, cy - 2, cx + 2, cy + 2], fill=1)
         frames.append(image)

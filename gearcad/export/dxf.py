@@ -113,8 +113,12 @@ def ring_area_with_arcs(ring) -> float:
 
 
 def _chord_loss(radius: float, sweep: float, pieces: int) -> float:
-    """Area between an arc and the chords of ``pieces`` equal sub-arcs: pieces·r²(θ/n − sin θ/n)/2."""
-    return pieces * radius * radius * float(_x_minus_sin(abs(sweep) / pieces)) / 2
+    """Area between an arc and the chords of ``pieces`` equal sub-arcs: pieces·r²(θ/n − sin θ/n)/2
+    (one arc at a time, in floats: the greedy splitting calls it thousands of times)."""
+    x = abs(sweep) / pieces
+    x2 = x * x
+    x_minus_sin = x * x2 / 6 * (1 - x2 / 20 * (1 - x2 / 42)) if x < 0.01 else x - math.sin(x)
+    return pieces * radius * radius * x_minus_sin / 2
 
 
 def _allocate(arcs: list[tuple[float, float]], pieces: list[int], budget: float) -> None:
@@ -165,25 +169,22 @@ def _balance(arcs: list[tuple[float, float]], pieces: list[int], budget: float) 
 
 def _split(v: np.ndarray, bulges: np.ndarray, pieces: np.ndarray) -> ArcRing:
     """The ring with segment k cut into ``pieces[k]`` equal sub-arcs (same path, more vertices)."""
-    out_v, out_b = [], []
-    n = len(v)
-    for k in range(n):
-        a, b, bulge, m = v[k], v[(k + 1) % n], float(bulges[k]), int(pieces[k])
-        out_v.append(a)
-        if m <= 1:
-            out_b.append(bulge)
-            continue
-        sweep = 4 * math.atan(bulge)
-        chord = b - a
-        length = float(np.hypot(*chord))
-        left = np.array([-chord[1], chord[0]]) / length
-        centre = (a + b) / 2 + left * (length / 2) * math.cos(sweep / 2) / math.sin(sweep / 2)
-        rel = a - centre
-        for j in range(1, m):
-            c, s = math.cos(sweep * j / m), math.sin(sweep * j / m)
-            out_v.append(centre + np.array([c * rel[0] - s * rel[1], s * rel[0] + c * rel[1]]))
-        out_b += [math.tan(sweep / (4 * m))] * m
-    return ArcRing(np.array(out_v), np.array(out_b))
+    pieces = np.maximum(np.asarray(pieces, dtype=int), 1)
+    pieces = np.where(bulges != 0, pieces, 1)
+    owner = np.repeat(np.arange(len(v)), pieces)  # the segment each new vertex lies on
+    step = np.arange(len(owner)) - np.repeat(np.cumsum(pieces) - pieces, pieces)  # 0 … pieces − 1
+    sweep = 4 * np.arctan(bulges)
+    chord = np.roll(v, -1, axis=0) - v
+    left = np.column_stack([-chord[:, 1], chord[:, 0]])
+    turn = sweep[owner] * step / pieces[owner]
+    c, s = np.cos(turn), np.sin(turn)
+    with np.errstate(divide="ignore", invalid="ignore"):  # lines: no centre, and only their start is kept
+        centre = (v + np.roll(v, -1, axis=0)) / 2 + left / 2 * (np.cos(sweep / 2) / np.sin(sweep / 2))[:, None]
+        rel = (v - centre)[owner]
+        rotated = centre[owner] + np.column_stack([c * rel[:, 0] - s * rel[:, 1], s * rel[:, 0] + c * rel[:, 1]])
+    out_v = np.where((step > 0)[:, None], rotated, v[owner])
+    out_b = np.where(pieces[owner] > 1, np.tan(sweep[owner] / (4 * pieces[owner])), bulges[owner])
+    return ArcRing(out_v, out_b)
 
 
 def _inside(point: np.ndarray, ring: np.ndarray) -> bool:
@@ -220,7 +221,7 @@ def limit_sweep(rings: list, *, regions: bool, share: float = CHORD_AREA) -> lis
     for k, ((radius, sweep), area) in enumerate(zip(shapes, areas)):
         arcs = np.nonzero(sweep)[0]
         counts = [1] * len(arcs)
-        _allocate([(radius[i], sweep[i]) for i in arcs], counts, share * abs(area))
+        _allocate([(float(radius[i]), float(sweep[i])) for i in arcs], counts, share * abs(area))
         pieces[k][arcs] = counts
     if regions:
         outers = [k for k, a in enumerate(areas) if a > 0]
@@ -239,7 +240,7 @@ def limit_sweep(rings: list, *, regions: bool, share: float = CHORD_AREA) -> lis
         for members in groups.values():
             index = [(k, i) for k in members for i in np.nonzero(shapes[k][1])[0]]
             counts = [int(pieces[k][i]) for k, i in index]
-            arcs = [(shapes[k][0][i], shapes[k][1][i]) for k, i in index]
+            arcs = [(float(shapes[k][0][i]), float(shapes[k][1][i])) for k, i in index]
             _balance(arcs, counts, share * abs(sum(areas[k] for k in members)))
             for (k, i), m in zip(index, counts):
                 pieces[k][i] = m

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, replace
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -16,7 +17,6 @@ from ..geometry.arcfit import decimate
 from ..pitch.discretize import polyline
 from ..pitch.gear import GearData
 from ..profiles import GearPairParams
-from ..teeth.helical import HelicalSections, helix_data, pair_sections, section_mesh, transverse_teeth
 from ..teeth.pair import ToothedPairData, cut_pair
 from ..tolerances import DEFAULT
 from .base import Assembly, Design, Motion, Table, assembly_overlap
@@ -24,6 +24,9 @@ from .budget import check_teeth_work
 from .pair_papers import PaperExtras, paper_extras
 from .pair_pitch import PairDesign, pitch_design
 from .parts import Placement, make_part
+
+if TYPE_CHECKING:
+    from ..teeth.helical import HelicalSections
 
 __all__ = ["GearPairDetail", "design", "frames_for"]
 
@@ -89,6 +92,8 @@ def _teeth_block(t: ToothedPairData, i: int) -> dict:
 
 
 def _helix_block(params: GearPairParams, teeth: ToothedPairData, helical: HelicalSections, proofs) -> dict:
+    from ..teeth.helical import helix_data
+
     out, s = params.output, helical.spacing
     h = helix_data(
         teeth.plan.module,
@@ -245,6 +250,8 @@ def design(params: GearPairParams) -> Design:
     teeth = helical = proofs = None
     if params.teeth is not None:
         beta = params.teeth.helix_angle
+        if beta > 0:  # only helical pairs pay for the sections' module
+            from ..teeth.helical import pair_sections, section_mesh, transverse_teeth
         spec = transverse_teeth(params.teeth, beta) if beta > 0 else params.teeth
         module = spec.module or pitch.gears[0].perimeter / (math.pi * spec.count)
         check_teeth_work([(g.perimeter / (math.pi * module), module) for g in pitch.gears], out.tolerance)

@@ -40,7 +40,10 @@ class ParamsModel(BaseModel):
     """Frozen, closed models: fields are the TOML keys; constructing one validates it."""
 
     model_config = ConfigDict(
-        frozen=True, extra="forbid", use_attribute_docstrings=True, json_schema_extra=_require_tag
+        frozen=True,
+        extra="forbid",
+        json_schema_extra=_require_tag,
+        defer_build=True,  # a model is built when first used: one mechanism, not all four, per run
     )
 
 

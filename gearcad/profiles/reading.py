@@ -20,6 +20,7 @@ from pydantic.json_schema import GenerateJsonSchema
 from ..errors import ProfileError
 from .carrier_train import CarrierTrainParams
 from .common import ParamsModel
+from .docs import document_fields
 from .gear_pair import GearPairParams
 from .messages import error_lines, show
 from .roller_body import RollerBodyParams
@@ -238,6 +239,10 @@ def _plain(node: Any) -> Any:
     return node
 
 
+def _models(cls: type[BaseModel]) -> list[type[BaseModel]]:
+    return [sub for child in cls.__subclasses__() for sub in (child, *_models(child))]
+
+
 def profile_schema() -> dict[str, Any]:
     """The JSON Schema of a profile, for editors (taplo, Even Better TOML).
 
@@ -245,6 +250,7 @@ def profile_schema() -> dict[str, Any]:
     ``#:schema ./profile.schema.json`` is checked and completed as it is typed. Regenerate
     the file with ``json.dumps(profile_schema(), indent=2, ensure_ascii=False)``.
     """
+    document_fields(_models(ParamsModel))
     schema = TypeAdapter(_TAGGED).json_schema(schema_generator=_TomlSchema)
     return {
         "$schema": "https://json-schema.org/draft/2020-12/schema",

@@ -7,7 +7,7 @@ from pathlib import Path
 import numpy as np
 
 from ...pitch.curve import TWO_PI, points
-from .png import plt, save_png
+from .png import PolyCollection, plt, save_png
 
 __all__ = ["draw", "pitch_chart", "kinematics_chart", "mesh_chart"]
 
@@ -42,7 +42,7 @@ def pitch_chart(data, path: Path, rings) -> None:
     ax2.grid(alpha=0.3)
     ax2.legend(fontsize=8)
     fig.suptitle(data.params.title or data.params.name)
-    fig.tight_layout()
+    fig.subplots_adjust(left=0.06, right=0.98, bottom=0.1, top=0.86, wspace=0.22)
     save_png(fig, path)
 
 
@@ -63,7 +63,7 @@ def kinematics_chart(data, path: Path) -> None:
     a2.set_xticks(range(0, 361, 45))
     a2.grid(alpha=0.3)
     a1.set_title(f"{follower} driven by {driver} at {p.driver_rpm:g} rpm ({k.driver_speed:.4g} rad/s)")
-    fig.tight_layout()
+    fig.subplots_adjust(left=0.12, right=0.97, bottom=0.09, top=0.94, hspace=0.08)
     save_png(fig, path)
 
 
@@ -74,7 +74,8 @@ def mesh_chart(data, teeth, path: Path) -> None:
     for gear, toothed, colour in zip(data.gears, teeth.gears, colours):
         ring = np.vstack([toothed.outline.outer, toothed.outline.outer[:1]]) + np.asarray(gear.pivot)
         for a in (ax, zoom):
-            a.fill(ring[:, 0], ring[:, 1], color=colour, alpha=0.25, lw=0)
+            # a collection: its limits come from the vertices at once (a patch walks them one by one)
+            a.add_collection(PolyCollection([ring], facecolors=colour, alpha=0.25, linewidths=0))
             a.plot(
                 ring[:, 0],
                 ring[:, 1],
@@ -99,7 +100,7 @@ def mesh_chart(data, teeth, path: Path) -> None:
         fontsize=9,
     )
     fig.suptitle(data.params.title or data.params.name)
-    fig.tight_layout()
+    fig.subplots_adjust(left=0.06, right=0.98, bottom=0.08, top=0.88, wspace=0.15)
     save_png(fig, path)
 
 

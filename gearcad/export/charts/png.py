@@ -8,8 +8,9 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+from matplotlib.collections import PolyCollection  # noqa: E402
 
-__all__ = ["plt", "save_png"]
+__all__ = ["plt", "save_png", "PolyCollection"]
 
 _META = {"Software": "gearcad"}  # no creation time: the same design gives the same bytes
 
