@@ -11,6 +11,7 @@ give the numbers (units of R throughout).
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 
@@ -66,23 +67,34 @@ class LimitTable:
         }
 
 
+_swing = functools.lru_cache(maxsize=32)(RB.Swing)
+
+
+def _kappa_at(direction: str, m: int, a: float, s: float) -> float:
+    """Roller-path curvature (convex positive, R = 1) at one τ, in floats: the minimiser calls it often."""
+    x1, y1, x2, y2 = math.cos(s), -math.sin(s), -math.sin(s), -math.cos(s)
+    d1, d2 = a * m * math.cos(m * s), -a * m * m * math.sin(m * s)
+    if direction == "horizontal":
+        x1, x2 = x1 + d1, x2 + d2
+    else:
+        y1, y2 = y1 + d1, y2 + d2
+    return -(x1 * y2 - y1 * x2) / math.hypot(x1, y1) ** 3
+
+
 def _convex_margin(direction: str, m: int, r: float, a: float) -> float:
     """min over τ of κ_P and of 1/r − κ_P (roller-path curvature), each grid minimum refined by
     Brent's method so that the margin is exact to round-off, not to the grid."""
-    osc = RB.harmonic(direction, a, m)
+    swing = _swing(direction, m, R=1.0, samples=4096)
     tau = np.linspace(0, TWO_PI, 4096, endpoint=False)
     step = tau[1]
-
-    def kappa(s):
-        return float(RB.contour_curvature(osc, np.array([s]), r=0.0)[0])
-
+    grid = swing.kappa(a)
     margins = []
     for sign, offset in ((1.0, 0.0), (-1.0, 1 / r if r > 0 else math.inf)):
         if math.isinf(offset):
             continue
-        k = int(np.argmin(offset + sign * RB.contour_curvature(osc, tau, r=0.0)))
+        k = int(np.argmin(offset + sign * grid))
         res = minimize_scalar(
-            lambda s, sign=sign, offset=offset: offset + sign * kappa(s),
+            lambda s, sign=sign, offset=offset: offset + sign * _kappa_at(direction, m, a, s),
             bounds=(tau[k] - step, tau[k] + step),
             method="bounded",
             options={"xatol": 1e-12},
@@ -91,6 +103,7 @@ def _convex_margin(direction: str, m: int, r: float, a: float) -> float:
     return min(margins)
 
 
+@functools.lru_cache(maxsize=256)
 def amplitude_limit(direction: str, m: int, *, r: float, test: str) -> float:
     """:func:`rollers.amplitude_limit` searched within ``AMPLITUDE_CAP`` (``inf`` if none below);
     the convex limit is then polished on the refined curvature margin (the grid's minimum is

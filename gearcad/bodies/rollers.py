@@ -27,6 +27,7 @@ __all__ = [
     "is_convex",
     "is_simple",
     "amplitude_limit",
+    "Swing",
     "point_motion",
     "centre_extremes",
 ]
@@ -124,6 +125,38 @@ def is_simple(osc: Oscillation, *, r: float, R: float = 1.0, samples: int = 4096
     return bool(shapely.LinearRing(contour(osc, tau, r=r, R=R)).is_simple)
 
 
+class Swing:
+    """The roller path of the harmonic oscillation a·sin mτ as base + a·term on a fixed τ grid:
+    the amplitude searches evaluate it for many a, so the trigonometry is done once."""
+
+    def __init__(self, direction: str, m: int, *, R: float, samples: int):
+        tau = np.linspace(0, 2 * math.pi, samples, endpoint=False)
+        s, c, sm = np.sin(tau), np.cos(tau), np.sin(m * tau)
+        # (P, P', P'') of the round path, then of the term on its axis (x horizontal, y vertical)
+        self.base = (np.array([R * s, R * c]), np.array([R * c, -R * s]), np.array([-R * s, -R * c]))
+        axis = 0 if direction == "horizontal" else 1
+        self.term = tuple(np.zeros((2, samples)) for _ in range(3))
+        for k, values in enumerate((sm, m * np.cos(m * tau), -m * m * sm)):
+            self.term[k][axis] = values
+
+    def path(self, a: float, order: int = 0) -> np.ndarray:
+        return self.base[order] + a * self.term[order]
+
+    def kappa(self, a: float) -> np.ndarray:
+        """Roller-path curvature, convex positive (as :func:`contour_curvature` at r = 0)."""
+        (x1, y1), (x2, y2) = self.path(a, 1), self.path(a, 2)
+        return -(x1 * y2 - y1 * x2) / np.hypot(x1, y1) ** 3
+
+    def is_simple(self, a: float, r: float) -> bool:
+        """:func:`is_simple` of this oscillation at amplitude a."""
+        if np.any(r * self.kappa(a) >= 1):
+            return False
+        (x, y), (x1, y1) = self.path(a), self.path(a, 1)
+        nx, ny = -y1, x1  # the normal (R·sin τ − g', R·cos τ + f') towards the body
+        w = np.hypot(nx, ny)
+        return bool(shapely.LinearRing(np.column_stack([x - r * nx / w, y - r * ny / w])).is_simple)
+
+
 def amplitude_limit(direction: str, m: int, *, r: float, test: str, R: float = 1.0, hi: float = 1.0) -> float:
     """The largest amplitude a keeping the contour convex (``test="convex"``) or simple.
 
@@ -131,26 +164,22 @@ def amplitude_limit(direction: str, m: int, *, r: float, test: str, R: float = 1
     found by Brent's method on a bracket.  Simplicity is a yes/no test: bisection to 1e-10.
     """
     if test == "convex":
-        tau = np.linspace(0, 2 * math.pi, 8192, endpoint=False)
+        swing = Swing(direction, m, R=R, samples=8192)
 
         def margin(a):
-            osc = harmonic(direction, a, m)
-            x1 = R * np.cos(tau) + _series(osc.f, tau, 1)
-            y1 = -R * np.sin(tau) + _series(osc.g, tau, 1)
-            x2 = -R * np.sin(tau) + _series(osc.f, tau, 2)
-            y2 = -R * np.cos(tau) + _series(osc.g, tau, 2)
-            kappa_p = -(x1 * y2 - y1 * x2) / np.hypot(x1, y1) ** 3
+            kappa_p = swing.kappa(a)
             return float(min(np.min(kappa_p), np.min(1 / r - kappa_p) if r > 0 else np.inf))
 
         while margin(hi) > 0:
             hi *= 2
         return brentq(margin, 0.0, hi, xtol=1e-13)
+    swing = Swing(direction, m, R=R, samples=4096)
     lo = 0.0
-    while is_simple(harmonic(direction, hi, m), r=r, R=R):
+    while swing.is_simple(hi, r):
         lo, hi = hi, hi * 2
     while hi - lo > 1e-10:
         mid = 0.5 * (lo + hi)
-        lo, hi = (mid, hi) if is_simple(harmonic(direction, mid, m), r=r, R=R) else (lo, mid)
+        lo, hi = (mid, hi) if swing.is_simple(mid, r) else (lo, mid)
     return lo
 
 

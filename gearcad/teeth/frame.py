@@ -67,7 +67,11 @@ class ParametricFrame:
         coeff = np.stack([np.fft.fft(samples[:, 0]), np.fft.fft(samples[:, 1])]) / n
         orders = np.fft.fftfreq(n, 1.0 / n)
         keep = np.max(np.abs(coeff), axis=0) > 1e-15 * np.max(np.abs(coeff))
-        self._c, self._k = coeff[:, keep], orders[keep]
+        # every order between the lowest and highest kept, ascending (zeros between): Horner's rule
+        low, high = int(orders[keep].min()), int(orders[keep].max())
+        self._k = np.arange(low, high + 1, dtype=float)
+        self._c = np.zeros((2, high - low + 1), dtype=complex)
+        self._c[:, orders[keep].astype(int) - low] = coeff[:, keep]
         speed = chebyshev.fit(lambda u: np.hypot(*self._derivative(u, 1)), [0.0, TWO_PI], rel_tol=tol.fit_rel)
         self._s = speed.integral()
         self._u = self._s.inverse(rel_tol=tol.fit_rel)
@@ -75,8 +79,12 @@ class ParametricFrame:
 
     def _derivative(self, u, order: int) -> np.ndarray:
         u = np.asarray(u, dtype=float)
-        phase = np.exp(1j * np.multiply.outer(u, self._k)) * (1j * self._k) ** order
-        return np.real(phase @ self._c.T).T  # (2, …)
+        c = self._c * (1j * self._k) ** order
+        z = np.exp(1j * u)
+        total = np.zeros((2, *u.shape), dtype=complex)
+        for j in range(c.shape[1] - 1, -1, -1):  # Σ c_k z^k = z^low·(c_low + z(c_low+1 + z(…)))
+            total = total * z + c[:, j].reshape((2,) + (1,) * u.ndim)
+        return np.real(total * z ** int(self._k[0]))  # (2, …)
 
     def _param(self, s) -> np.ndarray:
         s = np.asarray(s, dtype=float)
