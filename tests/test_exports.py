@@ -112,8 +112,14 @@ def test_dxf_reads_back_as_the_outline_within_tolerance(tmp_path):
 def _distance(a: shapely.LinearRing, b: shapely.LinearRing) -> float:
     """Largest distance from either ring's vertices to the other ring (a one-sided Hausdorff
     distance each way, to the continuous ring)."""
-    pa, pb = shapely.points(np.asarray(a.coords)), shapely.points(np.asarray(b.coords))
-    return float(max(shapely.distance(pa, b).max(), shapely.distance(pb, a).max()))
+
+    def one_way(ring_from, ring_to):  # nearest segment by GEOS's R-tree: exact, not all pairs
+        c = np.asarray(ring_to.coords)
+        tree = shapely.STRtree(shapely.linestrings(np.stack([c[:-1], c[1:]], axis=1)))
+        _, d = tree.query_nearest(shapely.points(np.asarray(ring_from.coords)), return_distance=True, all_matches=False)
+        return d.max()
+
+    return float(max(one_way(a, b), one_way(b, a)))
 
 
 def _reference_rings(report, gear):
