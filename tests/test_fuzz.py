@@ -2,7 +2,7 @@
 
 Profiles are generated as dicts (the TOML's tables) for every mechanism: the gear pair with
 every curve, the roller body (harmonic and series), the rolling wheel and the carrier train
-(external and internal meshes).  Half of them are built from valid values only, chosen so the
+(external and internal meshes, and a compound ring).  Half of them are built from valid values only, chosen so the
 design is small and quick (coarse tolerance); the other half also draw, for every key, edge
 values — 0, negatives, huge and tiny numbers, NaN and infinity, strings, booleans, None,
 400-digit integers, empty and long lists, tables where a value belongs — unknown keys, and
@@ -55,7 +55,7 @@ from gearcad.geometry.verify import is_simple
 from gearcad.profiles import CarrierTrainParams, GearPairParams, RollerBodyParams, RollingWheelParams
 
 EXAMPLES = int(os.environ.get("GEARCAD_FUZZ_EXAMPLES", "4"))
-"""Profiles per kind (12 kinds)."""
+"""Profiles per kind (13 kinds)."""
 WIDE = os.environ.get("GEARCAD_FUZZ_WIDE", "") == "1"
 LOG = os.environ.get("GEARCAD_FUZZ_LOG", "")
 SEED = os.environ.get("GEARCAD_FUZZ_SEED", "")
@@ -508,6 +508,42 @@ def carrier_trains(draw: Callable, internal: bool) -> dict:
     return _profile(gen, "carrier-train", tables)
 
 
+@st.composite
+def compound_trains(draw: Callable) -> dict:
+    """A carrier train whose middle gear is a compound ring (seed 001's second scheme): external
+    teeth to gear 1, internal teeth (of their own module) round gear 3."""
+    gen = Gen(draw, draw(st.sampled_from(MODES)))
+    module, inner_module = draw(_floats(0.5, 2.0)), draw(st.sampled_from([None, 0.5, 1.0, 2.0]))
+    m_in = module if inner_module is None else inner_module
+    inside = draw(st.integers(8, 30))
+    inner_teeth = draw(st.integers(inside + 12, inside + 30))
+    # the wall (r_out − 1.25·m) − (r_in + 1.25·m_in) ≥ 2·max(m, m_in), with a tooth to spare
+    least = math.ceil((m_in * inner_teeth / 2 + 1.25 * (module + m_in) + 2 * max(module, m_in)) * 2 / module) + 1
+    teeth = [draw(st.integers(8, 40)), draw(st.integers(least, least + 20)), inside]
+    names = gen.key("train.names", st.just(["gear1", "ring", "gear3"]))
+    ring = st.sampled_from(["ring", 2]) if names is not OMIT else st.just(2)
+    compound = {
+        "gear": gen.key("train.compound.gear", ring, optional=False, edges=("gear1", 3, 0)),
+        "inner_teeth": gen.key(
+            "train.compound.inner_teeth", st.just(inner_teeth), optional=False, edges=(teeth[1], inside + 11)
+        ),
+        "inner_module": gen.key(
+            "train.compound.inner_module", st.just(inner_module) if inner_module else st.just(OMIT), edges=(50.0,)
+        ),
+    }
+    train = {
+        "module": gen.key("train.module", st.just(module), optional=False, edges=(50.0,)),
+        "teeth": gen.key("train.teeth", st.just(teeth), optional=False, edges=([8, 8, 8], [20, 2000, 14])),
+        "meshes": gen.key("train.meshes", st.just(["external", "internal"]), optional=False),
+        "names": names,
+        "gear1_rpm": gen.key("train.gear1_rpm", _floats(-600.0, 600.0)),
+        "carrier_rpm": gen.key("train.carrier_rpm", _floats(-600.0, 600.0)),
+        "compound": gen.table("train.compound", compound),
+    }
+    tables = {"train": gen.table("train", train), "bore": _bore(gen), "output": _output(gen)}
+    return _profile(gen, "carrier-train", tables)
+
+
 KINDS: dict[str, st.SearchStrategy[dict]] = {
     **{
         f"gear-pair/{c}": gear_pairs(c)
@@ -518,6 +554,7 @@ KINDS: dict[str, st.SearchStrategy[dict]] = {
     "rolling-wheel": rolling_wheels(),
     "carrier-train/external": carrier_trains(False),
     "carrier-train/internal": carrier_trains(True),
+    "carrier-train/compound": compound_trains(),
 }
 
 # ---------------------------------------------------------------------------------------------

@@ -60,6 +60,15 @@ def test_rolling_wheel(built, golden):
     _same(r["motion"]["ratio_horizontal_rack"], g["ratio_horizontal_rack"])
 
 
+def test_compound_ring(built, golden):
+    r, g = _report(built, "compound_ring"), golden["compound_ring"]
+    _same(r["compound"]["omega3_rpm"], g["omega3_rpm"])
+    _same(r["compound"]["omega3_seed_formula_rpm"], g["omega3_seed_formula_rpm"])
+    _same(r["compound"]["radius_ratio"], g["radius_ratio"])
+    (ring,) = [gear for gear in r["gears"] if gear["name"] == r["compound"]["gear"]]
+    _same(ring["wall"], g["wall_mm"])
+
+
 def test_output_size_stays_within_the_readme(built, golden):
     """The focus pair's driver (41 teeth, 0.001 mm): arcs need at most the README's count and
     at least 5× fewer vertices than chords within the same tolerance."""

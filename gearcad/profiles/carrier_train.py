@@ -5,17 +5,20 @@ from __future__ import annotations
 import math
 from typing import Annotated, Literal
 
-from pydantic import model_validator
+from pydantic import Field, model_validator
 
 from .common import BoreParams, OutputParams, ParamsModel, distinct_names
 from .values import FASTEST, Must, PartName, Problems, StandardRackPressureAngleDeg, Text, choice, integer, number
 
-__all__ = ["TrainParams", "CarrierTrainParams"]
+__all__ = ["CompoundParams", "TrainParams", "CarrierTrainParams", "compound_wall"]
 
 _RING_MARGIN = 12  # teeth: a ring closer in size to its pinion than this interferes with it
+_DEDENDUM = 1.25  # modules: the standard rack's dedendum, which sets every root circle
+_WALL = 2.0  # modules (the larger of the two): material a compound ring keeps between its root circles
 
 TrainModule = number("a module in mm", gt=0, le=50)
-ToothCount = integer(ge=8, le=2000)
+_MOST_TEETH = 2000
+ToothCount = integer(ge=8, le=_MOST_TEETH)
 Teeth = Annotated[
     tuple[ToothCount, ...],
     Must("a list of at least two tooth counts, each an integer from 8 to 2000", items=(2, None)),
@@ -24,13 +27,39 @@ Meshes = Annotated[tuple[choice("external", "internal"), ...], Must("a list of '
 Names = Annotated[tuple[PartName, ...], Must("a list of names, one for each gear")]
 Rpm = number("a speed in rev/min", ge=-FASTEST, le=FASTEST)
 Acceleration = number("an angular acceleration in rad/s²", ge=-1e9, le=1e9)
+GearRef = Annotated[
+    Annotated[int, Field(strict=True, ge=1, le=2000)] | PartName,
+    Must("a gear's name (train.names), or its place in train.teeth counting from 1", whole=True),
+]
+
+
+def compound_wall(teeth: int, module: float, inner_teeth: int, inner_module: float) -> float:
+    """Material (mm) a compound ring keeps between its external teeth's root circle
+    (r_out − 1.25·m) and its internal teeth's root circle (r_in + 1.25·m_in)."""
+    return (module * teeth / 2 - _DEDENDUM * module) - (inner_module * inner_teeth / 2 + _DEDENDUM * inner_module)
+
+
+class CompoundParams(ParamsModel):
+    """``[train.compound]``: one gear with two toothings (seed 001's second scheme).
+
+    Its external teeth (``train.teeth``, ``train.module``) mesh the gear before it; its internal
+    teeth (``inner_teeth``, ``inner_module``) mesh the gear after it, which turns inside it.
+    The gears after it are cut with ``inner_module``.
+    """
+
+    gear: GearRef
+    """The gear with both toothings: its name, or its place in train.teeth counting from 1."""
+    inner_teeth: ToothCount
+    """Teeth of its internal toothing."""
+    inner_module: TrainModule | None = None
+    """Module of its internal toothing and of every gear after it, mm (default: train.module)."""
 
 
 class TrainParams(ParamsModel):
     """``[train]``: the gears in order from gear 1 on the fixed axis, and how they are driven."""
 
     module: TrainModule
-    """Module of every gear, mm."""
+    """Module of every gear, mm (with [train.compound]: up to the compound gear's external teeth)."""
     teeth: Teeth
     """Tooth counts, gear 1 first."""
     meshes: Meshes | None = None
@@ -47,6 +76,13 @@ class TrainParams(ParamsModel):
     """Angular acceleration of the carrier, rad/s²."""
     pressure_angle_deg: StandardRackPressureAngleDeg = 20.0
     """Pressure angle of the rack, degrees."""
+    compound: CompoundParams | None = None
+    """One gear with external and internal teeth (seed 001's second scheme)."""
+
+    @property
+    def compound_index(self) -> int | None:
+        """The compound gear's place in ``teeth`` counting from 0, None without one."""
+        return None if self.compound is None else _gear_index(self.compound.gear, self.names)
 
     @model_validator(mode="after")
     def _gears(self) -> TrainParams:
@@ -60,8 +96,13 @@ class TrainParams(ParamsModel):
                 list(meshes),
                 f"must be a list of {gears - 1} entries, one for each neighbouring pair of the {gears} gears",
             )
-        else:
+        compound = None
+        if self.compound is not None and len(meshes) == gears - 1 and len(names) == gears:
+            compound = _check_compound(self.compound, self.module, teeth, meshes, names, problems)
+        if len(meshes) == gears - 1:
             for k, mesh in enumerate(meshes):
+                if k == compound:  # its internal teeth are the compound's own, checked there
+                    continue
                 ring = k if teeth[k] > teeth[k + 1] else k + 1
                 pinion = 2 * k + 1 - ring
                 if mesh == "internal" and teeth[ring] - teeth[pinion] < _RING_MARGIN:
@@ -78,7 +119,72 @@ class TrainParams(ParamsModel):
         # the instance is not yet visible to anyone: filling the defaults is construction
         object.__setattr__(self, "meshes", meshes)
         object.__setattr__(self, "names", names)
+        if self.compound is not None and self.compound.inner_module is None:
+            object.__setattr__(self, "compound", self.compound.model_copy(update={"inner_module": self.module}))
         return self
+
+
+def _gear_index(ref: int | str, names: tuple[str, ...]) -> int | None:
+    """A gear given by name or by its place counting from 1, as a place counting from 0."""
+    if isinstance(ref, int):
+        return ref - 1 if ref <= len(names) else None
+    folded = [n.casefold() for n in names]
+    return folded.index(ref.casefold()) if ref.casefold() in folded else None
+
+
+def _teeth_for(length: float, per_tooth: float) -> int | None:
+    """Teeth to add (or take away) so that a radius moves by ``length`` mm at ``per_tooth`` mm a
+    tooth; None when no tooth count could."""
+    steps = length / per_tooth if per_tooth > 0 else math.inf
+    return math.ceil(steps - 1e-9) if steps <= _MOST_TEETH else None
+
+
+def _check_compound(compound, module, teeth, meshes, names, problems: Problems) -> int | None:
+    """The compound gear's place (counting from 0) if it can carry both toothings; problems otherwise."""
+    gears = len(teeth)
+    k = _gear_index(compound.gear, names)
+    if k is None:
+        allowed = ", ".join(repr(n) for n in names)
+        problems.add("compound.gear", compound.gear, f"must be one of the gears' names ({allowed}) or 1 to {gears}")
+        return None
+    fits = [j for j in range(1, gears - 1) if meshes[j - 1] == "external" and meshes[j] == "internal"]
+    if k not in fits:
+        which = ", ".join(repr(names[j]) for j in fits) or "none: no 'external' mesh is followed by an 'internal' one"
+        problems.add(
+            "compound.gear",
+            compound.gear,
+            "must be a gear meshed 'external' with the gear before it and 'internal' with the gear after it, "
+            f"which turns inside it (train.meshes = {list(meshes)}; it allows {which})",
+        )
+        return None
+    inner_module = compound.inner_module if compound.inner_module is not None else module
+    z_in, z_next = compound.inner_teeth, teeth[k + 1]
+    if z_in - z_next < _RING_MARGIN:
+        problems.add(
+            "compound.inner_teeth",
+            z_in,
+            f"must be at least {_RING_MARGIN} teeth more than the gear turning inside it, "
+            f"train.teeth[{k + 1}] = {z_next}: give at least {z_next + _RING_MARGIN}",
+        )
+    wall = compound_wall(teeth[k], module, z_in, inner_module)
+    need = _WALL * max(module, inner_module)
+    if wall < need - 1e-9:
+        # the wall falls by inner_module/2 per inner tooth and grows by module/2 per outer tooth
+        fewer, more = _teeth_for(need - wall, inner_module / 2), _teeth_for(need - wall, module / 2)
+        outer = f"train.teeth[{k}] ≥ {teeth[k] + more}" if more is not None and teeth[k] + more <= _MOST_TEETH else None
+        if fewer is not None and z_in - fewer >= z_next + _RING_MARGIN:
+            fix = f"give at most {z_in - fewer} inner teeth" + (f" (or {outer})" if outer else "")
+        elif outer:
+            fix = f"no fewer inner teeth clear train.teeth[{k + 1}] = {z_next}: give {outer}"
+        else:
+            fix = "no tooth counts fit these modules: give a larger train.module"
+        problems.add(
+            "compound.inner_teeth",
+            z_in,
+            f"the wall of {names[k]} between its outer and inner root circles is {wall:.4g} mm; it must be "
+            f"≥ {_WALL:g}·max(train.module, train.compound.inner_module) = {need:.4g} mm: {fix}",
+        )
+    return k
 
 
 class CarrierTrainParams(ParamsModel):
@@ -129,3 +235,25 @@ class CarrierTrainParams(ParamsModel):
     def pressure_angle(self) -> float:
         """The pressure angle in radians."""
         return math.radians(self.train.pressure_angle_deg)
+
+    @property
+    def compound(self) -> int | None:
+        """The place (counting from 0) of the gear with external and internal teeth, None without one."""
+        return self.train.compound_index
+
+    @property
+    def inner_teeth(self) -> int | None:
+        """Teeth of the compound gear's internal toothing."""
+        return None if self.train.compound is None else self.train.compound.inner_teeth
+
+    @property
+    def inner_module(self) -> float | None:
+        """Module of the compound gear's internal toothing, mm."""
+        return None if self.train.compound is None else self.train.compound.inner_module
+
+    @property
+    def modules(self) -> tuple[float, ...]:
+        """Each gear's module, mm (the compound gear's external toothing; every gear after it is
+        cut with the inner module)."""
+        k = self.compound
+        return tuple(self.train.module if k is None or j <= k else self.inner_module for j in range(len(self.teeth)))
