@@ -58,13 +58,13 @@ def design_all(profiles: Sequence[ProfileParams]) -> list[Design]:
     return [_named(p, lambda p=p: design(p)) for p in profiles]
 
 
-def _build_one(job: tuple[ProfileParams, Path]) -> BuildResult:
-    params, folder = job
+def _build_one(job: tuple[ProfileParams, Path, bool]) -> BuildResult:
+    params, folder, beside = job
     start = time.perf_counter()
     from .export.write import write_design  # the file libraries only when files are written
 
     d = _named(params, lambda: design(params))
-    files = _named(params, lambda: write_design(d, folder))
+    files = _named(params, lambda: write_design(d, folder, beside=beside))
     return BuildResult(d.name, d.summary, d.findings, files, time.perf_counter() - start)
 
 
@@ -97,7 +97,9 @@ def build(
     count = _workers(len(profiles)) if workers is None else max(1, workers)
     results: list[BuildResult] = []
     with interrupt_guard(out), Publisher(out) as publisher:
-        jobs = [(p, publisher.folder(p.name)) for p in profiles]
+        # a core left over (one profile on two cores): each build draws its pictures beside its files
+        beside = _workers(len(profiles) + 1) > count
+        jobs = [(p, publisher.folder(p.name), beside) for p in profiles]
         if count == 1:
             built = map(_build_one, jobs)
             pool = None

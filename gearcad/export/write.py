@@ -6,7 +6,10 @@ import csv
 import json
 from pathlib import Path
 
+import numpy as np
+
 from ..mechanisms import Design
+from .beside import Beside, can_fork
 from .drawing import assembly_drawing, part_drawing
 
 __all__ = ["write_design"]
@@ -24,14 +27,78 @@ def _write_table(path: Path, table) -> None:
             w.writerow([f"{v:.12g}" for v in row])
 
 
-def write_design(design: Design, folder: Path) -> dict[str, dict]:
+def _pictures(design: Design, folder: Path) -> dict[str, dict]:
+    """The animation and the charts (the files that need matplotlib or Pillow)."""
+    out = design.params.output
+    files: dict[str, dict] = {}
+    if out.animation and design.motion is not None:
+        from .animation import write_gif
+
+        path = folder / "animation.gif"
+        where = {pl.part: pl for pl in design.placements}
+        m = design.motion
+        frames = write_gif(
+            path,
+            [design.part(name).outline.outer for name in m.parts],
+            [where[name].offset for name in m.parts],
+            m.angles + [where[name].angle for name in m.parts],
+        )
+        files[path.name] = _entry(path, kind="gif", frames=frames)
+    if out.charts and design.sections:  # twisted teeth are best seen: a rendered picture
+        from .charts.solid import PICTURE_PIXELS, draw_solids, picture_solid
+        from .mesh import SolidItem
+
+        reach = max(np.max(np.hypot(*p.outline.outer.T)) for p in design.parts())
+        xs = [pl.offset[0] for pl in design.placements]
+        ys = [pl.offset[1] for pl in design.placements]
+        width = max(max(xs) - min(xs), max(ys) - min(ys)) + 2 * reach
+        scene = []
+        for pl in design.placements:
+            part = design.part(pl.part)
+            solid = picture_solid(
+                part,
+                design.sections.get(pl.part),
+                thickness=out.thickness,
+                chamfer=out.chamfer,
+                tolerance=0.5 * width / PICTURE_PIXELS,
+            )
+            scene.append(SolidItem(solid, pl.angle, (*pl.offset, 0.0)))
+        path = folder / "solid.png"
+        draw_solids(path, scene, title=design.params.title or design.name)
+        files[path.name] = _entry(path, kind="png")
+    if out.charts:
+        from .charts import draw_charts
+
+        for name in draw_charts(design, folder):
+            files[name] = _entry(folder / name, kind="png")
+    return files
+
+
+def write_design(design: Design, folder: Path, *, beside: bool = False) -> dict[str, dict]:
     """Write every file the profile's [output] asks for into ``folder`` (which must exist);
-    return the files block of the report (the report itself written last)."""
+    return the files block of the report (the report itself written last).
+
+    ``beside``: draw the charts and the animation in a forked process while this one writes
+    the rest (for a machine with a core to spare).
+    """
+    pictures = Beside(lambda: _pictures(design, folder)) if beside and _drawn(design) and can_fork() else None
+    try:
+        return _write(design, folder, pictures)
+    finally:
+        if pictures is not None:
+            pictures.cancel()
+
+
+def _drawn(design: Design) -> bool:
+    out = design.params.output
+    return out.charts or (out.animation and design.motion is not None)
+
+
+def _write(design: Design, folder: Path, pictures: Beside | None) -> dict[str, dict]:
     out = design.params.output
     formats = set(out.formats)
     files: dict[str, dict] = {}
     parts = design.parts()
-    placed = {p.name: p for p in parts}
     if "dxf" in formats:
         from .dxf import write_dxf
 
@@ -77,13 +144,6 @@ def write_design(design: Design, folder: Path) -> dict[str, dict]:
             return loft(twisted.heights, twisted.rings, name=part.name, holes=holes, chamfer=out.chamfer)
 
         solids = {p.name: solid(p) for p in parts}
-        if design.sections and out.charts:  # twisted teeth are best seen: a rendered picture
-            from .charts.solid import draw_solids
-
-            path = folder / "solid.png"
-            scene = [SolidItem(solids[pl.part], pl.angle, (*pl.offset, 0.0)) for pl in design.placements]
-            draw_solids(path, scene, title=design.params.title or design.name)
-            files[path.name] = _entry(path, kind="png")
         for name, solid in solids.items():
             if "stl" in formats:
                 path = folder / f"{name}.stl"
@@ -105,24 +165,7 @@ def write_design(design: Design, folder: Path) -> dict[str, dict]:
         path = folder / table.file
         _write_table(path, table)
         files[path.name] = _entry(path, kind="csv", rows=len(table.rows))
-    if out.animation and design.motion is not None:
-        from .animation import write_gif
-
-        path = folder / "animation.gif"
-        where = {pl.part: pl for pl in design.placements}
-        m = design.motion
-        frames = write_gif(
-            path,
-            [placed[name].outline.outer for name in m.parts],
-            [where[name].offset for name in m.parts],
-            m.angles + [where[name].angle for name in m.parts],
-        )
-        files[path.name] = _entry(path, kind="gif", frames=frames)
-    if out.charts:
-        from .charts import draw_charts
-
-        for name in draw_charts(design, folder):
-            files[name] = _entry(folder / name, kind="png")
+    files.update(pictures.result() if pictures is not None else _pictures(design, folder))
     files["index.html"] = {"kind": "html"}
     files["report.json"] = {"kind": "json"}
     text = json.dumps(design.report(files), indent=2, ensure_ascii=False, allow_nan=False)

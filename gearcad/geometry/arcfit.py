@@ -12,7 +12,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["ArcRing", "fit_arcs", "decimate", "arc_points"]
+__all__ = ["ArcRing", "fit_arcs", "decimate", "decimate_indices", "arc_points"]
 
 
 @dataclass(frozen=True)
@@ -137,9 +137,15 @@ def fit_arcs(ring: np.ndarray, tolerance: float) -> ArcRing:
 def decimate(ring: np.ndarray, tolerance: float) -> np.ndarray:
     """The fewest of the ring's vertices (greedily) whose chords stay within ``tolerance`` of
     the ring: a ring sampled finely, thinned to a coarser tolerance."""
-    pts, _ = _rolled(ring)
+    return ring[decimate_indices(ring, tolerance)]
+
+
+def decimate_indices(ring: np.ndarray, tolerance: float) -> np.ndarray:
+    """The indices into ``ring`` of the vertices :func:`decimate` keeps, in ring order from the
+    sharpest corner."""
+    pts, start = _rolled(ring)
     n = len(ring)
-    return pts[np.array(_walk(_reach(pts, n, tolerance, arcs=False), n))]
+    return (np.array(_walk(_reach(pts, n, tolerance, arcs=False), n)) + start) % n
 
 
 def arc_points(arcs: ArcRing, tolerance: float) -> np.ndarray:

@@ -227,10 +227,22 @@ def cut_paths(parts: tuple[Part, ...], output: CutSpec) -> tuple[Part, ...]:
             f"output.kerf = {output.kerf:g}: the laser's path would fill the tooth spaces or holes of "
             f"{', '.join(failed)}; the largest kerf every part takes is {largest:.3f} mm"
         )
+    # a part whose rings repeat an earlier part's (the two gears of a self-conjugate pair are cut
+    # alike to ~1e-13 mm) takes that part's fitted paths: fitted once, they are within the
+    # budget of both, as the difference is a billionth of the tolerance
+    same = [next((j for j in range(i) if _alike(kerfed[j], kerfed[i], 1e-9 * tol)), i) for i in range(len(parts))]
     # fitting is numpy work on large arrays, which releases the GIL: the parts go side by side
     with ThreadPoolExecutor(max_workers=2) as pool:
-        cuts = [
-            pool.submit(lambda p=p, k=k: tuple(_cut_ring(r, tol, fine_tol, flat=flat, part=p.name) for r in k.rings))
-            for p, k in zip(parts, kerfed)
-        ]
-        return tuple(replace(p, cut=c.result()) for p, c in zip(parts, cuts))
+        cuts = {
+            i: pool.submit(lambda p=p, k=k: tuple(_cut_ring(r, tol, fine_tol, flat=flat, part=p.name) for r in k.rings))
+            for i, (p, k) in enumerate(zip(parts, kerfed))
+            if same[i] == i
+        }
+        return tuple(replace(p, cut=cuts[same[i]].result()) for i, p in enumerate(parts))
+
+
+def _alike(a: Outline, b: Outline, within: float) -> bool:
+    """Whether two outlines have the same vertices to ``within`` mm."""
+    return len(a.rings) == len(b.rings) and all(
+        x.shape == y.shape and float(np.max(np.abs(x - y))) <= within for x, y in zip(a.rings, b.rings)
+    )

@@ -8,12 +8,16 @@ from pathlib import Path
 import numpy as np
 from mpl_toolkits.mplot3d.art3d import Poly3DCollection
 
-from ..mesh import SolidItem
+from ...geometry.arcfit import decimate, decimate_indices
+from ..loft import loft
+from ..mesh import Solid, SolidItem, extrude
 from .png import plt, save_png
 
-__all__ = ["draw_solids"]
+__all__ = ["draw_solids", "picture_solid", "PICTURE_PIXELS"]
 
 _COLOURS = ((0.85, 0.45, 0.15), (0.2, 0.45, 0.75), (0.35, 0.6, 0.3), (0.6, 0.35, 0.6))
+PICTURE_PIXELS = 1100
+"""Pixels across the picture's wider side (10 in at 110 dpi)."""
 _LIGHT = np.array([0.35, -0.55, 0.75]) / np.linalg.norm([0.35, -0.55, 0.75])
 
 
@@ -23,6 +27,19 @@ def _placed(item: SolidItem) -> np.ndarray:
     v = item.solid.vertices
     xyz = np.column_stack([c * v[:, 0] - s * v[:, 1], s * v[:, 0] + c * v[:, 1], v[:, 2]]) + np.asarray(item.offset)
     return xyz[item.solid.triangles]
+
+
+def picture_solid(part, sections, *, thickness: float, chamfer: float, tolerance: float) -> Solid:
+    """A part's solid for a picture, its rings thinned to ``tolerance`` (about half a pixel):
+    the printed solid's many sub-pixel triangles cost time to draw and show nothing."""
+    holes = [decimate(r, tolerance) for r in part.outline.rings[1:]]
+    if sections is None:
+        outer = decimate(part.outline.outer, tolerance)
+        return extrude(type(part.outline)((outer, *holes)), thickness, name=part.name, chamfer=chamfer)
+    rings = np.asarray(sections.rings)
+    # the vertices any section needs, kept in all (vertex j is the same point of every section)
+    keep = np.unique(np.concatenate([decimate_indices(r, tolerance) for r in rings]))
+    return loft(sections.heights, rings[:, keep], name=part.name, holes=holes, chamfer=chamfer)
 
 
 def draw_solids(
