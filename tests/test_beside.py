@@ -1,0 +1,95 @@
+"""Pictures drawn in a forked process beside the other files: the same files, byte for byte, as
+drawn in line; the child's errors come back as errors; nothing outlives the build."""
+
+import os
+import signal
+import subprocess
+import sys
+import textwrap
+import time
+from pathlib import Path
+
+import pytest
+
+from gearcad import load_profile
+from gearcad.errors import DesignError
+from gearcad.export.beside import Beside
+from gearcad.export.write import write_design
+from gearcad.mechanisms import design
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def _alive(pid: int) -> bool:
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    return True
+
+
+def test_same_files_whether_drawn_beside_or_in_line(tmp_path):
+    d = design(load_profile(ROOT / "profiles" / "spur_pair.toml"))
+    folders = {}
+    for beside in (False, True):
+        folder = tmp_path / str(beside)
+        folder.mkdir()
+        files = write_design(d, folder, beside=beside)
+        folders[beside] = (folder, files)
+    (inline, inline_files), (forked, forked_files) = folders[False], folders[True]
+    assert list(inline_files) == list(forked_files)  # the report lists them in the same order
+    assert {"animation.gif", "pitch_curves.png", "mesh.png"} <= set(forked_files)
+    for name in inline_files:
+        assert (inline / name).read_bytes() == (forked / name).read_bytes(), name
+
+
+def test_the_value_comes_back():
+    assert Beside(lambda: {"a": [1, 2.5]}).result() == {"a": [1, 2.5]}
+
+
+def test_the_childs_error_is_raised_in_the_parent():
+    def fail():
+        raise DesignError("mesh.png: no room for the legend")
+
+    with pytest.raises(DesignError, match="no room for the legend"):
+        Beside(fail).result()
+
+
+def test_an_error_that_cannot_be_pickled_comes_back_as_its_text():
+    class Local(Exception):  # a local class cannot be pickled
+        pass
+
+    def fail():
+        raise Local("drawn wrong")
+
+    with pytest.raises(RuntimeError, match="Local: drawn wrong"):
+        Beside(fail).result()
+
+
+def test_cancel_ends_the_child():
+    job = Beside(lambda: time.sleep(30))
+    pid = job._pid
+    job.cancel()
+    assert not _alive(pid)  # killed and reaped: not even a zombie
+    job.cancel()  # a second cancel does nothing
+
+
+def test_the_child_dies_with_its_parent(tmp_path):
+    """A parent killed outright (SIGKILL: no finally runs) takes its picture process with it."""
+    script = textwrap.dedent(
+        """
+        import os, signal, sys, time
+        from gearcad.export.beside import Beside
+        job = Beside(lambda: time.sleep(30))
+        print(job._pid, flush=True)
+        time.sleep(0.3)
+        os.kill(os.getpid(), signal.SIGKILL)
+        """
+    )
+    run = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, timeout=20)
+    assert run.returncode == -signal.SIGKILL
+    child = int(run.stdout.split()[0])
+    deadline = time.monotonic() + 5
+    while _alive(child) and time.monotonic() < deadline:
+        time.sleep(0.05)
+    assert not _alive(child)
