@@ -41,6 +41,8 @@ def test_no_name_can_write_outside_out(tmp_path, capsys, key, name):
         ("elliptic_focus", ["output.tolerance=1e-6"]),
         ("elliptic_focus", ["output.tolerance=1e-9"]),
         ("elliptic_centre", ["teeth.module=8"]),
+        # sharp ends: a mesh-proof window crossed its own teeth and GEOS raised (a traceback)
+        ("elliptic_centre", ["gear1.eccentricity=0.97", "teeth.count=40"]),
         ("planetary_external", ["train.module=1e6"]),
         ("rolling_wheel", ["drive.R=1e6", "drive.H=1e6"]),
         ("rolling_wheel", ["drive.R=1e5", "drive.H=1e5", "drive.L=1e5", "drive.travel=9e4"]),

@@ -6,12 +6,27 @@ from __future__ import annotations
 import numpy as np
 import shapely
 
-__all__ = ["is_simple", "max_distance", "nearest"]
+from .arcfit import decimate
+
+__all__ = ["is_simple", "max_distance", "nearest", "thin"]
 
 
 def is_simple(ring: np.ndarray) -> bool:
     """True when the closed ring (open (n, 2) array) neither crosses nor touches itself."""
     return bool(len(ring) >= 3 and shapely.LinearRing(ring).is_simple)
+
+
+def thin(ring: np.ndarray, tolerance: float) -> np.ndarray:
+    """:func:`~.arcfit.decimate` that keeps a simple ring simple: where dropping vertices would
+    make the ring cross or touch itself (two thin teeth close together), the tolerance is halved,
+    and at worst the ring is kept as it is."""
+    if not is_simple(ring):
+        return decimate(ring, tolerance)
+    for attempt in range(4):
+        thinned = decimate(ring, tolerance / 2**attempt)
+        if is_simple(thinned):
+            return thinned
+    return ring
 
 
 def nearest(points: np.ndarray, vertices: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

@@ -19,7 +19,7 @@ from ..geometry.arcfit import ArcRing, arc_points, decimate, fit_arcs
 from ..geometry.inset import check_chamfer
 from ..geometry.outline import Outline, ring_area, rotate
 from ..geometry.rings import bore_ring, offset_outline
-from ..geometry.verify import is_simple, max_distance
+from ..geometry.verify import is_simple, max_distance, thin
 from ..tolerances import DEFAULT
 
 __all__ = ["Part", "Placement", "BoreSpec", "CutSpec", "make_part", "cut_paths", "placed_polygon"]
@@ -202,10 +202,10 @@ def make_part(
     pivot_mark = 0.0 if hole is not None else min(max(0.2 * root, 1.0), 5.0, 0.5 * root)
     if hole is not None:
         fine = Outline((fine_outer, hole))
-        outline = Outline((decimate(fine_outer, tol - fine_tol), decimate(hole, tol - fine_tol)))
+        outline = Outline((thin(fine_outer, tol - fine_tol), thin(hole, tol - fine_tol)))
     else:
         fine = _with_bore(fine_outer, bore, fine_tol, part=name, wall=wall)
-        outline = _with_bore(decimate(fine_outer, tol - fine_tol), bore, tol, part=name, wall=wall)
+        outline = _with_bore(thin(fine_outer, tol - fine_tol), bore, tol, part=name, wall=wall)
     check_chamfer(outline, output.thickness, output.chamfer, name=name)
     flat = output.dxf == "polyline-flat"
     mark = tuple(_cut_ring(r, tol, fine_tol, flat=flat, part=name) for r in marks)

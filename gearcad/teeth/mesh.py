@@ -58,7 +58,10 @@ def _windows(gear: ToothedGear) -> list[np.ndarray]:
             out.append(ring)  # few teeth: the window would be most of the gear, so take all of it
             continue
         inner = gear.under_root[[(k + j) % z for j in range(_REACH, -_REACH - 1, -1)]]
-        out.append(np.vstack([run, inner]))
+        window = np.vstack([run, inner])
+        # where the pitch curve turns sharply the points under the roots can cross the teeth:
+        # then the whole gear stands in for the window
+        out.append(window if shapely.LinearRing(window).is_simple else ring)
     return out
 
 

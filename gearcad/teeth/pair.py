@@ -13,9 +13,8 @@ import shapely
 
 from ..errors import DesignError
 from ..findings import Finding, finding
-from ..geometry.arcfit import decimate
 from ..geometry.outline import Outline, arc_steps, rotate
-from ..geometry.verify import nearest
+from ..geometry.verify import nearest, thin
 from ..pitch.gear import GearData
 from ..pitch.pair import PairData
 from ..tolerances import DEFAULT, Tolerances
@@ -75,7 +74,7 @@ def undercut_free_module(min_curvature_radius: float, rack: RackParams) -> float
 
 def _thinned(gear: ToothedGear, tolerance: float) -> ToothedGear:
     """The same gear with its outline thinned to ``tolerance`` (and its root indices moved)."""
-    ring = decimate(gear.outline.outer, tolerance)
+    ring = thin(gear.outline.outer, tolerance)
     roots = gear.outline.outer[gear.space_root]
     return replace(gear, outline=Outline((ring,)), space_root=_nearest(ring, roots))
 
