@@ -45,3 +45,31 @@ def test_arcs_and_thinning_stay_within_tolerance_of_an_ellipse(tol):
     mids = 0.5 * (thin + np.roll(thin, -1, axis=0))
     assert _ellipse_distance(mids, 25, 15).max() <= tol
     assert len(thin) <= len(ring) and len(arcs.vertices) * 4 < len(ring)
+
+
+def test_a_large_ring_is_walked_in_blocks_within_tolerance(monkeypatch):
+    """Past ``_SIDE_BY_SIDE`` vertices a ring of long runs is walked from many cuts at once: on a
+    circle of radius 2 m sampled as the product samples (chords within a quarter of the
+    tolerance) the arcs and the thinned ring stay within the tolerance of the exact circle; on
+    a wavy ring (200 waves) the walk in blocks costs at most one vertex per cut more than the
+    walk from one cut."""
+    from gearcad.geometry import arcfit
+
+    tol, radius = 1e-4, 2000.0
+    ring = polyline(shapes.circle(radius), tol / 4)
+    assert len(ring) >= arcfit._SIDE_BY_SIDE
+
+    def off_circle(points):
+        return np.abs(np.hypot(*points.T) - radius).max()
+
+    assert off_circle(arc_points(fit_arcs(ring, 0.75 * tol), tol / 100)) <= tol
+    thin = decimate(ring, 0.75 * tol)
+    assert off_circle(0.5 * (thin + np.roll(thin, -1, axis=0))) <= tol
+
+    phi = np.linspace(0, 2 * math.pi, 60000, endpoint=False)
+    wavy = (100 + np.cos(200 * phi))[:, None] * np.column_stack([np.cos(phi), np.sin(phi)])
+    blocks = fit_arcs(wavy, 1e-3)
+    monkeypatch.setattr(arcfit, "_SIDE_BY_SIDE", len(wavy) + 1)
+    whole = fit_arcs(wavy, 1e-3)
+    cuts = len(wavy) // (16 * arcfit._LONG_RUN)  # at most one cut per 16 runs of the shortest length walked so
+    assert len(whole.vertices) <= len(blocks.vertices) <= len(whole.vertices) + cuts

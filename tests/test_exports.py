@@ -477,3 +477,25 @@ def test_dxf_bytes_do_not_depend_on_the_hash_seed(tmp_path):
         env = dict(os.environ, PYTHONHASHSEED=seed, PYTHONPATH=str(ROOT))
         subprocess.run([sys.executable, "-c", _WRITE_TWICE, str(tmp_path / f"{seed}.dxf")], env=env, check=True)
     assert (tmp_path / "4.dxf").read_bytes() == (tmp_path / "5.dxf").read_bytes()
+
+
+def test_caps_cover_the_region_and_keep_every_vertex():
+    """A toothed-like ring with a square hole: the cap's triangles, all counter-clockwise, add up
+    to the shoelace area and use every vertex (the walls meet the cap there); a vertex exactly
+    in line with its neighbours (which earcut drops) is kept too."""
+    from gearcad.export.mesh import cap_triangles
+
+    phi = np.linspace(0, 2 * np.pi, 4000, endpoint=False)
+    r = 30 + np.cos(40 * phi)
+    outer = np.column_stack([r * np.cos(phi), r * np.sin(phi)])
+    hole = np.array([[-5.0, -5.0], [-5.0, 5.0], [5.0, 5.0], [5.0, -5.0]])  # clockwise
+    inline = np.array([[0.0, 0.0], [1.0, 0.0], [2.0, 0.0], [2.0, 1.0], [0.0, 1.0]])  # (1, 0) in line
+    for rings in ([outer, hole], [inline]):
+        tri = cap_triangles(rings)
+        v = np.vstack(rings)
+        a, b, c = v[tri[:, 0]], v[tri[:, 1]], v[tri[:, 2]]
+        doubled = (b[:, 0] - a[:, 0]) * (c[:, 1] - a[:, 1]) - (b[:, 1] - a[:, 1]) * (c[:, 0] - a[:, 0])
+        assert np.all(doubled >= 0)
+        shoelace = sum(0.5 * np.sum(q[:, 0] * np.roll(q[:, 1], -1) - q[:, 1] * np.roll(q[:, 0], -1)) for q in rings)
+        assert doubled.sum() / 2 == pytest.approx(shoelace, rel=1e-12)
+        assert np.unique(tri).size == len(v)

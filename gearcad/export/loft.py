@@ -22,7 +22,7 @@ import shapely
 from ..errors import DesignError
 from ..geometry.inset import inset_ring
 from ..teeth.correspond import rising_diagonals
-from .mesh import Solid, _check
+from .mesh import Solid, _check, cap_triangles
 
 __all__ = ["loft", "helical_benchmark"]
 
@@ -97,9 +97,7 @@ def loft(
     # down at the bottom, up at the top)
     for level, end, down in ((0, 0, True), (levels - 1, -1, False)):
         ids = np.concatenate([index[level]] + [idx[end] for idx in hole_index])
-        tri = ids[
-            np.asarray(m3d.triangulate([vertices[i, :2] for i in [index[level]] + [idx[end] for idx in hole_index]]))
-        ]
+        tri = ids[cap_triangles([vertices[i, :2] for i in [index[level]] + [idx[end] for idx in hole_index]])]
         tris.append(tri[:, ::-1] if down else tri)
     mesh = m3d.Mesh64(vert_properties=vertices, tri_verts=np.vstack(tris).astype(np.uint64))
     solid = m3d.Manifold(mesh)

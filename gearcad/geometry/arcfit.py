@@ -73,23 +73,23 @@ def _runs_fit(pts: np.ndarray, starts: np.ndarray, lengths: np.ndarray, tol: flo
     return line_ok | arc_ok, bulge
 
 
-def _reach(pts: np.ndarray, n: int, tol: float, arcs: bool, longest: int = 128) -> np.ndarray:
-    """For every start vertex, the longest run (in segments, ≥ 1) that one line or arc fits:
-    doubling on all starts at once, then bisection between the last fit and the first miss."""
-    starts = np.arange(n)
-    good = np.ones(n, dtype=int)
+def _reach_at(pts: np.ndarray, starts: np.ndarray, limits: np.ndarray, tol: float, arcs: bool) -> np.ndarray:
+    """For each start, the longest run (in segments, ≥ 1, at most its limit) that one line or
+    arc fits: doubling on all starts at once, then bisection between the last fit and the first
+    miss."""
+    good = np.ones(len(starts), dtype=int)
     length = 2
-    alive = np.ones(n, dtype=bool)
-    while length <= longest and np.any(alive):
-        lengths = np.minimum(length, n - starts)
-        ok, _ = _runs_fit(pts, starts[alive], lengths[alive], tol, arcs)
-        ok &= lengths[alive] > good[alive]
+    alive = limits > 1
+    while length <= _LONGEST and np.any(alive):
+        lengths = np.minimum(length, limits)
         idx = np.nonzero(alive)[0]
-        good[idx[ok]] = lengths[alive][ok]
+        ok, _ = _runs_fit(pts, starts[idx], lengths[idx], tol, arcs)
+        ok &= lengths[idx] > good[idx]
+        good[idx[ok]] = lengths[idx][ok]
         alive[idx[~ok]] = False
-        alive &= lengths < n - starts
+        alive &= lengths < limits
         length *= 2
-    lo, hi = good.copy(), np.minimum(2 * good, n - starts)
+    lo, hi = good.copy(), np.minimum(2 * good, limits)
     for size in np.unique(good):  # one bucket per doubling level: arrays only as wide as needed
         bucket = np.nonzero(good == size)[0]
         while True:
@@ -103,20 +103,54 @@ def _reach(pts: np.ndarray, n: int, tol: float, arcs: bool, longest: int = 128) 
     return lo
 
 
+_LONGEST = 128
+"""Longest run tried by doubling (segments)."""
+_SIDE_BY_SIDE = 16384
+"""Rings of at least this many vertices, with runs of ``_LONG_RUN`` or more vertices on average,
+are walked in blocks side by side: only the runs the walk takes are measured."""
+_LONG_RUN = 8
+
+
+def _turns(ring: np.ndarray) -> np.ndarray:
+    prev, nxt = ring - np.roll(ring, 1, axis=0), np.roll(ring, -1, axis=0) - ring
+    return np.abs(np.arctan2(prev[:, 0] * nxt[:, 1] - prev[:, 1] * nxt[:, 0], (prev * nxt).sum(1)))
+
+
 def _rolled(ring: np.ndarray) -> tuple[np.ndarray, int]:
     """The closed point array starting at the sharpest corner (no run has to straddle it)."""
-    prev, nxt = ring - np.roll(ring, 1, axis=0), np.roll(ring, -1, axis=0) - ring
-    turn = np.abs(np.arctan2(prev[:, 0] * nxt[:, 1] - prev[:, 1] * nxt[:, 0], (prev * nxt).sum(1)))
-    start = int(np.argmax(turn))
+    start = int(np.argmax(_turns(ring)))
     return np.vstack([np.roll(ring, -start, axis=0), ring[start : start + 1]]), start
 
 
-def _walk(reach: np.ndarray, n: int) -> list[int]:
-    i, out = 0, []
-    while i < n:
-        out.append(i)
-        i += int(reach[i])
-    return out
+def _walk(pts: np.ndarray, n: int, tol: float, arcs: bool) -> np.ndarray:
+    """Greedy runs along the closed array ``pts`` (n + 1 points, the first repeated): each run as
+    long as one line (or arc) fits.  Returns the runs' first vertices, ascending.
+
+    Measuring the longest run from every vertex at once costs about n × the run length; walking
+    costs a few array steps per run.  A small ring, or one of short runs (judged from a few
+    probes), is measured whole.  A large ring of long runs is cut at the sharpest vertex of each
+    block of about 16 runs, and the blocks are walked side by side (a run never crosses a cut)."""
+    probes = np.unique(np.linspace(0, n - 1, 32).astype(int))
+    typical = 0.0 if n < _SIDE_BY_SIDE else float(_reach_at(pts, probes, n - probes, tol, arcs).mean())
+    if typical < _LONG_RUN:
+        starts = np.arange(n)
+        reach = _reach_at(pts, starts, n - starts, tol, arcs)
+        i, out = 0, []
+        while i < n:
+            out.append(i)
+            i += int(reach[i])
+        return np.array(out)
+    block = int(16 * typical)
+    turn = _turns(pts[:n])
+    cuts = [0] + [lo + int(np.argmax(turn[lo : lo + block])) for lo in range(block, n - block // 2, block)] + [n]
+    pos, end = np.array(cuts[:-1]), np.array(cuts[1:])
+    chosen = [pos.copy()]
+    active = np.nonzero(pos < end)[0]
+    while len(active):
+        pos[active] += _reach_at(pts, pos[active], end[active] - pos[active], tol, arcs)
+        active = active[pos[active] < end[active]]
+        chosen.append(pos[active])
+    return np.unique(np.concatenate(chosen))
 
 
 def fit_arcs(ring: np.ndarray, tolerance: float) -> ArcRing:
@@ -127,7 +161,7 @@ def fit_arcs(ring: np.ndarray, tolerance: float) -> ArcRing:
     """
     pts, _ = _rolled(ring)
     n = len(ring)
-    chosen = np.array(_walk(_reach(pts, n, tolerance, arcs=True), n))
+    chosen = _walk(pts, n, tolerance, arcs=True)
     ends = np.append(chosen[1:], n)
     _, bulges = _runs_fit(pts, chosen, ends - chosen, tolerance, arcs=True)
     bulges = np.where(ends - chosen == 1, 0.0, bulges)
@@ -145,27 +179,27 @@ def decimate_indices(ring: np.ndarray, tolerance: float) -> np.ndarray:
     sharpest corner."""
     pts, start = _rolled(ring)
     n = len(ring)
-    return (np.array(_walk(_reach(pts, n, tolerance, arcs=False), n)) + start) % n
+    return (_walk(pts, n, tolerance, arcs=False) + start) % n
 
 
 def arc_points(arcs: ArcRing, tolerance: float) -> np.ndarray:
     """The ring back as points, each arc flattened to within ``tolerance``: (m, 2) open ring."""
-    out = []
-    v = arcs.vertices
-    for k in range(len(v)):
-        a, b, bulge = v[k], v[(k + 1) % len(v)], arcs.bulges[k]
-        out.append(a[None, :])
-        if bulge == 0:
-            continue
-        sweep = 4 * np.arctan(bulge)
-        chord = float(np.hypot(*(b - a)))
-        radius = chord / (2 * abs(np.sin(sweep / 2)))
-        steps = max(2, int(np.ceil(abs(sweep) / (2 * np.arccos(max(1 - tolerance / radius, -1.0))))))
+    v = np.asarray(arcs.vertices, dtype=float)
+    bulges = np.asarray(arcs.bulges, dtype=float)
+    a, b = v, np.roll(v, -1, axis=0)
+    sweep = 4 * np.arctan(bulges)
+    chord = np.hypot(*(b - a).T)
+    curved = bulges != 0
+    with np.errstate(divide="ignore", invalid="ignore"):
+        radius = np.where(curved, chord / (2 * np.abs(np.sin(sweep / 2))), np.inf)
+        half_step = np.arccos(np.clip(1 - tolerance / radius, -1.0, 1.0))
+        steps = np.where(curved, np.maximum(2, np.ceil(np.abs(sweep) / (2 * half_step))), 1).astype(int)
         # centre: from the chord's midpoint along its left normal (for a counter-clockwise arc)
-        mid = (a + b) / 2
-        normal = np.array([-(b - a)[1], (b - a)[0]]) / chord
-        centre = mid + normal * radius * np.cos(sweep / 2) * np.sign(sweep)
-        start = np.arctan2(*(a - centre)[::-1])
-        t = start + sweep * np.arange(1, steps) / steps
-        out.append(centre + radius * np.column_stack([np.cos(t), np.sin(t)]))
-    return np.vstack(out)
+        normal = np.column_stack([-(b - a)[:, 1], (b - a)[:, 0]]) / chord[:, None]
+        centre = (a + b) / 2 + normal * (radius * np.cos(sweep / 2) * np.sign(sweep))[:, None]
+    start = np.arctan2(a[:, 1] - centre[:, 1], a[:, 0] - centre[:, 0])
+    owner = np.repeat(np.arange(len(v)), steps)
+    j = np.arange(len(owner)) - np.repeat(np.cumsum(steps) - steps, steps)  # 0 … steps − 1
+    t = start[owner] + sweep[owner] * j / steps[owner]
+    on_arc = centre[owner] + radius[owner, None] * np.column_stack([np.cos(t), np.sin(t)])
+    return np.where((j == 0)[:, None], v[owner], on_arc)
