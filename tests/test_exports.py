@@ -1,5 +1,6 @@
 """Files for making things, read back by independent readers (ezdxf, trimesh, Pillow)."""
 
+import functools
 import json
 import os
 from pathlib import Path
@@ -124,6 +125,12 @@ def _distance(a: shapely.LinearRing, b: shapely.LinearRing) -> float:
 
 def _reference_rings(report, gear):
     """gearcad's own cut of the part at a tenth of the tolerance (chords within 1e-4 mm)."""
+    part = _reference_parts()[0 if gear["name"] == "a" else 1]
+    return part.outline.rings[0], part.outline.rings[1:]
+
+
+@functools.cache
+def _reference_parts():
     from gearcad.mechanisms import design
     from gearcad.profiles import parse_profile
 
@@ -135,9 +142,7 @@ def _reference_rings(report, gear):
         "output": {"tolerance": 1e-4},
         "bore": {"diameter": 3.0},
     }
-    params = parse_profile(data_dict)
-    part = design(params).parts()[0 if gear["name"] == "a" else 1]
-    return part.outline.rings[0], part.outline.rings[1:]
+    return design(parse_profile(data_dict)).parts()
 
 
 def test_dxf_needs_far_fewer_vertices_than_chords(tmp_path):

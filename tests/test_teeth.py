@@ -265,3 +265,20 @@ def test_printed_clearance_on_an_eccentric_pair_meshes_and_plays_as_designed():
     assert teeth.mesh.meshes
     low, high = teeth.backlash_range
     assert expected * 0.95 < low and high < 3 * expected
+
+
+def test_sampling_is_called_off_when_asked():
+    """A gear that cannot be cut sets the event; its mate's sampling then ends at the next round
+    (the design's error is the failing gear's, see the stability map's eccentricity 0.99)."""
+    import threading
+
+    from gearcad.teeth.sampling import Stopped, sample_curves
+
+    def circle(ids, t):
+        return np.column_stack([np.cos(t), np.sin(t)])
+
+    stop = threading.Event()
+    assert len(sample_curves(circle, [0.0], [np.pi], 1e-6, stop=stop)[0]) > 100
+    stop.set()
+    with pytest.raises(Stopped):
+        sample_curves(circle, [0.0], [np.pi], 1e-6, stop=stop)

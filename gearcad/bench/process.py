@@ -8,6 +8,7 @@ waited for (a build's worker pool), i.e. the largest single process.
 
 from __future__ import annotations
 
+import compileall
 import json
 import os
 import resource
@@ -113,10 +114,14 @@ class Measured:
 
 
 def _environment() -> dict[str, str]:
-    """The child imports the gearcad being measured (a worktree's, not whichever is installed)."""
-    root = str(Path(__file__).resolve().parents[2])
+    """The child imports the gearcad being measured (a worktree's, not whichever is installed),
+    from bytecode as an installed package does: compiled here once, and read (not recompiled)
+    by every child even where the shell asks Python not to write bytecode."""
+    root = Path(__file__).resolve().parents[2]
+    compileall.compile_dir(root / "gearcad", quiet=1)
     env = dict(os.environ)
-    env["PYTHONPATH"] = os.pathsep.join([root, *filter(None, [env.get("PYTHONPATH")])])
+    env.pop("PYTHONDONTWRITEBYTECODE", None)
+    env["PYTHONPATH"] = os.pathsep.join([str(root), *filter(None, [env.get("PYTHONPATH")])])
     return env
 
 

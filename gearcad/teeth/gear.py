@@ -18,6 +18,7 @@ into it: the loop is removed, leaving what a real rack would leave (undercut).
 from __future__ import annotations
 
 import math
+import threading
 from dataclasses import dataclass
 
 import numpy as np
@@ -190,11 +191,19 @@ RESIZE = "a smaller teeth.module or a larger teeth.count"
 
 
 def cut_teeth(
-    frame: ArcFrame, rack: Rack, teeth: int, phase: float, *, tolerance: float, resize: str = RESIZE
+    frame: ArcFrame,
+    rack: Rack,
+    teeth: int,
+    phase: float,
+    *,
+    tolerance: float,
+    resize: str = RESIZE,
+    stop: threading.Event | None = None,
 ) -> ToothedGear:
     """Cut ``teeth`` evenly spaced teeth, space k centred at arc length phase + k·pitch.
 
-    The perimeter must be exactly teeth × pitch (the caller chooses the module so).
+    The perimeter must be exactly teeth × pitch (the caller chooses the module so).  Setting
+    ``stop`` (from another thread) ends the cut with :class:`~.sampling.Stopped`.
     """
     p = rack.pitch
     if not math.isclose(frame.perimeter, teeth * p, rel_tol=1e-9):
@@ -224,16 +233,20 @@ def cut_teeth(
 
     tol = tolerance
     b0 = rack.fillet_start
-    left = sample_curves(lambda i, v: gen.flank(i, v, -1), left_top, np.full(teeth, rack.v_low), tol)
-    lfil = sample_curves(lambda i, b: gen.fillet(i, b, -1), np.full(teeth, b0), np.full(teeth, -np.pi / 2), tol)
+    left = sample_curves(lambda i, v: gen.flank(i, v, -1), left_top, np.full(teeth, rack.v_low), tol, stop=stop)
+    lfil = sample_curves(
+        lambda i, b: gen.fillet(i, b, -1), np.full(teeth, b0), np.full(teeth, -np.pi / 2), tol, stop=stop
+    )
     if rack.fillet_u > 0:
-        root = sample_curves(gen.root, centres - rack.fillet_u, centres + rack.fillet_u, tol)
+        root = sample_curves(gen.root, centres - rack.fillet_u, centres + rack.fillet_u, tol, stop=stop)
     else:
         root = [np.empty((0, 2))] * teeth
-    rfil = sample_curves(lambda i, b: gen.fillet(i, b, +1), np.full(teeth, -np.pi / 2), np.full(teeth, b0), tol)
-    right = sample_curves(lambda i, v: gen.flank(i, v, +1), np.full(teeth, rack.v_low), v_start, tol)
+    rfil = sample_curves(
+        lambda i, b: gen.fillet(i, b, +1), np.full(teeth, -np.pi / 2), np.full(teeth, b0), tol, stop=stop
+    )
+    right = sample_curves(lambda i, v: gen.flank(i, v, +1), np.full(teeth, rack.v_low), v_start, tol, stop=stop)
     land = ~pointed
-    tips = sample_curves(gen.tip, s_start[land], s_end[land], tol)
+    tips = sample_curves(gen.tip, s_start[land], s_end[land], tol, stop=stop)
     tip_of = dict(zip(np.nonzero(land)[0], tips))
 
     root_centre = gen.root(ids, centres)

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import threading
 from collections.abc import Sequence
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, replace
@@ -23,6 +24,7 @@ from .gear import ToothedGear, cut_teeth
 from .mesh import MeshData, backlash_range, mesh_check, nudge_arc
 from .plan import ToothPlan, plan_teeth
 from .rack import Rack, RackParams
+from .sampling import Stopped
 
 __all__ = ["ToothSpec", "ToothedPairData", "cut_pair", "undercut_free_module"]
 
@@ -153,12 +155,22 @@ def cut_pair(
     shifts = (params.profile_shift, -params.profile_shift)
     fine_tol = tol.outline_mm * tol.fine_fraction
 
+    stop = threading.Event()  # a gear that cannot be cut calls off its mate's cut
+
     def cut(frame, z, phase, shift):
-        gear = cut_teeth(frame, _rack(params, plan.module, shift), z, phase, tolerance=fine_tol)
-        return _with_clearance(gear, params.clearance, fine_tol)
+        try:
+            gear = cut_teeth(frame, _rack(params, plan.module, shift), z, phase, tolerance=fine_tol, stop=stop)
+            return _with_clearance(gear, params.clearance, fine_tol)
+        except BaseException:
+            stop.set()
+            raise
 
     with ThreadPoolExecutor(max_workers=2) as pool:  # the two gears side by side
-        fine = tuple(pool.map(cut, frames, plan.teeth, plan.phases, shifts))
+        jobs = [pool.submit(cut, *job) for job in zip(frames, plan.teeth, plan.phases, shifts)]
+        failed = [e for e in (job.exception() for job in jobs) if e is not None and not isinstance(e, Stopped)]
+        if failed:
+            raise failed[0]
+        fine = tuple(job.result() for job in jobs)
     toothed = tuple(_thinned(g, tol.outline_mm - fine_tol) for g in fine)
     play = params.backlash + 4 * params.clearance / math.cos(params.pressure_angle)
     # the mesh proof and the play measurement are independent, and shapely's vectorised GEOS

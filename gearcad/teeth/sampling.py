@@ -7,15 +7,21 @@ rest.  The result has no more vertices than the tolerance needs, wherever the cu
 
 from __future__ import annotations
 
+import threading
 from collections.abc import Callable
 
 import numpy as np
 
 from ..errors import DesignError
 
-__all__ = ["sample_curves"]
+__all__ = ["sample_curves", "Stopped"]
 
 Curves = Callable[[np.ndarray, np.ndarray], np.ndarray]
+
+
+class Stopped(Exception):
+    """The sampling was called off (``stop`` set): other work of the same design failed, so
+    this result would not be used."""
 
 
 def _distance_to_chord(p, a, b):
@@ -32,14 +38,23 @@ be made: the work is refused rather than refined without end (bounded time and m
 
 
 def sample_curves(
-    func: Curves, t0, t1, tolerance: float, *, start: int = 4, max_rounds: int = 40, max_points: int = MAX_POINTS
+    func: Curves,
+    t0,
+    t1,
+    tolerance: float,
+    *,
+    start: int = 4,
+    max_rounds: int = 40,
+    max_points: int = MAX_POINTS,
+    stop: threading.Event | None = None,
 ) -> list[np.ndarray]:
     """Sample curves ``func(ids, t) -> (n, 2)`` on their intervals [t0[i], t1[i]].
 
     Returns, for each curve i, its points (m_i, 2) from t0[i] to t1[i] inclusive, with every
     chord within ``tolerance`` of the curve at the chord's parameter midpoint and at its
     quarter points (so an inflexion inside a chord is not missed).  Raises
-    :class:`DesignError` when that would take more than ``max_points`` points.
+    :class:`DesignError` when that would take more than ``max_points`` points, and
+    :class:`Stopped` once ``stop`` is set (checked every round).
     """
     t0, t1 = np.asarray(t0, dtype=float), np.asarray(t1, dtype=float)
     n = len(t0)
@@ -52,6 +67,8 @@ def sample_curves(
     pa, pb = func(ids, a), func(ids, b)
     kept_ids, kept_t, kept_p = [], [], []
     for _ in range(max_rounds):
+        if stop is not None and stop.is_set():
+            raise Stopped
         quarter = np.concatenate([0.75 * a + 0.25 * b, 0.5 * (a + b), 0.25 * a + 0.75 * b])
         pq = func(np.tile(ids, 3), quarter).reshape(3, len(a), 2)
         dev = np.max([_distance_to_chord(pq[k], pa, pb) for k in range(3)], axis=0)
