@@ -27,8 +27,8 @@ def _write_table(path: Path, table) -> None:
             w.writerow([f"{v:.12g}" for v in row])
 
 
-def _pictures(design: Design, folder: Path) -> dict[str, dict]:
-    """The animation and the charts (the files that need matplotlib or Pillow)."""
+def _animation(design: Design, folder: Path) -> dict[str, dict]:
+    """The animated GIF (drawn with Pillow)."""
     out = design.params.output
     files: dict[str, dict] = {}
     if out.animation and design.motion is not None:
@@ -44,6 +44,13 @@ def _pictures(design: Design, folder: Path) -> dict[str, dict]:
             m.angles + [where[name].angle for name in m.parts],
         )
         files[path.name] = _entry(path, kind="gif", frames=frames)
+    return files
+
+
+def _charts(design: Design, folder: Path) -> dict[str, dict]:
+    """The charts and the picture of the solids (drawn with matplotlib)."""
+    out = design.params.output
+    files: dict[str, dict] = {}
     if out.charts and design.sections:  # twisted teeth are best seen: a rendered picture
         from .charts.solid import PICTURE_PIXELS, draw_solids, picture_solid
         from .mesh import SolidItem
@@ -78,23 +85,21 @@ def write_design(design: Design, folder: Path, *, beside: bool = False) -> dict[
     """Write every file the profile's [output] asks for into ``folder`` (which must exist);
     return the files block of the report (the report itself written last).
 
-    ``beside``: draw the charts and the animation in a forked process while this one writes
-    the rest (for a machine with a core to spare).
+    ``beside``: draw the charts and the animation in forked processes while this one writes
+    the rest (for a machine with a core to spare): matplotlib's import and drawing take about
+    as long as all the other files together.
     """
-    pictures = Beside(lambda: _pictures(design, folder)) if beside and _drawn(design) and can_fork() else None
+    jobs = {}
     try:
-        return _write(design, folder, pictures)
+        if beside and can_fork():
+            jobs = {draw: Beside(lambda draw=draw: draw(design, folder)) for draw in (_charts, _animation)}
+        return _write(design, folder, jobs)
     finally:
-        if pictures is not None:
-            pictures.cancel()
+        for job in jobs.values():
+            job.cancel()
 
 
-def _drawn(design: Design) -> bool:
-    out = design.params.output
-    return out.charts or (out.animation and design.motion is not None)
-
-
-def _write(design: Design, folder: Path, pictures: Beside | None) -> dict[str, dict]:
+def _write(design: Design, folder: Path, beside: dict) -> dict[str, dict]:
     out = design.params.output
     formats = set(out.formats)
     files: dict[str, dict] = {}
@@ -165,7 +170,8 @@ def _write(design: Design, folder: Path, pictures: Beside | None) -> dict[str, d
         path = folder / table.file
         _write_table(path, table)
         files[path.name] = _entry(path, kind="csv", rows=len(table.rows))
-    files.update(pictures.result() if pictures is not None else _pictures(design, folder))
+    for draw in (_animation, _charts):  # drawn here, or collected from the processes beside
+        files.update(beside[draw].result() if draw in beside else draw(design, folder))
     files["index.html"] = {"kind": "html"}
     files["report.json"] = {"kind": "json"}
     text = json.dumps(design.report(files), indent=2, ensure_ascii=False, allow_nan=False)
