@@ -150,7 +150,7 @@ def test_from_samples_reproduces_a_trigonometric_polynomial():
 
 def test_from_samples_of_many_radii_is_evaluated_in_bounded_memory():
     """A sweep found 500 radii and a 10-tooth cut asking for 386 046 angles at once: the
-    (angles × orders) arrays took 739 MB each, past the 2 GiB budget.  Evaluated in blocks, the
+    (angles × orders) arrays took 739 MB each, past the 2 GiB budget.  By Horner's rule the
     series still interpolates the radii exactly (trigonometric interpolation)."""
     radii = 20 + np.random.default_rng(7).random(2001)  # noise: all 1001 orders matter
     curve = shapes.from_samples("noisy", radii)

@@ -144,10 +144,6 @@ def harmonic_ratio(mean: float, terms) -> tuple[Callable, Callable, Callable]:
     return k, dk, d2k
 
 
-_SERIES_BLOCK = 1 << 18
-"""Angle × order products evaluated at once by a curve from samples (2 MB of float64 each)."""
-
-
 def from_samples(name: str, radii, *, lobes: int = 1) -> PitchCurve:
     """A smooth curve through radii sampled at equal steps over one turn (trigonometric
     interpolation: spectrally accurate for smooth periodic data)."""
@@ -163,27 +159,24 @@ def from_samples(name: str, radii, *, lobes: int = 1) -> PitchCurve:
     sin_c = -weight * spectrum.imag
     # orders at the FFT's rounding level (all but a few for smooth data) only cost time: together
     # they move the curve by under 1e-10 of its size
-    keep = np.hypot(cos_c, sin_c) > 1e-15 * np.max(np.abs(radii))
-    keep[0] = True
-    orders, cos_c, sin_c = orders[keep], cos_c[keep], sin_c[keep]
+    small = np.hypot(cos_c, sin_c) <= 1e-15 * np.max(np.abs(radii))
+    small[0] = False
+    top = int(np.flatnonzero(~small)[-1])
+    # r = Re Σ (c_k − i·s_k)·z^k with z = e^{iφ}, by Horner's rule: one complex multiply-add per
+    # order on the angles' array (10× faster than a cos and a sin of every angle × order, and
+    # memory of one array however many samples the profile gives)
+    spectrum = np.where(small, 0.0, cos_c - 1j * sin_c)[: top + 1]
+    orders = np.arange(top + 1)
 
     def series(phi, power):
         phi = np.asarray(phi, dtype=float)
-        flat, out = phi.ravel(), np.empty(phi.size)
-        scale = orders.astype(float) ** power
-        # a tooth outline asks for ~10⁵ angles at once: taken in blocks, the (angles × orders)
-        # arrays stay a few MB however many samples the profile gives
-        step = max(1, _SERIES_BLOCK // len(orders))
-        for i in range(0, len(flat), step):
-            arg = np.multiply.outer(flat[i : i + step], orders)
-            c, s = np.cos(arg), np.sin(arg)
-            if power % 4 == 0:
-                out[i : i + step] = (c * cos_c * scale + s * sin_c * scale).sum(-1)
-            elif power % 4 == 1:
-                out[i : i + step] = (-s * cos_c * scale + c * sin_c * scale).sum(-1)
-            else:
-                out[i : i + step] = (-c * cos_c * scale - s * sin_c * scale).sum(-1)
-        return out.reshape(phi.shape) if phi.ndim else out[0]
+        coef = spectrum * (1j * orders) ** power
+        z = np.exp(1j * phi)
+        acc = np.full(phi.shape, coef[-1], dtype=complex)
+        for a in coef[-2::-1]:
+            acc *= z
+            acc += a
+        return acc.real[()]
 
     return PitchCurve(
         name=name,
