@@ -1,6 +1,7 @@
 """The pitch-curve core against closed forms and independent methods."""
 
 import math
+import tracemalloc
 
 import numpy as np
 import pytest
@@ -145,6 +146,21 @@ def test_from_samples_reproduces_a_trigonometric_polynomial():
         curve.dr(phi), -4 * np.sin(2 * phi) - 3 * np.cos(3 * phi) - 2.5 * np.sin(5 * phi), atol=1e-11
     )
     assert exact.lobes == 1
+
+
+def test_from_samples_of_many_radii_is_evaluated_in_bounded_memory():
+    """A sweep found 500 radii and a 10-tooth cut asking for 386 046 angles at once: the
+    (angles × orders) arrays took 739 MB each, past the 2 GiB budget.  By Horner's rule the
+    series still interpolates the radii exactly (trigonometric interpolation)."""
+    radii = 20 + np.random.default_rng(7).random(2001)  # noise: all 1001 orders matter
+    curve = shapes.from_samples("noisy", radii)
+    phi = np.linspace(0, TWO_PI, 2001 * 10, endpoint=False)
+    tracemalloc.start()
+    r = curve.r(phi)
+    peak = tracemalloc.get_traced_memory()[1]
+    tracemalloc.stop()
+    assert peak < 40e6  # unblocked: 20 010 × 1001 × 8 B = 160 MB per array
+    np.testing.assert_allclose(r[::10], radii, atol=1e-11)
 
 
 @pytest.mark.parametrize("tol", [0.1, 0.01, 0.001])

@@ -15,7 +15,14 @@ import math
 from ..errors import DesignError
 from ..tolerances import DEFAULT
 
-__all__ = ["POINT_BUDGET", "teeth_points", "check_teeth_work", "check_outline_work"]
+__all__ = [
+    "POINT_BUDGET",
+    "FINEST_TOLERANCE",
+    "COARSEST_TOLERANCE",
+    "teeth_points",
+    "check_teeth_work",
+    "check_outline_work",
+]
 
 POINT_BUDGET = 600_000
 """Outline points (fine cut, every gear of a design) one build may need."""
@@ -27,6 +34,8 @@ are removed one space at a time), so 5000 teeth take ~25 s on the reference mach
 on roller bodies: 5032 teeth 24 s, 8050 teeth 36 s, 40 252 teeth over 120 s)."""
 FINEST_TOLERANCE = 1e-4
 """The smallest output.tolerance a profile accepts, mm: never suggest a finer one."""
+COARSEST_TOLERANCE = 0.5
+"""The largest output.tolerance a profile accepts, mm: never suggest a coarser one."""
 MODULE_PER_TOLERANCE = 4.0
 """Smallest module per output.tolerance: a flank 2.25·m deep drawn within a tolerance of more
 than a quarter module is no flank (on the spur pair the mesh proof fails below ~3)."""

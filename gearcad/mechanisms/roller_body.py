@@ -21,7 +21,7 @@ from ..teeth.gear import cut_teeth
 from ..teeth.rack import Rack, RackParams
 from ..tolerances import DEFAULT
 from .base import Assembly, Design, assembly_overlap
-from .budget import check_teeth_work
+from .budget import COARSEST_TOLERANCE, POINT_BUDGET, check_teeth_work
 from .parts import Placement, make_part
 
 __all__ = ["RollerBodyDetail", "design", "PAPER_M"]
@@ -117,7 +117,23 @@ def _body_ring(osc: RB.Oscillation, p: RollerBodyParams, r: float) -> tuple[np.n
     kappa = float(np.max(np.abs(RB.contour_curvature(osc, probe, r=r)))) / p.scale
     ds = math.sqrt(8 * fine / max(kappa, 1e-12))
     length = float(np.sum(np.hypot(*np.diff(RB.contour(osc, probe, r=r), axis=0).T))) * p.scale
-    tau = np.linspace(0, TWO_PI, max(256, int(math.ceil(2 * length / ds))), endpoint=False)
+    need = 2 * length / ds
+    if need > POINT_BUDGET:
+        # near the simple limit the offset is a hair from a cusp (r·κ_P → 1): a bend no
+        # tolerance within reach can follow; points grow as tolerance^−½
+        key, what = (
+            (f"body.amplitude = {p.amplitude:g}", "body.amplitude")
+            if p.direction != "series"
+            else ("body.f / body.g", "terms of body.f / body.g")
+        )
+        coarser = 1.05 * p.output.tolerance * (need / POINT_BUDGET) ** 2
+        raise DesignError(
+            f"{key}: the body contour is on the verge of a cusp (its tightest bend has radius {1 / kappa:.2g} mm), "
+            f"so drawing it would take about {need / 1e6:.3g} million points (the budget is "
+            f"{POINT_BUDGET / 1e6:.1f} million); use a smaller {what} or body.roller_radius"
+            + (f", or output.tolerance ≥ {coarser:.2g} mm" if coarser <= COARSEST_TOLERANCE else "")
+        )
+    tau = np.linspace(0, TWO_PI, max(256, int(math.ceil(need))), endpoint=False)
     body = RB.contour(osc, tau, r=r)[::-1] * p.scale  # τ runs clockwise: reverse for CCW
     return body, RB.roller_path(osc, tau)[::-1] * p.scale
 
