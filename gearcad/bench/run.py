@@ -43,6 +43,7 @@ def run_bench(
     unknown = set(skip) - set(SECTIONS)
     if unknown:
         raise ValueError(f"skip: {sorted(unknown)} are not sections; sections are {list(SECTIONS)}")
+    out = Path(out).resolve()  # the children run in their own folders: every path they get is absolute
     logging.disable(logging.WARNING)
     try:
         out.mkdir(parents=True, exist_ok=True)
