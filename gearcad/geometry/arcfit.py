@@ -130,8 +130,10 @@ def _walk(pts: np.ndarray, n: int, tol: float, arcs: bool) -> np.ndarray:
     costs a few array steps per run.  A small ring, or one of short runs (judged from a few
     probes), is measured whole.  A large ring of long runs is cut at the sharpest vertex of each
     block of about 16 runs, and the blocks are walked side by side (a run never crosses a cut)."""
-    probes = np.unique(np.linspace(0, n - 1, 32).astype(int))
-    typical = 0.0 if n < _SIDE_BY_SIDE else float(_reach_at(pts, probes, n - probes, tol, arcs).mean())
+    typical = 0.0
+    if n >= _SIDE_BY_SIDE:
+        probes = np.linspace(0, n - 1, 32).astype(int)
+        typical = float(_reach_at(pts, probes, n - probes, tol, arcs).mean())
     if typical < _LONG_RUN:
         starts = np.arange(n)
         reach = _reach_at(pts, starts, n - starts, tol, arcs)
@@ -150,7 +152,7 @@ def _walk(pts: np.ndarray, n: int, tol: float, arcs: bool) -> np.ndarray:
         pos[active] += _reach_at(pts, pos[active], end[active] - pos[active], tol, arcs)
         active = active[pos[active] < end[active]]
         chosen.append(pos[active])
-    return np.unique(np.concatenate(chosen))
+    return np.sort(np.concatenate(chosen))  # each block's runs start where the last one ended: no repeats
 
 
 def fit_arcs(ring: np.ndarray, tolerance: float) -> ArcRing:
