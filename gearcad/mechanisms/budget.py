@@ -22,6 +22,8 @@ __all__ = [
     "teeth_points",
     "check_teeth_work",
     "check_outline_work",
+    "MAX_SAMPLE_ORDER",
+    "SAMPLE_NOISE",
 ]
 
 POINT_BUDGET = 600_000
@@ -87,3 +89,13 @@ def check_outline_work(length: float, min_radius: float, tolerance: float, *, wh
             f"output.tolerance = {tolerance:g}: {what} would need about {need / 1e6:.1f} million outline points "
             f"(the budget is {POINT_BUDGET / 1e6:.1f} million); use a coarser output.tolerance"
         )
+
+
+MAX_SAMPLE_ORDER = 360
+"""Highest harmonic order a pitch curve given by radii may hold above its noise: the cut's time
+grows with it (about 10 s at 360 on the reference machine), and a wave finer than a degree of
+turn is finer than any tooth."""
+
+SAMPLE_NOISE = 0.1
+"""The smallest orders of sampled radii are dropped as noise while together they move the curve
+by at most this fraction of the output tolerance."""

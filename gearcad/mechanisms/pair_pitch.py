@@ -38,6 +38,7 @@ from ..profiles import (
     WalkerParams,
 )
 from ..tolerances import DEFAULT, Tolerances
+from .budget import MAX_SAMPLE_ORDER, SAMPLE_NOISE
 
 __all__ = ["WalkerData", "PairDesign", "pitch_design", "driver_curve"]
 
@@ -95,7 +96,17 @@ def driver_curve(params: GearPairParams) -> tuple[PitchCurve, W.RatioLaw | None]
     if isinstance(g, CircleParams):
         return shapes.circle(g.radius), None
     if isinstance(g, SamplesParams):
-        return shapes.from_samples("curve from samples", g.radii, lobes=g.lobes), None
+        return (
+            shapes.from_samples(
+                "curve from samples",
+                g.radii,
+                lobes=g.lobes,
+                negligible=params.output.tolerance * SAMPLE_NOISE,
+                max_order=MAX_SAMPLE_ORDER,
+                key="gear1.radii",
+            ),
+            None,
+        )
     if isinstance(g, RatioParams):
         k, dk, d2k = shapes.harmonic_ratio(g.mean, g.harmonics)
         return shapes.from_ratio("curve from a ratio law", k, dk, d2k, params.center_distance, lobes=g.lobes), None

@@ -6,6 +6,7 @@ from collections.abc import Callable
 
 import numpy as np
 
+from ..errors import DesignError
 from .curve import PitchCurve
 
 __all__ = [
@@ -144,9 +145,46 @@ def harmonic_ratio(mean: float, terms) -> tuple[Callable, Callable, Callable]:
     return k, dk, d2k
 
 
-def from_samples(name: str, radii, *, lobes: int = 1) -> PitchCurve:
+def _noise(coefficients: np.ndarray, amplitude: np.ndarray, negligible: float) -> np.ndarray:
+    """The most orders (smallest amplitudes first, never the mean) whose sum moves the curve by
+    at most ``negligible``, as a mask: a bisection on how many, each candidate's largest change
+    measured on four points per sample (an inverse FFT)."""
+    quiet = np.argsort(amplitude[1:], kind="stable") + 1
+    grid = 8 * len(coefficients)
+
+    def change(count: int) -> float:
+        dropped = np.zeros_like(coefficients)
+        dropped[quiet[:count]] = coefficients[quiet[:count]]
+        # r = Re Σ c_k e^{ikφ}: irfft of c/2 (k > 0) times the grid size gives that sum
+        return float(np.max(np.abs(np.fft.irfft(dropped * grid / 2, grid))))
+
+    lo, hi = 0, len(quiet)
+    while lo < hi:
+        mid = (lo + hi + 1) // 2
+        lo, hi = (mid, hi) if change(mid) <= negligible else (lo, mid - 1)
+    mask = np.zeros(len(coefficients), dtype=bool)
+    mask[quiet[:lo]] = True
+    return mask
+
+
+def from_samples(
+    name: str,
+    radii,
+    *,
+    lobes: int = 1,
+    negligible: float = 0.0,
+    max_order: int | None = None,
+    key: str = "radii",
+) -> PitchCurve:
     """A smooth curve through radii sampled at equal steps over one turn (trigonometric
-    interpolation: spectrally accurate for smooth periodic data)."""
+    interpolation: spectrally accurate for smooth periodic data).
+
+    ``negligible`` (mm): the smallest orders are dropped while their amplitudes add up to at
+    most this — together they move the curve by no more — so that noise in measured radii
+    (rounding, a scanner's grain) does not cost an evaluation of every order.  An order above
+    ``max_order`` left after that is refused (:class:`DesignError` naming ``key``): the time to
+    cut teeth grows with it, and no tooth follows a wiggle that fine.
+    """
     radii = np.asarray(radii, dtype=float)
     n = len(radii)
     spectrum = np.fft.rfft(radii) / n
@@ -159,9 +197,18 @@ def from_samples(name: str, radii, *, lobes: int = 1) -> PitchCurve:
     sin_c = -weight * spectrum.imag
     # orders at the FFT's rounding level (all but a few for smooth data) only cost time: together
     # they move the curve by under 1e-10 of its size
-    small = np.hypot(cos_c, sin_c) <= 1e-15 * np.max(np.abs(radii))
+    amplitude = np.hypot(cos_c, sin_c)
+    small = amplitude <= 1e-15 * np.max(np.abs(radii))
+    if negligible > 0:
+        small |= _noise(cos_c - 1j * sin_c, amplitude, negligible)
     small[0] = False
     top = int(np.flatnonzero(~small)[-1])
+    if max_order is not None and top > max_order:
+        raise DesignError(
+            f"{key}: the radii vary on a finer scale than any tooth can follow — beyond {negligible:.2g} mm of "
+            f"noise they hold waves up to order {top} per turn (at most order {max_order}); smooth them or give "
+            "fewer samples"
+        )
     # r = Re Σ (c_k − i·s_k)·z^k with z = e^{iφ}, by Horner's rule: one complex multiply-add per
     # order on the angles' array (10× faster than a cos and a sin of every angle × order, and
     # memory of one array however many samples the profile gives)
