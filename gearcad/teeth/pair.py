@@ -22,7 +22,7 @@ from ..tolerances import DEFAULT, Tolerances
 from .frame import ArcFrame, arc_frame
 from .gear import ToothedGear, cut_teeth
 from .mesh import MeshData, backlash_range, mesh_check, nudge_arc
-from .plan import ToothPlan, plan_teeth
+from .plan import ToothPlan, plan_teeth, tooth_count
 from .rack import Rack, RackParams
 from .sampling import Stopped
 
@@ -140,13 +140,14 @@ def cut_pair(
                 f"{gear.name} has corners (at φ = {where}): a rack cannot roll round a corner, so "
                 "teeth need a smooth pitch curve — blend the corners (e.g. gear1.blend_width_deg)"
             )
-    frames = (arc_frame(pair.gear1, tol=tol), arc_frame(pair.gear2, tol=tol))
     # a self-conjugate noncircular pair: gear 2 is gear 1 turned, and the count must make the
     # toothed gears one part too (a circle's mate is the same part at any count and turn)
     identical = None if gears[0].round else mate_rotation
-    plan = plan_teeth(
-        frames[0], frames[1], pair.lobes, module=params.module, count=params.count, identical_rotation=identical
-    )
+    counted = dict(module=params.module, count=params.count, identical_rotation=identical)
+    first = arc_frame(pair.gear1, tol=tol)
+    tooth_count(first, pair.lobes, **counted)  # a count that cannot be refuses before the mate's map
+    frames = (first, arc_frame(pair.gear2, tol=tol))
+    plan = plan_teeth(*frames, pair.lobes, **counted)
     if params.backlash >= math.pi * plan.module / 2:
         raise DesignError(
             f"teeth.backlash = {params.backlash:g}: it would thin every tooth to under half its thickness; "

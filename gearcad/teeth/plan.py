@@ -17,7 +17,7 @@ import numpy as np
 from ..errors import DesignError
 from .frame import ArcFrame
 
-__all__ = ["ToothPlan", "plan_teeth", "COUNT_RANGE"]
+__all__ = ["ToothPlan", "plan_teeth", "tooth_count", "COUNT_RANGE"]
 
 COUNT_RANGE = (6, 2000)
 """The tooth counts a profile's teeth.count accepts: what a message may suggest."""
@@ -61,6 +61,34 @@ def plan_teeth(
 
     ``identical_rotation`` is δ when gear 2 is gear 1 turned by δ, else None.
     """
+    z1 = tooth_count(frame1, lobes, module=module, count=count, identical_rotation=identical_rotation)
+    n1, n2 = lobes
+    z2 = z1 * n2 // n1
+    pitch = frame1.perimeter / z1
+    # gear 1: a tooth centred at φ = 0, so space 0 is half a pitch on
+    phase1 = pitch / 2
+    # gear 2: a space wherever gear 1's tooth arrives; gear 1's tooth at σ = 0 meets s2(π)
+    phase2 = float(frame2.arc(np.array([np.pi]))[0]) % pitch
+    return ToothPlan(
+        teeth=(z1, z2),
+        module=pitch / math.pi,
+        requested_module=module,
+        pitch=pitch,
+        phases=(phase1, phase2),
+        identical=identical_rotation is not None,
+    )
+
+
+def tooth_count(
+    frame1: ArcFrame,
+    lobes: tuple[int, int],
+    *,
+    module: float | None = None,
+    count: int | None = None,
+    identical_rotation: float | None = None,
+) -> int:
+    """Gear 1's tooth count (gear 2 is not needed to choose or refuse it: a refusal comes before
+    the mate's arc-length map is built)."""
     n1, n2 = lobes
     step = n1 // math.gcd(n1, n2)  # z1 must be a multiple of this for z2 = z1·n2/n1 to be whole
     fraction = _space_fractions(frame1, identical_rotation, n1) if identical_rotation is not None else None
@@ -97,17 +125,4 @@ def plan_teeth(
         if not candidates:
             raise DesignError(f"teeth.module = {module:g}: no tooth count near {ideal:.1f} fits this pair")
         z1 = min(candidates, key=lambda z: (abs(z - ideal), z))
-    z2 = z1 * n2 // n1
-    pitch = frame1.perimeter / z1
-    # gear 1: a tooth centred at φ = 0, so space 0 is half a pitch on
-    phase1 = pitch / 2
-    # gear 2: a space wherever gear 1's tooth arrives; gear 1's tooth at σ = 0 meets s2(π)
-    phase2 = float(frame2.arc(np.array([np.pi]))[0]) % pitch
-    return ToothPlan(
-        teeth=(z1, z2),
-        module=pitch / math.pi,
-        requested_module=module,
-        pitch=pitch,
-        phases=(phase1, phase2),
-        identical=fraction is not None,
-    )
+    return z1
