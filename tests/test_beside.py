@@ -12,8 +12,8 @@ from pathlib import Path
 import pytest
 
 from gearcad import load_profile
-from gearcad.errors import DesignError
-from gearcad.export.beside import Beside
+from gearcad.errors import DesignError, GearcadError
+from gearcad.export.beside import Beside, can_fork
 from gearcad.export.write import write_design
 from gearcad.mechanisms import design
 
@@ -28,14 +28,18 @@ def _alive(pid: int) -> bool:
     return True
 
 
-def test_same_files_whether_drawn_beside_or_in_line(tmp_path):
+def test_same_files_whether_drawn_beside_or_in_line(tmp_path, monkeypatch):
     d = design(load_profile(ROOT / "profiles" / "spur_pair.toml"))
+    assert can_fork()  # else both builds would draw in line and the test would prove nothing
+    started = []
+    monkeypatch.setattr("gearcad.export.write.Beside", lambda work: started.append(1) or Beside(work))
     folders = {}
     for beside in (False, True):
         folder = tmp_path / str(beside)
         folder.mkdir()
         files = write_design(d, folder, beside=beside)
         folders[beside] = (folder, files)
+    assert len(started) == 2  # the charts and the animation, each in a process of its own
     (inline, inline_files), (forked, forked_files) = folders[False], folders[True]
     assert list(inline_files) == list(forked_files)  # the report lists them in the same order
     assert {"animation.gif", "pitch_curves.png", "mesh.png"} <= set(forked_files)
@@ -62,8 +66,49 @@ def test_an_error_that_cannot_be_pickled_comes_back_as_its_text():
     def fail():
         raise Local("drawn wrong")
 
-    with pytest.raises(RuntimeError, match="Local: drawn wrong"):
+    with pytest.raises(GearcadError, match="Local: drawn wrong"):
         Beside(fail).result()
+
+
+def test_the_childs_traceback_comes_with_its_error():
+    def fail():
+        raise ValueError("no room")
+
+    with pytest.raises(ValueError, match="no room") as caught:
+        Beside(fail).result()
+    assert any("in the process drawing beside the build" in note and "fail" in note for note in caught.value.__notes__)
+
+
+def test_a_child_killed_outright_is_one_clear_error():
+    """The OOM killer's SIGKILL: no result, and the message says so (no traceback for the CLI)."""
+
+    def killed():
+        os.kill(os.getpid(), signal.SIGKILL)
+
+    with pytest.raises(GearcadError, match="ended killed by signal 9"):
+        Beside(killed).result()
+
+
+def test_no_process_to_spare_draws_in_line(tmp_path, monkeypatch):
+    """A second fork that fails (EAGAIN) leaves the first child to finish and draws the rest
+    here: the same files, and no child left running."""
+    d = design(load_profile(ROOT / "profiles" / "spur_pair.toml"))
+    real_fork, forks, children = os.fork, [], []
+
+    def fork():
+        if forks:
+            raise BlockingIOError(11, "Resource temporarily unavailable")
+        forks.append(1)
+        pid = real_fork()
+        if pid:
+            children.append(pid)
+        return pid
+
+    monkeypatch.setattr(os, "fork", fork)
+    files = write_design(d, tmp_path, beside=True)
+    assert len(children) == 1 and not _alive(children[0])
+    assert {"animation.gif", "pitch_curves.png", "mesh.png"} <= set(files)
+    assert all((tmp_path / name).stat().st_size == entry["bytes"] for name, entry in files.items() if "bytes" in entry)
 
 
 def test_cancel_ends_the_child():

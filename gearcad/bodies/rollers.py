@@ -138,6 +138,8 @@ class Swing:
         self.term = tuple(np.zeros((2, samples)) for _ in range(3))
         for k, values in enumerate((sm, m * np.cos(m * tau), -m * m * sm)):
             self.term[k][axis] = values
+        for array in (*self.base, *self.term):  # shared by every search that reuses this swing
+            array.flags.writeable = False
 
     def path(self, a: float, order: int = 0) -> np.ndarray:
         return self.base[order] + a * self.term[order]

@@ -17,8 +17,11 @@ import os
 import pickle
 import signal
 import threading
+import traceback
 from collections.abc import Callable
 from typing import Any
+
+from ..errors import GearcadError
 
 __all__ = ["Beside", "can_fork"]
 
@@ -26,8 +29,9 @@ _PR_SET_PDEATHSIG = 1
 
 
 def can_fork() -> bool:
-    """Whether forking is safe here: POSIX, and no other thread that the child would lose
-    halfway through its work."""
+    """Whether forking is safe here: POSIX, and no other Python thread that the child would lose
+    halfway through its work.  (Native worker pools — manifold3d's TBB threads — are not seen;
+    the child uses only matplotlib and Pillow, which do not touch them.)"""
     return hasattr(os, "fork") and threading.active_count() == 1
 
 
@@ -47,7 +51,12 @@ class Beside:
     def __init__(self, work: Callable[[], Any]):
         parent = os.getpid()
         read, write = os.pipe()
-        self._pid = os.fork()
+        try:
+            self._pid = os.fork()
+        except BaseException:
+            os.close(read)
+            os.close(write)
+            raise
         if self._pid == 0:  # the child: never returns
             os.close(read)
             try:
@@ -57,32 +66,38 @@ class Beside:
                 try:
                     payload = ("ok", work())
                 except BaseException as exc:  # noqa: BLE001 - every error goes back to the parent
-                    payload = ("error", exc)
+                    payload = ("error", exc, traceback.format_exc())
                 try:
                     data = pickle.dumps(payload)
                 except Exception:  # noqa: BLE001 - an error that cannot be pickled: its text
-                    data = pickle.dumps(("error", RuntimeError(f"{type(payload[1]).__name__}: {payload[1]}")))
+                    exc = payload[1]
+                    data = pickle.dumps(("error", GearcadError(f"{type(exc).__name__}: {exc}"), payload[2]))
                 with os.fdopen(write, "wb") as fh:
                     fh.write(data)
             finally:
                 os._exit(0)
         os.close(write)
-        self._read = read
+        self._read: int | None = read
         self._done = False
 
     def result(self) -> Any:
-        """The child's value, once it has finished; its error raised here."""
-        with os.fdopen(self._read, "rb") as fh:
+        """The child's value, once it has finished; its error raised here (with the child's
+        traceback as a note), or a :class:`GearcadError` if it ended without a result."""
+        read, self._read = self._read, None
+        with os.fdopen(read, "rb") as fh:
             data = fh.read()
-        os.waitpid(self._pid, 0)
+        _, status = os.waitpid(self._pid, 0)
         self._done = True
         try:
-            status, value = pickle.loads(data)
-        except Exception:  # noqa: BLE001 - nothing, or an error that does not unpickle
-            status, value = "error", RuntimeError("the side process ended without its result")
-        if status == "error":
-            raise value
-        return value
+            payload = pickle.loads(data)
+        except Exception:  # noqa: BLE001 - nothing (killed), or an error that does not unpickle
+            how = f"killed by signal {os.WTERMSIG(status)}" if os.WIFSIGNALED(status) else "without its result"
+            raise GearcadError(f"the process drawing beside the build ended {how}") from None
+        if payload[0] == "error":
+            _, exc, child_traceback = payload
+            exc.add_note(f"in the process drawing beside the build:\n{child_traceback}")
+            raise exc
+        return payload[1]
 
     def cancel(self) -> None:
         """End the child if it is still running (no-op after :meth:`result`)."""
@@ -94,7 +109,6 @@ class Beside:
         except ProcessLookupError:
             pass
         os.waitpid(self._pid, 0)
-        try:
+        if self._read is not None:
             os.close(self._read)
-        except OSError:
-            pass
+            self._read = None

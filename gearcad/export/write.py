@@ -89,17 +89,21 @@ def write_design(design: Design, folder: Path, *, beside: bool = False) -> dict[
     the rest (for a machine with a core to spare): matplotlib's import and drawing take about
     as long as all the other files together.
     """
-    jobs = {}
+    jobs: dict = {}
     try:
         if beside and can_fork():
-            jobs = {draw: Beside(lambda draw=draw: draw(design, folder)) for draw in (_charts, _animation)}
+            for draw in (_charts, _animation):
+                try:
+                    jobs[draw] = Beside(lambda draw=draw: draw(design, folder))
+                except OSError:  # no process to spare (EAGAIN, ENOMEM): drawn here instead
+                    break
         return _write(design, folder, jobs)
     finally:
         for job in jobs.values():
             job.cancel()
 
 
-def _write(design: Design, folder: Path, beside: dict) -> dict[str, dict]:
+def _write(design: Design, folder: Path, drawing: dict) -> dict[str, dict]:
     out = design.params.output
     formats = set(out.formats)
     files: dict[str, dict] = {}
@@ -171,7 +175,7 @@ def _write(design: Design, folder: Path, beside: dict) -> dict[str, dict]:
         _write_table(path, table)
         files[path.name] = _entry(path, kind="csv", rows=len(table.rows))
     for draw in (_animation, _charts):  # drawn here, or collected from the processes beside
-        files.update(beside[draw].result() if draw in beside else draw(design, folder))
+        files.update(drawing[draw].result() if draw in drawing else draw(design, folder))
     files["index.html"] = {"kind": "html"}
     files["report.json"] = {"kind": "json"}
     text = json.dumps(design.report(files), indent=2, ensure_ascii=False, allow_nan=False)

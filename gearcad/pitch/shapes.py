@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
 
 import numpy as np
@@ -147,16 +148,19 @@ def harmonic_ratio(mean: float, terms) -> tuple[Callable, Callable, Callable]:
 
 def _noise(coefficients: np.ndarray, amplitude: np.ndarray, negligible: float) -> np.ndarray:
     """The most orders (smallest amplitudes first, never the mean) whose sum moves the curve by
-    at most ``negligible``, as a mask: a bisection on how many, each candidate's largest change
-    measured on four points per sample (an inverse FFT)."""
+    at most ``negligible``, as a mask: a bisection on how many.  The sum of the dropped orders
+    (a trigonometric polynomial of degree K < N/8) is evaluated on N = 8 points per coefficient
+    by an inverse FFT; its largest value anywhere is at most the largest on the grid over
+    cos(πK/N) (Ehlich and Zeller), so that bound is what is held to ``negligible``."""
     quiet = np.argsort(amplitude[1:], kind="stable") + 1
     grid = 8 * len(coefficients)
+    between = 1 / math.cos(math.pi * (len(coefficients) - 1) / grid)  # ≤ 1/cos(π/8) = 1.08
 
     def change(count: int) -> float:
         dropped = np.zeros_like(coefficients)
         dropped[quiet[:count]] = coefficients[quiet[:count]]
         # r = Re Σ c_k e^{ikφ}: irfft of c/2 (k > 0) times the grid size gives that sum
-        return float(np.max(np.abs(np.fft.irfft(dropped * grid / 2, grid))))
+        return between * float(np.max(np.abs(np.fft.irfft(dropped * grid / 2, grid))))
 
     lo, hi = 0, len(quiet)
     while lo < hi:

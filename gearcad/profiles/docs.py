@@ -20,7 +20,10 @@ __all__ = ["field_docstrings", "document_fields"]
 
 def field_docstrings(cls: type) -> dict[str, str]:
     """``{field: docstring}`` for the fields written in ``cls``'s own body."""
-    tree = ast.parse(textwrap.dedent(inspect.getsource(cls)))
+    try:
+        tree = ast.parse(textwrap.dedent(inspect.getsource(cls)))
+    except OSError:  # no source installed (a zipped or frozen gearcad): no descriptions
+        return {}
     body = tree.body[0].body
     docs = {}
     for node, after in zip(body, body[1:]):
