@@ -22,7 +22,7 @@ import shapely
 from ..errors import DesignError
 from ..geometry.inset import inset_ring
 from ..teeth.correspond import rising_diagonals
-from .mesh import Solid, _check, cap_triangles
+from .mesh import Solid, cap_triangles, checked_solid
 
 __all__ = ["loft", "helical_benchmark"]
 
@@ -100,15 +100,7 @@ def loft(
         tri = ids[cap_triangles([vertices[i, :2] for i in [index[level]] + [idx[end] for idx in hole_index]])]
         tris.append(tri[:, ::-1] if down else tri)
     mesh = m3d.Mesh64(vert_properties=vertices, tri_verts=np.vstack(tris).astype(np.uint64))
-    solid = m3d.Manifold(mesh)
-    _check(solid, name)
-    out = solid.to_mesh64()
-    return Solid(
-        name,
-        np.asarray(out.vert_properties)[:, :3].copy(),
-        np.asarray(out.tri_verts).astype(np.int64),
-        float(solid.volume()),
-    )
+    return checked_solid(m3d.Manifold(mesh), name)
 
 
 def helical_benchmark(

@@ -21,7 +21,7 @@ from ..errors import DesignError
 from ..geometry.inset import check_chamfer, inset_ring
 from ..geometry.outline import Outline
 
-__all__ = ["Solid", "extrude", "cap_triangles", "write_stl", "write_3mf", "SolidItem"]
+__all__ = ["Solid", "extrude", "cap_triangles", "checked_solid", "write_stl", "write_3mf", "SolidItem"]
 
 
 @dataclass(frozen=True)
@@ -90,7 +90,11 @@ def extrude(outline: Outline, thickness: float, *, name: str, chamfer: float = 0
         stack = [(0.0, insets), (chamfer, rings), (thickness - chamfer, rings), (thickness, insets)]
     else:
         stack = [(0.0, rings), (thickness, rings)]
-    solid = _prism(stack)
+    return checked_solid(_prism(stack), name)
+
+
+def checked_solid(solid: m3d.Manifold, name: str) -> Solid:
+    """manifold3d's solid checked (a valid, non-empty manifold) and taken out as a :class:`Solid`."""
     _check(solid, name)
     mesh = solid.to_mesh64()
     return Solid(
