@@ -6,8 +6,6 @@ import csv
 import json
 from pathlib import Path
 
-import numpy as np
-
 from ..mechanisms import Design
 from .beside import Beside, can_fork
 from .drawing import assembly_drawing, part_drawing
@@ -52,26 +50,10 @@ def _charts(design: Design, folder: Path) -> dict[str, dict]:
     out = design.params.output
     files: dict[str, dict] = {}
     if out.charts and design.sections:  # twisted teeth are best seen: a rendered picture
-        from .charts.solid import PICTURE_PIXELS, draw_solids, picture_solid
-        from .mesh import SolidItem
+        from .charts.solid import draw_design
 
-        reach = max(np.max(np.hypot(*p.outline.outer.T)) for p in design.parts())
-        xs = [pl.offset[0] for pl in design.placements]
-        ys = [pl.offset[1] for pl in design.placements]
-        width = max(max(xs) - min(xs), max(ys) - min(ys)) + 2 * reach
-        scene = []
-        for pl in design.placements:
-            part = design.part(pl.part)
-            solid = picture_solid(
-                part,
-                design.sections.get(pl.part),
-                thickness=out.thickness,
-                chamfer=out.chamfer,
-                tolerance=0.5 * width / PICTURE_PIXELS,
-            )
-            scene.append(SolidItem(solid, pl.angle, (*pl.offset, 0.0)))
         path = folder / "solid.png"
-        draw_solids(path, scene, title=design.params.title or design.name)
+        draw_design(path, design)
         files[path.name] = _entry(path, kind="png")
     if out.charts:
         from .charts import draw_charts

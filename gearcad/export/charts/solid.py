@@ -13,7 +13,7 @@ from ..loft import loft
 from ..mesh import Solid, SolidItem, extrude
 from .png import plt, save_png
 
-__all__ = ["draw_solids", "picture_solid", "PICTURE_PIXELS"]
+__all__ = ["draw_solids", "draw_design", "picture_solid", "PICTURE_PIXELS"]
 
 _COLOURS = ((0.85, 0.45, 0.15), (0.2, 0.45, 0.75), (0.35, 0.6, 0.3), (0.6, 0.35, 0.6))
 PICTURE_PIXELS = 1100
@@ -76,3 +76,23 @@ def draw_solids(
         fig.suptitle(title)
     fig.subplots_adjust(left=-0.1, right=1.1, bottom=-0.15, top=1.05)
     save_png(fig, path)
+
+
+def draw_design(path: Path, design) -> None:
+    """The design's parts as solids, placed as assembled, thinned to half a pixel and drawn."""
+    out = design.params.output
+    reach = max(np.max(np.hypot(*p.outline.outer.T)) for p in design.parts())
+    xs = [pl.offset[0] for pl in design.placements]
+    ys = [pl.offset[1] for pl in design.placements]
+    width = max(max(xs) - min(xs), max(ys) - min(ys)) + 2 * reach
+    scene = []
+    for pl in design.placements:
+        solid = picture_solid(
+            design.part(pl.part),
+            design.sections.get(pl.part),
+            thickness=out.thickness,
+            chamfer=out.chamfer,
+            tolerance=0.5 * width / PICTURE_PIXELS,
+        )
+        scene.append(SolidItem(solid, pl.angle, (*pl.offset, 0.0)))
+    draw_solids(path, scene, title=design.params.title or design.name)
