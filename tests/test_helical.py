@@ -397,3 +397,20 @@ def test_solid_picture(tmp_path):
     orange = (image[..., 0] > image[..., 2] + 60).sum()
     blue = (image[..., 2] > image[..., 0] + 60).sum()
     assert orange > 5000 and blue > 5000
+
+
+def test_the_built_herringbone_pair_is_pictured(built):
+    """solid.png as written by a build (thinned solids, placed as assembled): listed in the
+    report, the figure's size, both gears' colours on it."""
+    import json
+
+    from PIL import Image
+
+    folder = built / "herringbone_elliptic"
+    report = json.loads((folder / "report.json").read_text(encoding="utf-8"))
+    assert report["files"]["solid.png"]["bytes"] == (folder / "solid.png").stat().st_size
+    image = np.asarray(Image.open(folder / "solid.png").convert("RGB")).astype(int)
+    assert image.shape == (660, 1100, 3)
+    orange = (image[..., 0] > image[..., 2] + 60).sum()
+    blue = (image[..., 2] > image[..., 0] + 60).sum()
+    assert orange > 20000 and blue > 20000
