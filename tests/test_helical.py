@@ -20,15 +20,8 @@ from gearcad.pitch.curve import PitchCurve
 from gearcad.profiles import parse_profile
 from gearcad.teeth.frame import arc_frame
 from gearcad.teeth.gear import cut_teeth
-from gearcad.teeth.helical import (
-    helical_sections,
-    helix_data,
-    mid_section,
-    pair_sections,
-    ring_distance,
-    section_mesh,
-    transverse_teeth,
-)
+from gearcad.teeth.helical import helical_sections, mid_section, pair_sections, ring_distance, section_mesh
+from gearcad.teeth.helix import helix_data, transverse_teeth
 from gearcad.teeth.mesh import mesh_check
 from gearcad.teeth.pair import cut_pair
 from gearcad.teeth.plan import plan_teeth

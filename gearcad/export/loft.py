@@ -112,7 +112,8 @@ def helical_benchmark(
     ``error`` the tolerance)."""
     from ..mechanisms.pair_pitch import pitch_design
     from ..profiles import parse_profile
-    from ..teeth.helical import pair_sections, transverse_teeth
+    from ..teeth.helical import pair_sections
+    from ..teeth.helix import transverse_teeth
     from ..teeth.pair import cut_pair
     from ..tolerances import DEFAULT
 

@@ -92,7 +92,7 @@ def _teeth_block(t: ToothedPairData, i: int) -> dict:
 
 
 def _helix_block(params: GearPairParams, teeth: ToothedPairData, helical: HelicalSections, proofs) -> dict:
-    from ..teeth.helical import helix_data
+    from ..teeth.helix import helix_data
 
     out, s = params.output, helical.spacing
     h = helix_data(
@@ -251,7 +251,8 @@ def design(params: GearPairParams) -> Design:
     if params.teeth is not None:
         beta = params.teeth.helix_angle
         if beta > 0:  # only helical pairs pay for the sections' module
-            from ..teeth.helical import pair_sections, section_mesh, transverse_teeth
+            from ..teeth.helical import pair_sections, section_mesh
+            from ..teeth.helix import transverse_teeth
         spec = transverse_teeth(params.teeth, beta) if beta > 0 else params.teeth
         module = spec.module or pitch.gears[0].perimeter / (math.pi * spec.count)
         check_teeth_work([(g.perimeter / (math.pi * module), module) for g in pitch.gears], out.tolerance)

@@ -38,15 +38,11 @@ from .correspond import ANCHORS, AnchoredRing, anchor_ring, correspond, mid_sect
 from .frame import ArcFrame
 from .gear import ToothedGear, cut_teeth
 from .mesh import MeshData, mesh_check
-from .pair import ToothedPairData, ToothSpec, _with_clearance
+from .pair import ToothedPairData, _with_clearance
 from .plan import ToothPlan
 from .rack import Rack
 
 __all__ = [
-    "TransverseTeeth",
-    "transverse_teeth",
-    "HelixData",
-    "helix_data",
     "SectionSpacing",
     "section_spacing",
     "section_heights",
@@ -57,86 +53,6 @@ __all__ = [
     "section_mesh",
     "refuse_corners",
 ]
-
-# ----------------------------------------------------------------------------- the helical rack
-
-
-@dataclass(frozen=True)
-class TransverseTeeth:
-    """A :class:`~.pair.ToothSpec` seen in the transverse section: what ``cut_pair`` cuts at z = 0
-    for a helical rack (module, pressure angle and coefficients all transverse)."""
-
-    module: float | None
-    count: int | None
-    pressure_angle: float
-    addendum: float
-    dedendum: float
-    tip_radius: float
-    profile_shift: float
-    backlash: float
-    clearance: float
-
-
-def transverse_teeth(teeth: ToothSpec, helix_angle: float) -> TransverseTeeth:
-    """The transverse rack of a helical rack whose normal section is ``teeth`` (β in rad).
-
-    >>> t = transverse_teeth(TransverseTeeth(1.0, None, math.radians(20), 1.0, 1.25, 0.38, 0.0, 0.0, 0.0),
-    ...                      math.radians(30))
-    >>> round(t.module, 6), round(math.degrees(t.pressure_angle), 4), round(t.addendum * t.module, 12)
-    (1.154701, 22.7959, 1.0)
-    """
-    if not 0.0 <= helix_angle < math.pi / 2:
-        raise DesignError(f"teeth.helix_angle_deg = {math.degrees(helix_angle):g}: must be ≥ 0 and under 90")
-    c = math.cos(helix_angle)
-    return TransverseTeeth(
-        module=None if teeth.module is None else teeth.module / c,
-        count=teeth.count,
-        pressure_angle=math.atan(math.tan(teeth.pressure_angle) / c),
-        addendum=teeth.addendum * c,
-        dedendum=teeth.dedendum * c,
-        tip_radius=teeth.tip_radius * c,
-        profile_shift=teeth.profile_shift * c,
-        backlash=teeth.backlash,
-        clearance=teeth.clearance,
-    )
-
-
-@dataclass(frozen=True)
-class HelixData:
-    """What the report says of a helical toothing (mm, rad)."""
-
-    helix_angle: float
-    herringbone: bool
-    normal_module: float
-    transverse_module: float
-    normal_pressure_angle: float
-    transverse_pressure_angle: float
-    axial_pitch: float
-    """π·m_n / sin β: the face width over which a tooth advances one pitch (∞ for β = 0)."""
-    overlap_ratio: float
-    """Face width of one helix (b, or b/2 for a herringbone) over the axial pitch."""
-    total_shift: float
-    """Largest arc-length displacement of a section from the bottom one, mm."""
-
-
-def helix_data(
-    transverse_module: float, helix_angle: float, *, face_width: float, herringbone: bool, normal_pressure_angle: float
-) -> HelixData:
-    """Report numbers from the planned (transverse) module; ``face_width`` is the gear's thickness."""
-    normal = transverse_module * math.cos(helix_angle)
-    width = face_width / 2 if herringbone else face_width
-    sin = math.sin(helix_angle)
-    return HelixData(
-        helix_angle=helix_angle,
-        herringbone=herringbone,
-        normal_module=normal,
-        transverse_module=transverse_module,
-        normal_pressure_angle=normal_pressure_angle,
-        transverse_pressure_angle=math.atan(math.tan(normal_pressure_angle) / math.cos(helix_angle)),
-        axial_pitch=math.pi * normal / sin if sin > 0 else math.inf,
-        overlap_ratio=width * sin / (math.pi * normal),
-        total_shift=width * math.tan(helix_angle),
-    )
 
 
 def refuse_corners(frames: Sequence, names: Sequence[str], helix_angle: float) -> None:
@@ -314,7 +230,7 @@ def helical_sections(
     """The transverse sections of both gears of a pair, for a loft within ``tolerance``.
 
     ``frames``, ``plan`` and ``racks`` are the planar pair's (``ToothedPairData.frames``,
-    ``.plan`` and each gear's ``.rack``, cut with :func:`transverse_teeth`); ``helix_angle`` is β
+    ``.plan`` and each gear's ``.rack``, cut with :func:`~.helix.transverse_teeth`); ``helix_angle`` is β
     in rad (gear 1 right-handed, its mate left-handed; β < 0 swaps the hands); ``clearance``
     offsets every section inwards as ``cut_pair`` does.  Sections are cut at
     a quarter of the tolerance, resampled to within another quarter, and spaced so that the twist
@@ -403,7 +319,7 @@ def pair_sections(
     names: Sequence[str] = ("gear1", "gear2"),
     spacing: float | None = None,
 ) -> HelicalSections:
-    """:func:`helical_sections` for a pair cut by ``cut_pair`` (with :func:`transverse_teeth`)."""
+    """:func:`helical_sections` for a pair cut by ``cut_pair`` (with :func:`~.helix.transverse_teeth`)."""
     return helical_sections(
         teeth.frames,
         teeth.plan,
