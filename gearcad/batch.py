@@ -123,7 +123,7 @@ def build(
 def _write_index(out: Path) -> None:
     """``out/index.html`` over every profile folder in ``out`` (this build's and earlier ones'),
     replaced in one step."""
-    from .export.html import index_entry, write_index
+    from .export.html_index import index_entry, write_index
 
     entries = []
     for report_path in sorted(out.glob("*/report.json")):

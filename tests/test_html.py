@@ -15,7 +15,8 @@ import pytest
 from PIL import Image
 
 import gearcad
-from gearcad.export.html import index_entry, pivot_marking, write_index
+from gearcad.export.html import pivot_marking
+from gearcad.export.html_index import index_entry, write_index
 from gearcad.export.write import write_design
 
 from .conftest import ROOT

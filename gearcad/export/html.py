@@ -1,4 +1,4 @@
-"""HTML reports: ``index.html`` per profile and one over all profiles.
+"""A profile's HTML report: its ``index.html``, beside its files (the page over all profiles: ``html_index``).
 
 Self-contained: one file with its own CSS and no script, no web fonts, no network reference; it
 opens from the file system.  The parts are drawn as inline SVG from the same cut and mark paths
@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import math
 from collections import Counter
-from collections.abc import Mapping, Sequence
+from collections.abc import Mapping
 from html import escape
 from pathlib import Path
 from urllib.parse import quote
@@ -22,9 +22,9 @@ from ..mechanisms import Design, Part, Placement
 from .bounds import drawing_bounds
 from .drawing import assembly_drawing, part_drawing
 from .html_figures import Figures
-from .html_style import CSS
+from .html_style import page
 
-__all__ = ["pivot_marking", "write_profile_page", "index_entry", "write_index"]
+__all__ = ["pivot_marking", "write_profile_page"]
 
 _STANDARD = {"schema", "name", "title", "mechanism", "units", "tolerance", "parts", "assembly", "output"}
 _STANDARD |= {"warnings", "files"}
@@ -294,15 +294,6 @@ def _section_files(files: Mapping, page: str) -> str:
     )
 
 
-def _page(title: str, body: str) -> str:
-    return (
-        '<!DOCTYPE html>\n<html lang="en">\n<head>\n<meta charset="utf-8">\n'
-        '<meta name="viewport" content="width=device-width, initial-scale=1">\n'
-        f"<title>{escape(title)}</title>\n<style>{CSS}</style>\n</head>\n<body>\n<main>\n{body}\n</main>\n"
-        "</body>\n</html>\n"
-    )
-
-
 def write_profile_page(
     path: Path, design: Design, files: Mapping[str, Mapping], *, index: str | None = "../index.html"
 ) -> None:
@@ -355,69 +346,4 @@ def write_profile_page(
         "animation are the PNG and GIF files beside it, linked relatively.</footer>"
     )
     body = "\n".join([header, figures.defs(), *(text for _, _, text in sections if text), footer])
-    path.write_text(_page(f"{design.name}: gearcad report", body), encoding="utf-8")
-
-
-def index_entry(report: Mapping, link: str, summary: str = "") -> dict:
-    """An entry for :func:`write_index` from a profile's report (``report.json`` as a dict), the
-    relative link to its page (e.g. ``"walker/index.html"``) and its one-line summary; its picture
-    is the profile's animation, else its first chart, if any."""
-    files = report.get("files", {})
-    pictures = [n for n, e in files.items() if e.get("kind") == "gif"] + [
-        n for n, e in files.items() if e.get("kind") == "png"
-    ]
-    entry = {
-        "name": report["name"],
-        "title": report.get("title") or report["name"],
-        "mechanism": report.get("mechanism", ""),
-        "summary": summary,
-        "warnings": len(report.get("warnings", [])),
-        "codes": sorted({w["code"] for w in report.get("warnings", [])}),
-        "link": link,
-    }
-    if pictures:  # the animation, else the first chart: beside the page it links to
-        entry["image"] = f"{link.rsplit('/', 1)[0]}/{pictures[0]}" if "/" in link else pictures[0]
-    return entry
-
-
-def write_index(path: Path, entries: Sequence[Mapping]) -> None:
-    """Write the ``index.html`` over all profiles of a build.
-
-    Parameters
-    ----------
-    path : Path
-        The page to write; every entry's ``link`` is relative to its folder.
-    entries : sequence of mappings
-        One per profile, in the order shown: ``name``, ``title``, ``mechanism``, ``summary``,
-        ``warnings`` (the count) and ``link`` (relative, e.g. ``"walker/index.html"``); optional
-        ``codes`` (the findings' codes) and ``image`` (a relative link to a picture of it).
-    """
-    rows = []
-    total = 0
-    for e in entries:
-        count = int(e.get("warnings", 0))
-        total += count
-        codes = " ".join(
-            f'<span class="code" title="{escape(CODES.get(c, ""))}">{escape(c)}</span>' for c in e.get("codes", ())
-        )
-        link = escape(quote(e["link"]))
-        image = (
-            f'<a href="{link}"><img class="thumb" src="{escape(quote(e["image"]))}" alt=""></a>'
-            if e.get("image")
-            else ""
-        )
-        rows.append(
-            f'<tr><td class="thumb">{image}</td><td><a href="{link}"><b>{escape(e["name"])}</b></a></td>'
-            f"<td>{escape(e.get('title', ''))}<br><span class='note'>{escape(e.get('summary', ''))}</span></td>"
-            f"<td class='nowrap'>{escape(e.get('mechanism', ''))}</td>"
-            f'<td><span class="count {"bad" if count else "good"}">{count}</span> {codes}</td></tr>'
-        )
-    body = (
-        f"<header><h1>gearcad build</h1><p class='sub'>{len(entries)} profile{'s' * (len(entries) != 1)}, "
-        f"{total} finding{'s' * (total != 1)} in all. Each profile's page shows its parts, assembly, findings, "
-        "key numbers and files.</p></header>"
-        "<table><tr><th></th><th>profile</th><th>title and summary</th><th>mechanism</th><th>findings</th></tr>"
-        + "".join(rows)
-        + "</table><footer>Written by gearcad; one file, nothing loaded from the network.</footer>"
-    )
-    Path(path).write_text(_page("gearcad build", body), encoding="utf-8")
+    path.write_text(page(f"{design.name}: gearcad report", body), encoding="utf-8")

@@ -1,6 +1,8 @@
 """The stylesheet of gearcad's HTML reports: system fonts only, nothing fetched."""
 
-__all__ = ["CSS", "FILLS"]
+from html import escape
+
+__all__ = ["CSS", "FILLS", "page"]
 
 FILLS = 6
 """Part colours the stylesheet defines for drawings: classes ``f0`` … ``f5``."""
@@ -67,3 +69,13 @@ svg .f0 { fill: #dbe8f6; } svg .f1 { fill: #fde2c8; } svg .f2 { fill: #d9f0d3; }
 svg .f3 { fill: #eadcf5; } svg .f4 { fill: #fbe3e8; } svg .f5 { fill: #fff3bf; }
 @media (max-width: 760px) { .pair { grid-template-columns: 1fr; } }
 """
+
+
+def page(title: str, body: str) -> str:
+    """A whole, self-contained HTML page: the stylesheet inline, nothing fetched."""
+    return (
+        '<!DOCTYPE html>\n<html lang="en">\n<head>\n<meta charset="utf-8">\n'
+        '<meta name="viewport" content="width=device-width, initial-scale=1">\n'
+        f"<title>{escape(title)}</title>\n<style>{CSS}</style>\n</head>\n<body>\n<main>\n{body}\n</main>\n"
+        "</body>\n</html>\n"
+    )
