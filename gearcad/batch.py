@@ -11,8 +11,11 @@ import json
 import multiprocessing
 import os
 import signal
+import stat
+import tempfile
 import time
 from collections.abc import Callable, Sequence
+from contextlib import suppress
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -91,7 +94,6 @@ def build(
     ``workers`` processes build side by side (default: one per available core, at most one per
     profile); results come back in the profiles' order.
     """
-    out = Path(out)
     check_out(out)
     _unique(profiles)
     count = _workers(len(profiles)) if workers is None else max(1, workers)
@@ -116,23 +118,76 @@ def build(
                 pool.terminate()
                 pool.join()
         publisher.commit()
-    _write_index(out)
+    _write_index(publisher.path)
     return results
 
 
 def _write_index(out: Path) -> None:
     """``out/index.html`` over every profile folder in ``out`` (this build's and earlier ones'),
-    replaced in one step."""
-    from .export.html_index import index_entry, write_index
+    replaced in one step.
+
+    ``out`` is the resolved output folder (one resolution for every write).  Only reports that
+    gearcad wrote are read: a regular file (never a link, FIFO or device, so nothing blocks),
+    of bounded size, a JSON object with gearcad's schema number and the folder's own name.  The
+    page is written into a new file made exclusively under a random name (a planted link is
+    never followed), then renamed over ``index.html``.
+    """
+    from .export.html_index import index_entry, index_page
 
     entries = []
-    for report_path in sorted(out.glob("*/report.json")):
+    for folder in sorted(out.iterdir(), key=lambda p: p.name):
+        report = _our_report(folder)
+        if report is None:
+            continue
         try:
-            report = json.loads(report_path.read_text(encoding="utf-8"))
-        except (OSError, ValueError):
-            continue  # a folder that is not a build of ours
-        name = report_path.parent.name
-        entries.append(index_entry(report, f"{name}/index.html", report.get("summary", "")))
-    staged = out / ".index.html.tmp"
-    write_index(staged, entries)
-    os.replace(staged, out / "index.html")
+            entries.append(index_entry(report, f"{folder.name}/index.html", str(report.get("summary", ""))))
+        except (KeyError, TypeError, AttributeError, ValueError):  # a report.json not of ours after all
+            continue
+    fd, staged = tempfile.mkstemp(prefix=".gearcad-index-", suffix=".tmp", dir=out)
+    try:
+        with os.fdopen(fd, "w", encoding="utf-8") as fh:
+            fh.write(index_page(entries))
+        os.chmod(staged, 0o666 & ~_umask())
+        os.replace(staged, out / "index.html")
+    except BaseException:
+        with suppress(OSError):
+            os.unlink(staged)
+        raise
+
+
+_REPORT_LIMIT = 64 << 20
+"""The largest report.json the index reads (a build's is well under 1 MB)."""
+
+
+def _our_report(folder: Path) -> dict | None:
+    """The report in ``folder`` if gearcad wrote it there, else ``None``."""
+    from .mechanisms.base import SCHEMA_VERSION
+
+    path = folder / "report.json"
+    try:
+        if not stat.S_ISDIR(os.lstat(folder).st_mode):
+            return None
+        fd = os.open(path, os.O_RDONLY | os.O_NOFOLLOW | os.O_NONBLOCK)
+    except OSError:
+        return None
+    try:
+        info = os.fstat(fd)
+        if not stat.S_ISREG(info.st_mode) or info.st_size > _REPORT_LIMIT:
+            return None
+        with os.fdopen(fd, "rb") as fh:
+            fd = -1
+            report = json.loads(fh.read(_REPORT_LIMIT + 1))
+    except (OSError, ValueError, RecursionError):
+        return None
+    finally:
+        if fd >= 0:
+            os.close(fd)
+    if not isinstance(report, dict) or report.get("schema") != SCHEMA_VERSION or report.get("name") != folder.name:
+        return None
+    return report
+
+
+def _umask() -> int:
+    mask = os.umask(0)
+    os.umask(mask)
+    return mask

@@ -39,7 +39,7 @@ def _parser() -> argparse.ArgumentParser:
     )
     b = sub.add_parser("build", parents=[overrides], help="build profiles into DXF, SVG, STL, 3MF, charts and reports")
     b.add_argument("profiles", nargs="*", type=Path, help="profile files (default: every profiles/*.toml)")
-    b.add_argument("--out", type=Path, default=Path("out"), help="output folder (default: out)")
+    b.add_argument("--out", default="out", help="output folder (default: out)")  # a str: '' is refused, not '.'
     c = sub.add_parser("check", parents=[overrides], help="run every check of a build without writing anything")
     c.add_argument("profiles", nargs="+", type=Path)
     s = sub.add_parser("schema", help="print the JSON Schema of profiles (for TOML editors)")

@@ -57,7 +57,7 @@ from pathlib import Path
 
 from .errors import GearcadError, ProfileError
 
-__all__ = ["Publisher", "Interrupted", "interrupt_guard", "check_out"]
+__all__ = ["Publisher", "Interrupted", "interrupt_guard", "check_out", "resolve_out"]
 
 _SIGNALS = (signal.SIGINT, signal.SIGTERM)
 _NAME = re.compile(r"[\w-][\w.-]*")
@@ -122,19 +122,60 @@ def _nearest(path: Path) -> Path:
     return path
 
 
+def resolve_out(out: Path | str) -> Path:
+    """The one absolute path every write into ``out`` goes to, resolved as the kernel resolves it.
+
+    ``A/link/../x`` is ``x`` beside the link's target, not ``A/x`` (which a lexical
+    normalisation would give): the profile folders, the staging and the index all use this one
+    path.  Raises :class:`GearcadError` (one line) for an empty path (an unset shell variable
+    would otherwise mean the current folder), a symbolic link loop, a link to nothing, or a
+    name too long for the system.
+    """
+    text = os.fspath(out) if isinstance(out, (str, os.PathLike)) else None
+    if text is None:
+        raise GearcadError(f"--out {out!r}: must be a path (a string or pathlib.Path)")
+    if not str(text).strip():
+        raise GearcadError("--out '': empty; give a folder (is a shell variable unset?)")
+    if "\0" in str(text):
+        raise GearcadError(f"--out {text!r}: contains a NUL character")
+    try:
+        os.lstat(text)
+    except OSError as exc:
+        if exc.errno in (errno.ELOOP, errno.ENAMETOOLONG):
+            raise GearcadError(f"--out {_shown(text)}: {exc.strerror.lower()}") from None
+    if os.path.islink(text) and not os.path.exists(text):
+        try:
+            os.stat(text)
+        except OSError as exc:
+            loop = exc.errno == errno.ELOOP
+            what = "a symbolic link loop" if loop else f"a symbolic link to missing {_shown(os.readlink(text))}"
+            raise GearcadError(f"--out {_shown(text)}: {what}; give a folder or a new path") from None
+    path = Path(os.path.realpath(text))
+    if len(os.fsencode(path)) >= 4096 - 64 or any(len(os.fsencode(c)) > 255 - 32 for c in path.parts):
+        raise GearcadError(f"--out {_shown(text)}: the path or one of its names is too long for this system")
+    return path
+
+
+def _shown(text) -> str:
+    """A path for a one-line message: control characters escaped, at most 200 characters."""
+    shown = str(text).encode("unicode_escape", "backslashreplace").decode("ascii")
+    return shown if len(shown) <= 200 else shown[:100] + "…" + shown[-99:]
+
+
 def check_out(out: Path | str) -> None:
     """Raise :class:`GearcadError` (one line) if files cannot be published into ``out``.
 
     ``out`` must be a folder or a path that does not exist yet, inside a folder one can write in.
     """
-    path = Path(os.path.abspath(out))
+    path = resolve_out(out)
+    shown = _shown(out)
     ancestor = _nearest(path)
     if ancestor == path and not path.is_dir():
-        raise GearcadError(f"--out {out}: exists and is not a folder; give a folder or a new path")
+        raise GearcadError(f"--out {shown}: exists and is not a folder; give a folder or a new path")
     if not ancestor.is_dir():
-        raise GearcadError(f"--out {out}: {ancestor} is a file, so no folder can be made inside it")
+        raise GearcadError(f"--out {shown}: {ancestor} is a file, so no folder can be made inside it")
     if not os.access(ancestor, os.W_OK | os.X_OK):
-        raise GearcadError(f"--out {out}: {ancestor} is not writable")
+        raise GearcadError(f"--out {shown}: {ancestor} is not writable")
 
 
 def _load_renameat2():
@@ -182,8 +223,11 @@ def _new_staging(parent: Path) -> tuple[Path, int]:
         # mkdtemp makes it private (0700); it may become --out itself: give it a folder's usual mode
         umask = os.umask(0)
         os.umask(umask)
-        os.chmod(path, 0o777 & ~umask)
-        fd = _lock(path, wait=True)
+        try:
+            os.chmod(path, 0o777 & ~umask)
+            fd = _lock(path, wait=True)
+        except FileNotFoundError:  # another build's cleaner took it before it was locked
+            continue
         with suppress(FileNotFoundError):  # a cleaner took it, unlocked, for a killed build's
             if os.path.samestat(os.fstat(fd), os.stat(path)):
                 return path, fd
@@ -229,12 +273,17 @@ class Publisher:
     def __init__(self, out: Path | str) -> None:
         check_out(out)
         self.out = Path(out)
-        self._abs = Path(os.path.abspath(out))
+        self._abs = resolve_out(out)  # every write goes here, however out was spelt
         self._root: Path | None = None  # this build's staging folder
         self._tree: Path | None = None  # the future ``out`` inside it
         self._fds: list[int] = []
         self._names: list[str] = []
         self._published = False
+
+    @property
+    def path(self) -> Path:
+        """The resolved output folder (see :func:`resolve_out`)."""
+        return self._abs
 
     def __enter__(self) -> Publisher:
         return self
@@ -254,6 +303,8 @@ class Publisher:
         """
         if not isinstance(name, str) or not _NAME.fullmatch(name):
             raise ProfileError(f"name = {name!r}: must be letters, digits, '-', '_', '.', not starting with '.'")
+        if name.casefold() == "index.html":
+            raise ProfileError(f"name = {name!r}: reserved for the build's own page over every profile")
         if name in self._names:
             raise ProfileError(f"name = {name!r}: two profiles build into the same folder")
         if self._published:

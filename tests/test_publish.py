@@ -262,8 +262,11 @@ def test_check_out_refuses_a_file(tmp_path):
     with pytest.raises(GearcadError, match=r"exists and is not a folder"):
         Publisher(tmp_path / "file")
     (tmp_path / "dangling").symlink_to(tmp_path / "nowhere")
-    with pytest.raises(GearcadError, match=r"exists and is not a folder"):
+    with pytest.raises(GearcadError, match=r"dangling: a symbolic link to missing .*nowhere"):
         check_out(tmp_path / "dangling")
+    (tmp_path / "loop").symlink_to(tmp_path / "loop")
+    with pytest.raises(GearcadError, match=r"loop: .*(loop|too many)"):
+        check_out(tmp_path / "loop")
     check_out(tmp_path / "new" / "out")
     check_out(tmp_path)
 

@@ -10,7 +10,7 @@ from urllib.parse import quote
 from ..findings import CODES
 from .html_style import page
 
-__all__ = ["index_entry", "write_index"]
+__all__ = ["index_entry", "index_page", "write_index"]
 
 
 def index_entry(report: Mapping, link: str, summary: str = "") -> dict:
@@ -36,12 +36,16 @@ def index_entry(report: Mapping, link: str, summary: str = "") -> dict:
 
 
 def write_index(path: Path, entries: Sequence[Mapping]) -> None:
-    """Write the ``index.html`` over all profiles of a build.
+    """Write the ``index.html`` over all profiles of a build (see :func:`index_page`) at ``path``;
+    every entry's ``link`` is relative to its folder."""
+    Path(path).write_text(index_page(entries), encoding="utf-8")
+
+
+def index_page(entries: Sequence[Mapping]) -> str:
+    """The ``index.html`` over all profiles of a build, as text.
 
     Parameters
     ----------
-    path : Path
-        The page to write; every entry's ``link`` is relative to its folder.
     entries : sequence of mappings
         One per profile, in the order shown: ``name``, ``title``, ``mechanism``, ``summary``,
         ``warnings`` (the count) and ``link`` (relative, e.g. ``"walker/index.html"``); optional
@@ -75,4 +79,4 @@ def write_index(path: Path, entries: Sequence[Mapping]) -> None:
         + "".join(rows)
         + "</table><footer>Written by gearcad; one file, nothing loaded from the network.</footer>"
     )
-    Path(path).write_text(page("gearcad build", body), encoding="utf-8")
+    return page("gearcad build", body)

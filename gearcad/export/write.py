@@ -4,13 +4,34 @@ from __future__ import annotations
 
 import csv
 import json
+import re
 from pathlib import Path
 
+from ..errors import GearcadError
 from ..mechanisms import Design
 from .beside import Beside, can_fork
 from .drawing import assembly_drawing, part_drawing
 
 __all__ = ["write_design"]
+
+_FILE_STEM = re.compile(r"[A-Za-z0-9_-][A-Za-z0-9._-]{0,63}")
+"""A part's or table's file name: one plain component, so no file can leave its folder."""
+
+
+def _check_names(design: Design) -> None:
+    """Refuse names that would write outside the folder or over another file (a design changed
+    through the API, e.g. ``model_copy(update=...)``, is not validated by the profile reader)."""
+    seen: set[str] = set()
+    names = [("part", p.name) for p in design.parts()] + [("table", t.file) for t in design.tables]
+    for what, name in names:
+        if not isinstance(name, str) or not _FILE_STEM.fullmatch(name):
+            raise GearcadError(
+                f"{what} name {name!r}: must be 1 to 64 letters, digits, '-', '_' or '.', not starting with '.' "
+                "(it names a file in the profile's folder)"
+            )
+        if name.casefold() in seen:
+            raise GearcadError(f"{what} name {name!r}: two files of the design would take this name")
+        seen.add(name.casefold())
 
 
 def _entry(path: Path, **counts) -> dict:
@@ -71,6 +92,7 @@ def write_design(design: Design, folder: Path, *, beside: bool = False) -> dict[
     the rest (for a machine with a core to spare): matplotlib's import and drawing take about
     as long as all the other files together.
     """
+    _check_names(design)
     jobs: dict = {}
     try:
         if beside and can_fork():

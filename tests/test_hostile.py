@@ -1,0 +1,82 @@
+"""The hostile audit's cases (issue 23): nothing written outside ``--out``, no user's file lost,
+one line and exit 2 for what the user can mend.  Each test plants what an attacker or a careless
+user would, builds, and looks at every file around ``--out`` afterwards."""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+import pytest
+
+import gearcad
+from gearcad import batch
+from gearcad.cli import main
+from gearcad.errors import GearcadError
+
+from .conftest import ROOT
+
+SPUR = ROOT / "profiles" / "spur_pair.toml"
+QUICK = {"output.formats": ["dxf"], "output.charts": False, "output.animation": False}
+"""The cheapest build that still publishes a folder and writes the index."""
+
+
+def _quick_args(out) -> list[str]:
+    sets = ["--set=output.formats=['dxf']", "--set=output.charts=false", "--set=output.animation=false"]
+    return ["build", str(SPUR), *sets, "--out", str(out)]
+
+
+def _tree(root: Path) -> set[str]:
+    return {str(p.relative_to(root)) for p in root.rglob("*")}
+
+
+def test_out_through_a_link_and_dotdot_is_one_path_and_planted_links_are_not_followed(tmp_path):
+    """``A/link/../x``: the kernel goes to x beside the link's target, so every write must; and
+    a link planted at the old fixed temp name, or as the page itself, is replaced, not followed."""
+    a, b, victim = tmp_path / "A", tmp_path / "B", tmp_path / "victim.txt"
+    out = b / "x"
+    out.mkdir(parents=True)
+    (b / "c").mkdir()
+    a.mkdir()
+    (a / "link").symlink_to(b / "c")
+    victim.write_text("the user's file")
+    (out / ".index.html.tmp").symlink_to(victim)  # the old fixed temp name
+    (out / "index.html").symlink_to(victim)  # and the page itself a link to the user's file
+    assert main(_quick_args(f"{a}/link/../x")) == 0
+    assert _tree(a) == {"link"}, "profile folders went where the path is normalised lexically"
+    assert (out / "spur_pair" / "report.json").is_file()
+    assert victim.read_text() == "the user's file"
+    assert (out / "index.html").is_file() and not (out / "index.html").is_symlink()
+    assert "spur_pair/index.html" in (out / "index.html").read_text()
+    assert not [p for p in os.listdir(out) if p.startswith(".gearcad-index-")], "a temp page left behind"
+
+
+def test_the_index_temp_file_is_new_each_time(tmp_path, monkeypatch):
+    """Two index writers never share a temp file: it is made exclusively under a random name."""
+    seen = []
+    real = os.replace
+    monkeypatch.setattr(batch.os, "replace", lambda src, dst: (seen.append(Path(src).name), real(src, dst)))
+    batch._write_index(tmp_path)
+    batch._write_index(tmp_path)
+    assert len(seen) == 2 and seen[0] != seen[1] and all(n.startswith(".gearcad-index-") for n in seen)
+
+
+def test_an_empty_out_is_refused_in_one_line(tmp_path, monkeypatch, capsys):
+    monkeypatch.chdir(tmp_path)
+    assert main(_quick_args("")) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "--out ''" in err[0] and "empty" in err[0], err
+    assert list(tmp_path.iterdir()) == []
+    with pytest.raises(GearcadError, match="empty"):
+        gearcad.build([SPUR], "")
+
+
+def test_a_part_name_set_without_validation_cannot_leave_out(tmp_path):
+    """``model_copy(update=...)`` skips pydantic's checks; the writer checks names itself."""
+    params = gearcad.load_profile(SPUR, overrides=QUICK)
+    bad = params.model_copy(update={"gear1": params.gear1.model_copy(update={"name": "../../escaped"})})
+    out = tmp_path / "deep" / "out"
+    with pytest.raises(GearcadError, match=r"part name '\.\./\.\./escaped'"):
+        gearcad.build([bad], out)
+    assert list(tmp_path.rglob("*escaped*")) == []
+    assert not out.exists()
