@@ -23,7 +23,7 @@ from .errors import GearcadError, ProfileError
 from .findings import Finding
 from .mechanisms import Design, design
 from .profiles import ProfileParams
-from .publish import Publisher, check_out, interrupt_guard
+from .publish import Publisher, check_out, interrupt_guard, out_lock
 
 __all__ = ["BuildResult", "build", "design_all"]
 
@@ -132,6 +132,11 @@ def _write_index(out: Path) -> None:
     page is written into a new file made exclusively under a random name (a planted link is
     never followed), then renamed over ``index.html``.
     """
+    with out_lock(out):  # a concurrent build's page, read before this one published, is not the last
+        _write_page(out)
+
+
+def _write_page(out: Path) -> None:
     from .export.html_index import index_entry, index_page
 
     entries = []

@@ -57,7 +57,7 @@ from pathlib import Path
 
 from .errors import GearcadError, ProfileError
 
-__all__ = ["Publisher", "Interrupted", "interrupt_guard", "check_out", "resolve_out"]
+__all__ = ["Publisher", "Interrupted", "interrupt_guard", "check_out", "resolve_out", "out_lock"]
 
 _SIGNALS = (signal.SIGINT, signal.SIGTERM)
 _NAME = re.compile(r"[\w-][\w.-]*")
@@ -214,6 +214,17 @@ def _lock(folder: Path, *, wait: bool) -> int | None:
             return None
         raise
     return fd
+
+
+@contextmanager
+def out_lock(out: Path):
+    """Hold the lock a build holds while it publishes into ``out`` (an existing folder): the
+    index page read and written under it is never older than a folder published before it."""
+    fd = _lock(out, wait=True)
+    try:
+        yield
+    finally:
+        os.close(fd)
 
 
 def _new_staging(parent: Path) -> tuple[Path, int]:

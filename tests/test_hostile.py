@@ -4,6 +4,8 @@ user would, builds, and looks at every file around ``--out`` afterwards."""
 
 from __future__ import annotations
 
+import json
+import multiprocessing
 import os
 from pathlib import Path
 
@@ -80,3 +82,71 @@ def test_a_part_name_set_without_validation_cannot_leave_out(tmp_path):
         gearcad.build([bad], out)
     assert list(tmp_path.rglob("*escaped*")) == []
     assert not out.exists()
+
+
+class _Named:
+    """The one thing a build asks of a profile before designing it: its name."""
+
+    def __init__(self, name: str) -> None:
+        self.name = name
+
+
+def _stub_build(job):
+    """A build's files without the design: the report the index reads (publishing is under test)."""
+    from gearcad.mechanisms.base import SCHEMA_VERSION
+
+    params, folder, _ = job
+    report = {"schema": SCHEMA_VERSION, "name": params.name, "files": {}}
+    (folder / "report.json").write_text(json.dumps(report), encoding="utf-8")
+    return batch.BuildResult(params.name, "stub", (), {}, 0.0)
+
+
+def _concurrent_build(job) -> str:
+    names, out = job
+    try:
+        batch.build([_Named(n) for n in names], out, workers=1)
+    except BaseException as exc:  # noqa: BLE001 - the test reports whatever a build died of
+        return f"{names}: {type(exc).__name__}: {exc}"
+    return ""
+
+
+def test_concurrent_builds_into_one_out_all_publish_and_the_index_names_every_one(tmp_path, monkeypatch):
+    """Item 5: four builds of different profiles into one --out (new, under a new parent, or
+    existing), 40 rounds: every build succeeds, every folder is there and the page names every
+    one (before: a staging folder taken by another's cleaner, or a page read before another
+    build published written last, ~1 round in 100 here)."""
+    monkeypatch.setattr(batch, "_build_one", _stub_build)
+    jobs = [["a"], ["b"], ["c", "d"], ["e"]]
+    with multiprocessing.get_context("fork").Pool(len(jobs)) as pool:
+        for r in range(40):
+            out = tmp_path / str(r) / ("new/out" if r % 3 == 1 else "out")
+            if r % 3 == 2:
+                out.mkdir(parents=True)
+            assert [e for e in pool.map(_concurrent_build, [(j, out) for j in jobs]) if e] == []
+            assert sorted(os.listdir(out)) == ["a", "b", "c", "d", "e", "index.html"], r
+            page = (out / "index.html").read_text(encoding="utf-8")
+            assert [n for n in "abcde" if f"{n}/index.html" not in page] == [], r
+
+
+def test_the_index_is_read_and_written_under_the_publishing_lock(tmp_path, monkeypatch):
+    """Item 5, deterministically: while the page is made, no build can take ``out``'s lock."""
+    import fcntl
+
+    from gearcad.export import html_index
+
+    held = []
+
+    def page(entries):
+        fd = os.open(tmp_path, os.O_RDONLY)
+        try:
+            fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+            held.append(False)
+        except BlockingIOError:
+            held.append(True)
+        finally:
+            os.close(fd)
+        return "<html></html>"
+
+    monkeypatch.setattr(html_index, "index_page", page)
+    batch._write_index(tmp_path)
+    assert held == [True]
