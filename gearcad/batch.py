@@ -14,7 +14,9 @@ import signal
 import stat
 import tempfile
 import time
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterator, Sequence
+from concurrent.futures import ProcessPoolExecutor
+from concurrent.futures.process import BrokenProcessPool
 from contextlib import suppress
 from dataclasses import dataclass
 from pathlib import Path
@@ -77,6 +79,34 @@ def _worker_init() -> None:
     signal.signal(signal.SIGTERM, signal.SIG_DFL)
 
 
+def _in_order(pool: ProcessPoolExecutor, jobs: list) -> Iterator[BuildResult]:
+    """The pool's results in the jobs' order; a worker that died is one line naming its profiles."""
+    futures = [pool.submit(_build_one, job) for job in jobs]
+    for future in futures:
+        try:
+            yield future.result()
+        except BrokenProcessPool:
+            lost = [job[0].name for job, f in zip(jobs, futures, strict=True) if _broken(f)]
+            raise GearcadError(
+                f"{', '.join(lost)}: the build process ended abruptly (killed, e.g. by the out-of-memory "
+                "killer?); nothing was published"
+            ) from None
+
+
+def _broken(future) -> bool:
+    return future.done() and not future.cancelled() and isinstance(future.exception(), BrokenProcessPool)
+
+
+def _stop(pool: ProcessPoolExecutor) -> None:
+    """End the pool's workers now (an error or an interrupt in the parent), not after their builds."""
+    workers = list((getattr(pool, "_processes", None) or {}).values())  # no public way before 3.14
+    pool.shutdown(wait=False, cancel_futures=True)
+    for worker in workers:
+        worker.terminate()
+    for worker in workers:
+        worker.join()
+
+
 def _workers(count: int) -> int:
     cores = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else (os.cpu_count() or 1)
     return max(1, min(count, cores))
@@ -103,11 +133,11 @@ def build(
         beside = _workers(len(profiles) + 1) > count
         jobs = [(p, publisher.folder(p.name), beside) for p in profiles]
         if count == 1:
-            built = map(_build_one, jobs)
-            pool = None
+            built, pool = map(_build_one, jobs), None
         else:
-            pool = multiprocessing.get_context("fork").Pool(count, initializer=_worker_init)
-            built = pool.imap(_build_one, jobs)
+            # an executor, not Pool: a worker killed (OOM killer, kill -9) breaks it, never hangs it
+            pool = ProcessPoolExecutor(count, mp_context=multiprocessing.get_context("fork"), initializer=_worker_init)
+            built = _in_order(pool, jobs)
         try:
             for n, result in enumerate(built, 1):
                 results.append(result)
@@ -115,8 +145,7 @@ def build(
                     progress(n, len(jobs), result)
         finally:
             if pool is not None:
-                pool.terminate()
-                pool.join()
+                _stop(pool)
         publisher.commit()
     _write_index(publisher.path)
     return results

@@ -7,6 +7,7 @@ from __future__ import annotations
 import json
 import multiprocessing
 import os
+import signal
 from pathlib import Path
 
 import pytest
@@ -150,3 +151,29 @@ def test_the_index_is_read_and_written_under_the_publishing_lock(tmp_path, monke
     monkeypatch.setattr(html_index, "index_page", page)
     batch._write_index(tmp_path)
     assert held == [True]
+
+
+def _dies_building_b(job):
+    if job[0].name == "b":
+        os.kill(os.getpid(), signal.SIGKILL)  # as the OOM killer does
+    return _stub_build(job)
+
+
+def test_a_killed_worker_fails_its_profile_in_one_line_and_publishes_nothing(tmp_path, monkeypatch):
+    """Item 18: a pool worker killed outright (before: ``Pool.imap`` waited forever)."""
+
+    def hung(signum, frame):
+        raise AssertionError("the build hung after its worker was killed")
+
+    monkeypatch.setattr(batch, "_build_one", _dies_building_b)
+    previous = signal.signal(signal.SIGALRM, hung)
+    signal.alarm(60)
+    try:
+        with pytest.raises(GearcadError) as info:
+            batch.build([_Named("a"), _Named("b"), _Named("c")], tmp_path / "out", workers=2)
+    finally:
+        signal.alarm(0)
+        signal.signal(signal.SIGALRM, previous)
+    message = str(info.value)
+    assert "\n" not in message and "b" in message.split(":")[0] and "ended abruptly" in message, message
+    assert not (tmp_path / "out").exists() and list(tmp_path.iterdir()) == []
