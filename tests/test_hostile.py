@@ -7,6 +7,7 @@ from __future__ import annotations
 import json
 import multiprocessing
 import os
+import re
 import signal
 from pathlib import Path
 
@@ -177,3 +178,30 @@ def test_a_killed_worker_fails_its_profile_in_one_line_and_publishes_nothing(tmp
     message = str(info.value)
     assert "\n" not in message and "b" in message.split(":")[0] and "ended abruptly" in message, message
     assert not (tmp_path / "out").exists() and list(tmp_path.iterdir()) == []
+
+
+HERRINGBONE = ROOT / "profiles" / "herringbone_elliptic.toml"
+
+
+@pytest.mark.parametrize(
+    ("overrides", "key"),
+    [
+        ({"bore.diameter": None, "output.chamfer": 0.0}, "output.thickness = 1000"),  # before: 279 s, 3.0 GB
+        ({}, "bore.diameter = 5"),  # before: refused after 292 s
+    ],
+    ids=["twist", "bore-first"],
+)
+def test_a_long_steep_herringbone_is_refused_at_once(overrides, key):
+    """Item 19: thickness 1000 mm, β 45°, 0.001 mm: the sections' work counts the twist
+    (thickness·tan β) and is refused before they are cut; a bore that cannot fit is found first."""
+    import time
+
+    extreme = {"output.thickness": 1000, "teeth.helix_angle_deg": 45, "output.tolerance": 0.001}
+    params = gearcad.load_profile(HERRINGBONE, overrides={**QUICK, **extreme, **overrides})
+    start = time.process_time()
+    with pytest.raises(GearcadError, match=re.escape(key)) as info:
+        gearcad.check(params)
+    assert time.process_time() - start < 10
+    if key.startswith("output.thickness"):  # the largest thickness that fits, as a number
+        fits = float(re.search(r"output\.thickness ≤ ([\d.]+) mm", str(info.value)).group(1))
+        assert 5 < fits < 50, str(info.value)

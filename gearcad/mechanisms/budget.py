@@ -22,6 +22,8 @@ __all__ = [
     "teeth_points",
     "check_teeth_work",
     "check_outline_work",
+    "SECTION_POINT_BUDGET",
+    "check_section_work",
     "MAX_SAMPLE_ORDER",
     "SAMPLE_NOISE",
 ]
@@ -89,6 +91,27 @@ def check_outline_work(length: float, min_radius: float, tolerance: float, *, wh
             f"output.tolerance = {tolerance:g}: {what} would need about {need / 1e6:.1f} million outline points "
             f"(the budget is {POINT_BUDGET / 1e6:.1f} million); use a coarser output.tolerance"
         )
+
+
+SECTION_POINT_BUDGET = 2 * POINT_BUDGET
+"""Points of a helical pair's transverse sections (both gears, every level): each costs about
+what a planar outline point does to cut and to loft (a herringbone of thickness 100 mm, β 25°,
+0.01 mm: 0.41 million in ~4 s), and two triangles in each gear's STL (1.2 million: ~60 MB)."""
+
+
+def check_section_work(levels: int, points: int, *, thickness: float, helix_angle: float) -> None:
+    """Refuse helical sections — ``levels`` of up to ``points`` points, both gears — beyond
+    :data:`SECTION_POINT_BUDGET`: their count grows with the twist, thickness·tan β."""
+    need = 2.0 * levels * points
+    if need <= SECTION_POINT_BUDGET:
+        return
+    fits = thickness * SECTION_POINT_BUDGET / need
+    raise DesignError(
+        f"output.thickness = {thickness:g}: the teeth twist {thickness * math.tan(helix_angle):.4g} mm along "
+        f"the face (thickness·tan β), {levels} sections of {points} points: about {need / 1e6:.1f} million "
+        f"points (the budget is {SECTION_POINT_BUDGET / 1e6:.1f} million); use output.thickness ≤ {fits:.3g} mm, "
+        "a smaller teeth.helix_angle_deg or a coarser output.tolerance"
+    )
 
 
 MAX_SAMPLE_ORDER = 360

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, replace
+from functools import partial
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -20,7 +21,7 @@ from ..profiles import GearPairParams
 from ..teeth.pair import ToothedPairData, cut_pair
 from ..tolerances import DEFAULT
 from .base import Assembly, Design, Motion, Table, assembly_overlap
-from .budget import check_teeth_work
+from .budget import check_section_work, check_teeth_work
 from .pair_papers import PaperExtras, paper_extras
 from .pair_pitch import PairDesign, pitch_design
 from .parts import Placement, make_part
@@ -258,19 +259,6 @@ def design(params: GearPairParams) -> Design:
         check_teeth_work([(g.perimeter / (math.pi * module), module) for g in pitch.gears], out.tolerance)
         alike = pitch.mate_shape_difference is not None and pitch.mate_shape_difference < 1e-6
         teeth = cut_pair(pitch.pair, pitch.gears, spec, mate_rotation=pitch.mate_rotation if alike else None, tol=tol)
-        if beta > 0:
-            helical = pair_sections(
-                teeth,
-                helix_angle=beta,
-                herringbone=params.teeth.herringbone,
-                face_width=out.thickness,
-                tolerance=out.tolerance,
-                clearance=params.teeth.clearance,
-                chamfer=out.chamfer,
-                names=(pitch.gears[0].name, pitch.gears[1].name),
-            )
-            play = spec.backlash + 4 * spec.clearance / math.cos(spec.pressure_angle)  # as cut_pair's
-            proofs = section_mesh(pitch.pair, helical, teeth.frames, tolerance=out.tolerance, play=play)
     pitch_fine = [polyline(g.curve, fine_tol) for g in pitch.gears]
     parts = []
     for i, gear in enumerate(pitch.gears):
@@ -285,6 +273,20 @@ def design(params: GearPairParams) -> Design:
                 marks=(pitch_fine[i],) if teeth is not None else (),
             )
         )
+    if teeth is not None and beta > 0:  # after the parts: a bore that does not fit is found first
+        helical = pair_sections(
+            teeth,
+            helix_angle=beta,
+            herringbone=params.teeth.herringbone,
+            face_width=out.thickness,
+            tolerance=out.tolerance,
+            clearance=params.teeth.clearance,
+            chamfer=out.chamfer,
+            names=(pitch.gears[0].name, pitch.gears[1].name),
+            check_work=partial(check_section_work, thickness=out.thickness, helix_angle=beta),
+        )
+        play = spec.backlash + 4 * spec.clearance / math.cos(spec.pressure_angle)  # as cut_pair's
+        proofs = section_mesh(pitch.pair, helical, teeth.frames, tolerance=out.tolerance, play=play)
     placements = tuple(Placement(g.name, 0.0, g.pivot) for g in pitch.gears)
     overlap = assembly_overlap({p.name: p for p in parts}, list(placements), [(0, 1)])
     papers = paper_extras(params, pitch)

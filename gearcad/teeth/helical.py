@@ -23,7 +23,7 @@ them (``export/loft.py``) is a faithful triangulation of the twisted flank.
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -226,6 +226,7 @@ def helical_sections(
     chamfer: float = 0.0,
     names: Sequence[str] = ("gear1", "gear2"),
     spacing: float | None = None,
+    check_work: Callable[[int, int], None] | None = None,
 ) -> HelicalSections:
     """The transverse sections of both gears of a pair, for a loft within ``tolerance``.
 
@@ -235,7 +236,7 @@ def helical_sections(
     offsets every section inwards as ``cut_pair`` does.  Sections are cut at
     a quarter of the tolerance, resampled to within another quarter, and spaced so that the twist
     between them costs at most the other half (:class:`SectionSpacing`); ``spacing`` (mm)
-    overrides that choice, for studies of it.
+    overrides that choice, for studies of it; ``check_work(levels, points)`` may refuse them uncut.
     """
     refuse_corners(frames, names, helix_angle)
     if face_width <= 0:
@@ -263,6 +264,8 @@ def helical_sections(
     measured = math.nan
     while True:
         heights, climbed = section_heights(face_width, h, herringbone=herringbone, chamfer=chamfer)
+        if check_work is not None:
+            check_work(len(heights), max(len(section(i, 0.0)[1].ring) for i in range(2)))
         if spacing is not None or not math.isfinite(h) or h <= bound.floor:
             break
         k = int(np.argmax(np.diff(heights)))
@@ -307,32 +310,10 @@ def _interval_deviation(section, i: int, low: float, high: float, resample: floa
     return ring_distance(mid_section(lower, upper), exact)
 
 
-def pair_sections(
-    teeth: ToothedPairData,
-    *,
-    helix_angle: float,
-    herringbone: bool,
-    face_width: float,
-    tolerance: float,
-    clearance: float = 0.0,
-    chamfer: float = 0.0,
-    names: Sequence[str] = ("gear1", "gear2"),
-    spacing: float | None = None,
-) -> HelicalSections:
-    """:func:`helical_sections` for a pair cut by ``cut_pair`` (with :func:`~.helix.transverse_teeth`)."""
-    return helical_sections(
-        teeth.frames,
-        teeth.plan,
-        tuple(g.rack for g in teeth.gears),
-        helix_angle=helix_angle,
-        herringbone=herringbone,
-        face_width=face_width,
-        tolerance=tolerance,
-        clearance=clearance,
-        chamfer=chamfer,
-        names=names,
-        spacing=spacing,
-    )
+def pair_sections(teeth: ToothedPairData, **options) -> HelicalSections:
+    """:func:`helical_sections` for a pair cut by ``cut_pair`` (with :func:`~.helix.transverse_teeth`);
+    ``options`` are its keyword arguments (``helix_angle``, ``herringbone``, ``face_width``, …)."""
+    return helical_sections(teeth.frames, teeth.plan, tuple(g.rack for g in teeth.gears), **options)
 
 
 def section_mesh(
