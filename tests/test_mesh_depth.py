@@ -101,3 +101,16 @@ def test_written_walker_pair_meshes_at_its_concave_seam(built):
     assert relief["gear"] == "wheel" and relief["depth_before"] == pytest.approx(0.0166, abs=0.0005)
     seam = (math.degrees(relief["gear1_angle"]) - 45) % 90
     assert min(seam, 90 - seam) < 8 and 0 < relief["teeth"] <= 16 and relief["area"] < 0.05
+
+
+def test_curvature_is_reported_both_ways(built):
+    """Smallest convex and concave pitch radii (issue 25's independent figures: the walker wheel
+    46.25 / 36.01 mm, the centre ellipse's follower 11.95 / 611.7 mm), in report and page."""
+    walker = json.loads((built / "walker" / "report.json").read_text())["gears"]
+    assert walker[0]["min_curvature_radius"] == pytest.approx(46.25, abs=0.005)
+    assert walker[0]["min_concave_radius"] == pytest.approx(36.01, abs=0.005)
+    assert walker[1]["min_concave_radius"] is None  # convex: none (∞ is null in JSON)
+    follower = json.loads((built / "elliptic_centre" / "report.json").read_text())["gears"][1]
+    assert follower["min_curvature_radius"] == pytest.approx(11.95, abs=0.005)
+    assert follower["min_concave_radius"] == pytest.approx(611.7, abs=0.05)
+    assert "(concave 36.01 mm)" in (built / "walker" / "index.html").read_text(encoding="utf-8")

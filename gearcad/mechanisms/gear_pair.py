@@ -64,6 +64,7 @@ def _gear_block(g: GearData, lobes: int) -> dict:
         "convex": s.convex,
         "convexity_margin_min": s.min_margin,
         "min_curvature_radius": s.min_curvature_radius,
+        "min_concave_radius": s.min_concave_radius,
         "concave_intervals": [list(i) for i in s.concave_intervals],
         "corners": [{"phi": c.phi, "turn": c.turn, "convex": c.convex} for c in s.corners],
     }
@@ -227,6 +228,7 @@ def _details(pitch: PairDesign, teeth: ToothedPairData | None) -> list[str]:
     lines = [
         f"{g.name}: r {g.r_min:.4f}…{g.r_max:.4f} mm, perimeter {g.perimeter:.6f} mm, "
         f"{'convex' if g.shape.convex else 'not convex'}, min radius of curvature {g.shape.min_curvature_radius:.4g} mm"
+        + (f" (concave {g.shape.min_concave_radius:.4g} mm)" if math.isfinite(g.shape.min_concave_radius) else "")
         for g in pitch.gears
     ]
     lo, hi = pitch.ratio_range
