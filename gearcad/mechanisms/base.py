@@ -15,7 +15,7 @@ import numpy as np
 from ..findings import Finding
 from .parts import Part, Placement, placed_polygon
 
-__all__ = ["SCHEMA_VERSION", "Assembly", "Design", "Motion", "Table", "assembly_overlap", "finite"]
+__all__ = ["SCHEMA_VERSION", "Assembly", "Design", "Motion", "Table", "assembly_depth", "assembly_overlap", "finite"]
 
 SCHEMA_VERSION = 2
 """report.json's schema: 2 gave every mechanism the same parts[], assembly, warnings and files blocks."""
@@ -48,10 +48,14 @@ class Assembly:
     allowed: float
     nudged: float | None = None
     positions: int = 1
+    depth: float | None = None
+    """Largest penetration depth of neighbours as assembled, mm (None where not measured)."""
+    allowed_depth: float | None = None
 
     @property
     def fits(self) -> bool:
-        return self.overlap <= self.allowed and (self.nudged is None or self.nudged > self.allowed)
+        deep = self.depth is not None and self.allowed_depth is not None and self.depth > self.allowed_depth
+        return self.overlap <= self.allowed and (self.nudged is None or self.nudged > self.allowed) and not deep
 
     def as_dict(self) -> dict:
         return {
@@ -59,6 +63,8 @@ class Assembly:
             "allowed_overlap": self.allowed,
             "nudged_min_overlap": self.nudged,
             "positions": self.positions,
+            "max_depth": self.depth,
+            "allowed_depth": self.allowed_depth,
             "fits": self.fits,
         }
 
@@ -67,6 +73,15 @@ def assembly_overlap(parts: dict[str, Part], placements: list[Placement], pairs)
     """The largest overlap area (mm²) of the placed parts named in ``pairs`` ((i, j) indices)."""
     polygons = [placed_polygon(parts[p.part], p) for p in placements]
     return max((float(polygons[i].intersection(polygons[j]).area) for i, j in pairs), default=0.0)
+
+
+def assembly_depth(parts: dict[str, Part], placements: list[Placement], pairs, *, step: float) -> float:
+    """The largest penetration depth (mm) of the placed parts named in ``pairs``."""
+    from ..geometry.depth import overlap_depths
+
+    polygons = [placed_polygon(parts[p.part], p) for p in placements]
+    first, second = zip(*((polygons[i], polygons[j]) for i, j in pairs)) if pairs else ((), ())
+    return float(max(overlap_depths(first, second, step=step).depth, default=0.0))
 
 
 def finite(value):

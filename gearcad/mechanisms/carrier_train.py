@@ -17,7 +17,7 @@ from ..profiles import CarrierTrainParams
 from ..tolerances import DEFAULT
 from ..trains import carrier as CT
 from . import compound_ring as CR
-from .base import Assembly, Design, assembly_overlap
+from .base import Assembly, Design, assembly_depth, assembly_overlap
 from .budget import check_teeth_work
 from .parts import Placement, make_part
 
@@ -176,10 +176,16 @@ def design(p: CarrierTrainParams) -> Design:
         )
         for k in range(len(parts) - 1)
     )
-    assembly = Assembly(overlap, 2 * p.output.tolerance * 2.25 * max(p.modules), nudged)
+    depth = assembly_depth(by_name, list(placements), neighbours, step=0.1 * min(p.modules))
+    tol = p.output.tolerance
+    assembly = Assembly(overlap, 2 * tol * 2.25 * max(p.modules), nudged, 1, depth, 2 * tol)
     if not assembly.fits:
         findings.append(
-            finding("interference", f"neighbouring gears overlap by {overlap:.4g} mm² as assembled", "train")
+            finding(
+                "interference",
+                f"neighbouring gears overlap by {overlap:.4g} mm², {depth * 1e3:.3g} µm deep, as assembled",
+                "train",
+            )
         )
     data = {
         "train": {

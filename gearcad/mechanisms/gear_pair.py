@@ -65,6 +65,7 @@ def _gear_block(g: GearData, lobes: int) -> dict:
         "convex": s.convex,
         "convexity_margin_min": s.min_margin,
         "min_curvature_radius": s.min_curvature_radius,
+        "min_concave_radius": s.min_concave_radius,
         "concave_intervals": [list(i) for i in s.concave_intervals],
         "corners": [{"phi": c.phi, "turn": c.turn, "convex": c.convex} for c in s.corners],
     }
@@ -124,7 +125,13 @@ def _helix_block(params: GearPairParams, teeth: ToothedPairData, helical: Helica
         "loft_deviation": None if math.isnan(s.measured) else s.measured,
         "section_deviation": max(g.deviation for g in helical.gears),
         "mesh_levels": [
-            {"z": z, "meshes": m.meshes, "max_overlap": m.max_overlap, "nudged_min_overlap": m.nudged_min_overlap}
+            {
+                "z": z,
+                "meshes": m.meshes,
+                "max_overlap": m.max_overlap,
+                "max_depth": m.max_depth,
+                "nudged_min_overlap": m.nudged_min_overlap,
+            }
             for z, m in proofs
         ],
     }
@@ -183,7 +190,11 @@ def _report_data(
                 "worst_phi": mesh.worst_phi,
                 "nudge": mesh.nudge,
                 "nudged_min_overlap": mesh.nudged_min_overlap,
+                "max_depth": mesh.max_depth,
+                "allowed_depth": mesh.allowed_depth,
+                "depth_at": dict(zip(("gear1_angle", "tooth", "height"), mesh.depth_at)),
             },
+            "relief": None if teeth.relief is None else {"gear": pitch.gears[0].name, **vars(teeth.relief)},
         }
     if helical is not None:
         data["pair"]["teeth"]["helix"] = _helix_block(params, teeth, helical, proofs)
@@ -218,6 +229,7 @@ def _details(pitch: PairDesign, teeth: ToothedPairData | None) -> list[str]:
     lines = [
         f"{g.name}: r {g.r_min:.4f}…{g.r_max:.4f} mm, perimeter {g.perimeter:.6f} mm, "
         f"{'convex' if g.shape.convex else 'not convex'}, min radius of curvature {g.shape.min_curvature_radius:.4g} mm"
+        + (f" (concave {g.shape.min_concave_radius:.4g} mm)" if math.isfinite(g.shape.min_concave_radius) else "")
         for g in pitch.gears
     ]
     lo, hi = pitch.ratio_range
@@ -237,6 +249,7 @@ def _details(pitch: PairDesign, teeth: ToothedPairData | None) -> list[str]:
         lo, hi = teeth.backlash_range
         lines.append(
             f"mesh: max overlap {teeth.mesh.max_overlap:.3g} mm² (allowed {teeth.mesh.allowed_overlap:.3g}), "
+            f"depth {teeth.mesh.max_depth * 1e3:.3g} µm (allowed {teeth.mesh.allowed_depth * 1e3:.3g}), "
             f"backlash {lo:.4f}…{hi:.4f} mm"
         )
     return lines
@@ -301,6 +314,8 @@ def design(params: GearPairParams) -> Design:
             mesh.allowed_overlap,
             min(m.nudged_min_overlap for m in meshes),
             mesh.positions,
+            max(m.max_depth for m in meshes),
+            mesh.allowed_depth,
         )
     else:
         assembly = Assembly(overlap, 2 * out.tolerance * pitch.gears[0].r_min)

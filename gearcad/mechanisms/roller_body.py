@@ -20,7 +20,7 @@ from ..teeth.frame import ParametricFrame, arc_frame
 from ..teeth.gear import cut_teeth
 from ..teeth.rack import Rack, RackParams
 from ..tolerances import DEFAULT
-from .base import Assembly, Design, assembly_overlap
+from .base import Assembly, Design, assembly_depth, assembly_overlap
 from .budget import COARSEST_TOLERANCE, POINT_BUDGET, check_teeth_work
 from .parts import Placement, make_part
 
@@ -244,10 +244,15 @@ def design(p: RollerBodyParams) -> Design:
             )
             for pl in placements[1:]
         )
-        assembly = Assembly(overlap, 2 * out.tolerance * 2.25 * teeth["module"], nudged)
+        depth = assembly_depth(by_name, list(placements), pairs, step=0.1 * teeth["module"])
+        assembly = Assembly(overlap, 2 * out.tolerance * 2.25 * teeth["module"], nudged, 1, depth, 2 * out.tolerance)
         if not assembly.fits:
             findings.append(
-                finding("interference", f"the body and a roller overlap by {overlap:.4g} mm² as assembled", "body")
+                finding(
+                    "interference",
+                    f"the body and a roller overlap by {overlap:.4g} mm², {depth * 1e3:.3g} µm deep, as assembled",
+                    "body",
+                )
             )
     return Design(
         params=p,

@@ -195,6 +195,9 @@ class ConvexityData:
     min_curvature_radius: float
     """Smallest radius of curvature on convex stretches, mm (limits the tooth size)."""
     corners: tuple[Corner, ...]
+    min_concave_radius: float = float("inf")
+    """Smallest radius of curvature on concave stretches, mm (∞ where there is none): how far a
+    generating rack strays from the outline there (x²/2ρ at x from its contact)."""
 
 
 def convexity(curve: PitchCurve, *, tol: Tolerances = DEFAULT) -> ConvexityData:
@@ -219,6 +222,8 @@ def convexity(curve: PitchCurve, *, tol: Tolerances = DEFAULT) -> ConvexityData:
     kappa = curvature(curve, phi)
     _, neg_kmax = _refined_min(lambda p: -curvature(curve, p), phi, piece, edges)
     kmax = max(-neg_kmax, float(np.max(kappa)))
+    _, kmin = _refined_min(lambda p: curvature(curve, p), phi, piece, edges)
+    kmin = min(kmin, float(np.min(kappa)))
     found = tuple(corners(curve, tol=tol))
     convex = low >= -tol.convex_rel and all(c.convex for c in found)
     return ConvexityData(
@@ -228,4 +233,5 @@ def convexity(curve: PitchCurve, *, tol: Tolerances = DEFAULT) -> ConvexityData:
         concave_intervals=tuple(intervals),
         min_curvature_radius=float(1.0 / kmax) if kmax > 0 else float("inf"),
         corners=found,
+        min_concave_radius=float(-1.0 / kmin) if kmin < 0 else float("inf"),
     )

@@ -12,11 +12,12 @@ from dataclasses import dataclass
 import numpy as np
 import shapely
 
+from ..geometry.depth import Depths, overlap_depths
 from ..pitch.pair import PairData
 from .frame import ArcFrame
 from .gear import ToothedGear
 
-__all__ = ["MeshData", "mesh_check"]
+__all__ = ["MeshData", "mesh_check", "placing"]
 
 
 @dataclass(frozen=True)
@@ -33,10 +34,23 @@ class MeshData:
     """Smallest (over positions) of the larger overlap when nudged either way, mm²."""
     worst_phi: float
     """Driver angle of the largest overlap, rad."""
+    max_depth: float = 0.0
+    """Largest penetration depth as assembled (:mod:`~gearcad.geometry.depth`), mm."""
+    allowed_depth: float = np.inf
+    """The depth the outlines may reach from writing alone: each may stray by the tolerance."""
+    depth_at: tuple[float, int, float] = (0.0, 0, 0.0)
+    """Where it is deepest: gear 1's angle φ1 (rad), its tooth there, and the deepest point's
+    height above its pitch curve (mm)."""
+    too_deep: tuple[float, ...] = ()
+    """Driver angles (rad) at which the pair is deeper than allowed."""
 
     @property
     def meshes(self) -> bool:
-        return self.max_overlap <= self.allowed_overlap and self.nudged_min_overlap > self.allowed_overlap
+        return (
+            self.max_overlap <= self.allowed_overlap
+            and self.max_depth <= self.allowed_depth
+            and self.nudged_min_overlap > self.allowed_overlap
+        )
 
 
 _REACH = 2
@@ -72,8 +86,15 @@ def _space_at(frame: ArcFrame, gear: ToothedGear, phi: np.ndarray) -> np.ndarray
 
 
 def _overlap_function(pair: PairData, gears, frames, phi1: np.ndarray):
-    """overlap(turn) -> (positions,) area for gear 2 turned ``turn`` (rad, scalar or per
-    position) beyond its assembled angle at each driver angle φ1, in gear 1's frame: gear 1
+    """overlap(turn) -> (positions,) area of the two placed windows (see :func:`_placing`)."""
+    place = placing(pair, gears, frames, phi1)
+    return lambda turn: shapely.area(shapely.intersection(*place(turn)))
+
+
+def placing(pair: PairData, gears, frames, phi1: np.ndarray):
+    """place(turn) -> gear 1's and gear 2's windows as polygons (positions,) each, for gear 2
+    turned ``turn`` (rad, scalar or per position) beyond its assembled angle at each driver
+    angle φ1, in gear 1's frame: gear 1
     turned by −φ1 and gear 2 by +φ2 about (E, 0) is, relative to gear 1, gear 2 turned by φ2,
     moved to (E, 0) and turned back by φ1."""
     e = pair.center_distance
@@ -86,16 +107,15 @@ def _overlap_function(pair: PairData, gears, frames, phi1: np.ndarray):
     which = np.repeat(np.arange(len(phi1)), [len(w2[k]) for k in pick])
     shapely.prepare(g1)
 
-    def overlap(turn):
+    def place(turn):
         a2 = (phi2 + turn * np.ones_like(phi2))[which]
         x = np.cos(a2) * coords[:, 0] - np.sin(a2) * coords[:, 1] + e
         y = np.sin(a2) * coords[:, 0] + np.cos(a2) * coords[:, 1]
         a1 = phi1[which]
         xy = np.column_stack([np.cos(a1) * x - np.sin(a1) * y, np.sin(a1) * x + np.cos(a1) * y])
-        placed = shapely.polygons(shapely.linearrings(xy, indices=which))
-        return shapely.area(shapely.intersection(g1, placed))
+        return g1, shapely.polygons(shapely.linearrings(xy, indices=which))
 
-    return overlap
+    return place
 
 
 def nudge_arc(*, module: float, tolerance: float, play: float) -> float:
@@ -130,7 +150,9 @@ def mesh_check(
     allowed = 2 * tolerance * 2.25 * m
     nudge = nudge_arc(module=m, tolerance=tolerance, play=play)
     turns = nudge_turns(pair, phi1[::4], nudge)
-    assembled = _overlap_function(pair, gears, frames, phi1)(0.0)
+    placed = placing(pair, gears, frames, phi1)(0.0)
+    assembled = shapely.area(shapely.intersection(*placed))
+    depths = overlap_depths(*placed, step=0.1 * m)
     nudged_at = _overlap_function(pair, gears, frames, phi1[::4])
     nudged = np.maximum(nudged_at(turns), nudged_at(-turns))
     worst = int(np.argmax(assembled))
@@ -141,7 +163,23 @@ def mesh_check(
         nudge=float(nudge),
         nudged_min_overlap=float(np.min(nudged)),
         worst_phi=float(phi1[worst]),
+        max_depth=float(np.max(depths.depth)),
+        allowed_depth=2 * tolerance,
+        depth_at=_deepest(depths, phi1, gears[0], frames[0]),
+        too_deep=tuple(float(a) for a in phi1[depths.depth > 2 * tolerance]),
     )
+
+
+def _deepest(found: Depths, phi1: np.ndarray, gear: ToothedGear, frame: ArcFrame) -> tuple[float, int, float]:
+    """Where the pair is deepest: driver angle, gear 1's tooth nearest the deepest point and that
+    point's height above gear 1's pitch curve."""
+    k = int(np.argmax(found.depth))
+    if found.depth[k] == 0:
+        return 0.0, 0, 0.0
+    x, y = found.point[k]
+    phi = float(np.arctan2(y, x)) % (2 * np.pi)
+    tooth = int(np.round((float(frame.arc(phi)) - gear.phase) / gear.rack.pitch - 0.5)) % gear.teeth
+    return float(phi1[k]), tooth, float(np.hypot(x, y) - frame.curve.r(np.array([phi]))[0])
 
 
 def backlash_range(

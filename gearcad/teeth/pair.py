@@ -24,6 +24,7 @@ from .gear import ToothedGear, cut_teeth
 from .mesh import MeshData, backlash_range, mesh_check, nudge_arc
 from .plan import ToothPlan, plan_teeth, tooth_count
 from .rack import Rack, RackParams
+from .relief import Relief, relieve
 from .sampling import Stopped
 
 __all__ = ["ToothSpec", "ToothedPairData", "cut_pair", "undercut_free_module"]
@@ -59,6 +60,8 @@ class ToothedPairData:
     identical_deviation: float | None
     """Largest distance between gear 2 and gear 1 turned onto it, mm (identical pairs)."""
     findings: tuple[Finding, ...]
+    relief: Relief | None = None
+    """Gear 1's trim by the mate's sweep (None where the rack's teeth mesh as cut)."""
 
 
 def undercut_free_module(min_curvature_radius: float, rack: RackParams) -> float:
@@ -127,11 +130,14 @@ def cut_pair(
     *,
     mate_rotation: float | None = None,
     tol: Tolerances = DEFAULT,
+    relief: bool = True,
 ) -> ToothedPairData:
     """Teeth on both gears of a rolling pair, proven to mesh.
 
     ``mate_rotation`` is δ with r2(θ) = r1(θ + δ) when gear 2 is gear 1 turned (a self-conjugate
     pair), None otherwise: then the teeth are planned so the two gears are one part.
+    ``relief`` trims gear 1 by the mate's sweep where the proof finds the rack-cut pair too deep
+    (:mod:`.relief`); False keeps the rack's teeth as cut.
     """
     for gear in gears:
         if gear.shape.corners:
@@ -173,14 +179,12 @@ def cut_pair(
             raise failed[0]
         fine = tuple(job.result() for job in jobs)
     toothed = tuple(_thinned(g, tol.outline_mm - fine_tol) for g in fine)
-    play = params.backlash + 4 * params.clearance / math.cos(params.pressure_angle)
-    # the mesh proof and the play measurement are independent, and shapely's vectorised GEOS
-    # calls release the GIL: run them side by side on the machine's two cores
-    with ThreadPoolExecutor(max_workers=2) as pool:
-        mesh_job = pool.submit(mesh_check, pair, toothed, frames, tolerance=tol.outline_mm, play=play)
-        limit = 2 * nudge_arc(module=plan.module, tolerance=tol.outline_mm, play=play)
-        play_job = pool.submit(backlash_range, pair, toothed, frames, limit=limit)
-        mesh, play_range = mesh_job.result(), play_job.result()
+    mesh, play_range = _prove(pair, toothed, frames, params, plan.module, tol.outline_mm)
+    trim = None
+    if mesh.too_deep and relief and not plan.identical:
+        relieved, trim = relieve(pair, fine[0], toothed, frames, mesh, deep=np.array(mesh.too_deep))
+        fine, toothed = (relieved, fine[1]), (_thinned(relieved, tol.outline_mm - fine_tol), toothed[1])
+        mesh, play_range = _prove(pair, toothed, frames, params, plan.module, tol.outline_mm)
     limits = tuple(
         undercut_free_module(g.shape.min_curvature_radius, toothed[i].rack.params) for i, g in enumerate(gears)
     )
@@ -199,8 +203,39 @@ def cut_pair(
         backlash_range=play_range,
         module_limits=limits,
         identical_deviation=deviation,
-        findings=tuple(_findings(gears, plan, toothed, mesh, limits)),
+        findings=tuple(_findings(gears, plan, toothed, mesh, limits) + _relief_findings(gears, trim)),
+        relief=trim,
     )
+
+
+def _prove(pair, toothed, frames, params, module: float, tolerance: float) -> tuple[MeshData, tuple[float, float]]:
+    """The mesh proof and the play; interference counts as negative play (its depth along the
+    normal, over cos α on the pitch curve)."""
+    play = params.backlash + 4 * params.clearance / math.cos(params.pressure_angle)
+    # the mesh proof and the play measurement are independent, and shapely's vectorised GEOS
+    # calls release the GIL: run them side by side on the machine's two cores
+    with ThreadPoolExecutor(max_workers=2) as pool:
+        mesh_job = pool.submit(mesh_check, pair, toothed, frames, tolerance=tolerance, play=play)
+        limit = 2 * nudge_arc(module=module, tolerance=tolerance, play=play)
+        play_job = pool.submit(backlash_range, pair, toothed, frames, limit=limit)
+        mesh, play_range = mesh_job.result(), play_job.result()
+    if mesh.max_depth > mesh.allowed_depth:
+        play_range = (-mesh.max_depth / math.cos(params.pressure_angle), play_range[1])
+    return mesh, play_range
+
+
+def _relief_findings(pitch, trim: Relief | None) -> list[Finding]:
+    if trim is None:
+        return []
+    name = pitch[0].name
+    return [
+        finding(
+            "relief",
+            f"{name}: {trim.teeth} teeth trimmed by {pitch[1].name}'s sweep ({trim.positions} positions) where "
+            f"the rack's envelope cut {trim.depth_before * 1e3:.3g} µm into it; {trim.area:.3g} mm² removed",
+            name,
+        )
+    ]
 
 
 def _findings(pitch, plan, gears, mesh, limits) -> list[Finding]:
@@ -247,6 +282,11 @@ def _findings(pitch, plan, gears, mesh, limits) -> list[Finding]:
                 f"the toothed pair overlaps by up to {mesh.max_overlap:.4g} mm² in mesh (allowed "
                 f"{mesh.allowed_overlap:.4g} mm², at driver angle {math.degrees(mesh.worst_phi):.1f}°)"
                 if mesh.max_overlap > mesh.allowed_overlap
+                else f"the toothed pair cuts {mesh.max_depth * 1e3:.3g} µm deep into each other in mesh (allowed "
+                f"{mesh.allowed_depth * 1e3:.3g} µm, from the writing tolerance), at driver angle "
+                f"{math.degrees(mesh.depth_at[0]):.2f}°, tooth {mesh.depth_at[1]} of {pitch[0].name}, "
+                f"{mesh.depth_at[2]:+.3f} mm from its pitch curve"
+                if mesh.max_depth > mesh.allowed_depth
                 else f"the nudged mesh test found a position without contact ({mesh.nudged_min_overlap:.3g} mm²)",
                 "pair",
             )
