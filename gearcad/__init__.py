@@ -27,6 +27,7 @@ __all__ = [
     "GearcadError",
     "ProfileError",
     "DesignError",
+    "ChecksFailed",
 ]
 
 _WHERE = {
@@ -42,11 +43,12 @@ _WHERE = {
     "GearcadError": "errors",
     "ProfileError": "errors",
     "DesignError": "errors",
+    "ChecksFailed": "errors",
 }
 
 if TYPE_CHECKING:
     from .api import build, check, design, load_profile, parse_profile
-    from .errors import DesignError, GearcadError, ProfileError
+    from .errors import ChecksFailed, DesignError, GearcadError, ProfileError
     from .findings import Finding
     from .mechanisms import Design, Part
     from .profiles import profile_schema

@@ -49,9 +49,14 @@ def design(profile: ProfileParams | str | Path | Mapping[str, Any]) -> Design:
     return _design(_params(profile))
 
 
-def check(profile: ProfileParams | str | Path | Mapping[str, Any]) -> Design:
-    """Everything ``build`` checks, without writing a file; the same as :func:`design`."""
-    return design(profile)
+def check(
+    profile: ProfileParams | str | Path | Mapping[str, Any], *, strict: bool = False, allow: Sequence[str] = ()
+) -> Design:
+    """Everything ``build`` checks, without writing a file: :func:`design`, and with ``strict``
+    :class:`~gearcad.errors.ChecksFailed` when a finding fails (``Design.failures``) whose code
+    is not in ``allow`` — what ``gearcad check`` exits 3 for."""
+    d = design(profile)
+    return d.raise_failures(allow) if strict else d
 
 
 def build(

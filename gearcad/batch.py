@@ -40,6 +40,8 @@ class BuildResult:
     findings: tuple[Finding, ...]
     files: dict[str, dict]
     seconds: float
+    failures: tuple[Finding, ...] = ()
+    """The findings that fail a check (``Design.failures``), before any ``--allow``."""
 
 
 def _unique(profiles: Sequence[ProfileParams]) -> None:
@@ -70,7 +72,7 @@ def _build_one(job: tuple[ProfileParams, Path, bool]) -> BuildResult:
 
     d = _named(params, lambda: design(params))
     files = _named(params, lambda: write_design(d, folder, beside=beside))
-    return BuildResult(d.name, d.summary, d.findings, files, time.perf_counter() - start)
+    return BuildResult(d.name, d.summary, d.findings, files, time.perf_counter() - start, d.failures())
 
 
 def _worker_init() -> None:

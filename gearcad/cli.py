@@ -1,7 +1,10 @@
 """Command line: ``gearcad build``, ``gearcad check``, ``gearcad schema``, ``gearcad bench``.
 
 Parses arguments and calls the API; prints what it returns.  Exit status 2 for anything the
-user can mend (a bad value, a design that cannot be made), with one line per problem.
+user can mend (a bad value, a design that cannot be made), with one line per problem; 3 when
+``check`` or ``build`` made the design but a check failed (the assembly interferes, a mesh jams
+under the process's tolerances): the files of a build are written all the same.  ``--allow CODE``
+accepts a named finding deliberately.
 """
 
 from __future__ import annotations
@@ -20,6 +23,7 @@ from .errors import GearcadError
 __all__ = ["main"]
 
 EXIT_BAD_INPUT = 2
+EXIT_CHECKS_FAILED = 3
 
 
 def _parser() -> argparse.ArgumentParser:
@@ -36,6 +40,13 @@ def _parser() -> argparse.ArgumentParser:
     )
     overrides.add_argument(
         "--unset", dest="unset", action="append", default=[], metavar="KEY", help="remove a key from the profile"
+    )
+    overrides.add_argument(
+        "--allow",
+        action="append",
+        default=[],
+        metavar="CODE",
+        help="accept a failing finding by its code (e.g. --allow jams); repeatable",
     )
     b = sub.add_parser("build", parents=[overrides], help="build profiles into DXF, SVG, STL, 3MF, charts and reports")
     b.add_argument("profiles", nargs="*", type=Path, help="profile files (default: every profiles/*.toml)")
@@ -84,15 +95,27 @@ def _progress(n: int, total: int, result) -> None:
     print(f"[{n}/{total}] {result.name}: {result.summary} ({1000 * result.seconds:.0f} ms)", flush=True)
 
 
-def _check(args) -> None:
+def _check(args) -> int:
     from .batch import design_all
+    from .findings import check_codes
 
+    allow = check_codes(args.allow)
+    failed = []
     for d in design_all(_load_all(args)):
         print(f"{d.name}: {d.summary}")
         for line in d.details:
             print(f"  {line}")
         for f in d.findings:
             print(f"  warning [{f.code}] {f.message}")
+        failed += [(d.name, f) for f in d.failures(allow)]
+    return _failed(failed)
+
+
+def _failed(failed: list) -> int:
+    """Exit status 3 with one line per failing finding on stderr, else 0."""
+    for name, f in failed:
+        print(f"gearcad: check failed: {name}: [{f.code}] {f.message} (--allow {f.code} accepts it)", file=sys.stderr)
+    return EXIT_CHECKS_FAILED if failed else 0
 
 
 def _run(args) -> int:
@@ -112,16 +135,17 @@ def _run(args) -> int:
         print(f"{len(rows)} measurements written to {args.out}/ (results.md, results.csv, *.png)")
         return 0
     if args.command == "check":
-        _check(args)
-        return 0
+        return _check(args)
     from .batch import build
+    from .findings import check_codes
 
+    allow = check_codes(args.allow)
     start = time.perf_counter()
     results = build(_load_all(args), args.out, _progress)
     wall, work = time.perf_counter() - start, math.fsum(r.seconds for r in results)
     side = f" ({work:.2f} s of building side by side)" if len(results) > 1 else ""
     print(f"built {len(results)} profile(s) into {args.out}/ in {wall:.2f} s{side}")
-    return 0
+    return _failed([(r.name, f) for r in results for f in r.failures if f.code not in allow])
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -1,6 +1,6 @@
 """Exception hierarchy: every failure a user can cause is a :class:`GearcadError`."""
 
-__all__ = ["GearcadError", "ProfileError", "DesignError"]
+__all__ = ["GearcadError", "ProfileError", "DesignError", "ChecksFailed"]
 
 
 class GearcadError(Exception):
@@ -16,3 +16,15 @@ class ProfileError(GearcadError, ValueError):
 
 class DesignError(GearcadError):
     """The profile is well formed but describes something that cannot be made."""
+
+
+class ChecksFailed(GearcadError):
+    """A design was made but a check failed (an error finding not allowed): exit status 3.
+
+    ``findings`` holds the failing findings (``gearcad.findings.Finding``)."""
+
+    exit_code = 3
+
+    def __init__(self, message: str, findings: tuple = ()):
+        super().__init__(message)
+        self.findings = findings

@@ -5,9 +5,12 @@ from __future__ import annotations
 import logging
 from dataclasses import dataclass
 
-__all__ = ["CODES", "Finding", "finding"]
+from .errors import ProfileError
+
+__all__ = ["CODES", "ERRORS", "Finding", "finding", "failing", "check_codes"]
 
 log = logging.getLogger("gearcad")
+log.addHandler(logging.NullHandler())  # a library says nothing on stderr unless its user asks
 
 CODES: dict[str, str] = {
     "corner": "a pitch curve has a tangent discontinuity (teeth cannot follow it exactly)",
@@ -26,8 +29,15 @@ CODES: dict[str, str] = {
     "interference": "the toothed pair overlaps in mesh beyond the tolerance, or loses contact",
     "relief": "a gear's teeth were trimmed by the mate's sweep where the rack's envelope is not conjugate",
     "rack-overcut": "a generating rack or hob would cut beyond the outline on a concave stretch (cut it as drawn)",
+    "jams": "a mesh's play falls below zero somewhere over the process's tolerances: the made pair can bind",
+    "loose": "a mesh's worst-case play exceeds what a maker would accept (process.max_play)",
+    "backlash-fixed": "the profile fixes teeth.backlash below what the process's worst case needs",
 }
 """Every warning code gearcad emits, with what it means.  Codes never change meaning."""
+
+ERRORS = frozenset({"interference", "jams"})
+"""Codes that fail ``gearcad check`` and ``build`` (exit status 3) unless allowed by name: the
+parts as designed, or as made under the process's tolerances, do not move."""
 
 
 @dataclass(frozen=True)
@@ -48,3 +58,17 @@ def finding(code: str, message: str, where: str = "") -> Finding:
         raise KeyError(f"unknown warning code {code!r}")
     log.warning("%s: %s", code, message)
     return Finding(code, message, where)
+
+
+def check_codes(codes) -> tuple[str, ...]:
+    """``codes`` as a tuple, each a known code (else a :class:`~.errors.ProfileError` naming the
+    known ones)."""
+    for code in codes:
+        if code not in CODES:
+            raise ProfileError(f"--allow {code!r}: not a finding code; one of {', '.join(sorted(CODES))}")
+    return tuple(codes)
+
+
+def failing(findings, allow=()) -> tuple[Finding, ...]:
+    """The findings that are errors (:data:`ERRORS`) and not allowed by code."""
+    return tuple(f for f in findings if f.code in ERRORS and f.code not in allow)

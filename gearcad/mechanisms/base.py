@@ -12,7 +12,8 @@ from typing import Any
 
 import numpy as np
 
-from ..findings import Finding
+from ..errors import ChecksFailed
+from ..findings import Finding, check_codes, failing
 from .parts import Part, Placement, placed_polygon
 
 __all__ = ["SCHEMA_VERSION", "Assembly", "Design", "Motion", "Table", "assembly_depth", "assembly_overlap", "finite"]
@@ -141,6 +142,27 @@ class Design:
     def part(self, name: str) -> Part:
         return next(p for p in self.part_list if p.name == name)
 
+    def failures(self, allow=()) -> tuple[Finding, ...]:
+        """The findings that fail a check (``findings.ERRORS``), but those whose code is in
+        ``allow``; an assembly that does not fit fails as "interference" even unreported."""
+        found = list(failing(self.findings, allow))
+        if not self.assembly.fits and "interference" not in allow and not any(f.code == "interference" for f in found):
+            found.append(Finding("interference", f"the parts overlap by {self.assembly.overlap:.4g} mm² as assembled"))
+        return tuple(found)
+
+    @property
+    def ok(self) -> bool:
+        """No failing finding: the design (and, with a process, the made parts) moves."""
+        return not self.failures()
+
+    def raise_failures(self, allow=()) -> Design:
+        """This design, or :class:`~gearcad.errors.ChecksFailed` listing each failing finding."""
+        found = self.failures(check_codes(allow))
+        if found:
+            lines = "\n".join(f"{self.name}: [{f.code}] {f.message}" for f in found)
+            raise ChecksFailed(lines, found)
+        return self
+
     def report(self, files: dict | None = None) -> dict:
         """The report as a JSON-ready dict (README, "report.json"): no NaN, no infinity."""
         p, out = self.params, self.params.output
@@ -176,6 +198,7 @@ class Design:
                 "layers": {"cut": out.cut_layer, "mark": out.mark_layer},
             },
             "warnings": [f.as_dict() for f in self.findings],
+            "ok": self.ok,
             "files": dict(files or {}),
         }
         if hasattr(p, "bore"):

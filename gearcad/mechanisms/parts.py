@@ -17,8 +17,9 @@ import shapely
 from ..errors import DesignError
 from ..geometry.arcfit import ArcRing, arc_points, decimate, fit_arcs
 from ..geometry.inset import check_chamfer
+from ..geometry.kerf import kerf_fault, kerf_path
 from ..geometry.outline import Outline, ring_area, rotate
-from ..geometry.rings import bore_ring, offset_outline
+from ..geometry.rings import bore_ring
 from ..geometry.verify import is_simple, max_distance, thin
 from ..tolerances import DEFAULT
 
@@ -155,16 +156,10 @@ def _cut_ring(ring: np.ndarray, tolerance: float, fine_tol: float, *, flat: bool
 
 
 def _kerf_keeps_shape(fine: Outline, kerf: float, fine_tol: float) -> Outline | None:
-    """The cut paths offset kerf/2 into the waste, or None where that fills spaces or closes holes
-    (some point of the part would then lie farther than kerf/2 from its cut path)."""
-    try:
-        grown = offset_outline(fine, kerf / 2, fine_tol, what="kerf")
-    except DesignError:
-        return None
-    for ring, offset in zip(fine.rings, grown.rings):
-        if max_distance(ring, offset, limit=kerf / 2 + 2 * fine_tol) > kerf / 2 + 2 * fine_tol:
-            return None
-    return grown
+    """The cut paths offset kerf/2 into the waste, or None where the beam fills a tooth space or
+    closes a hole (rounding a corner is what a beam does and passes: see :mod:`..geometry.kerf`)."""
+    path = kerf_path(fine, kerf / 2, fine_tol)
+    return None if kerf_fault(fine, path, kerf / 2, fine_tol) else path
 
 
 def _largest_kerf(fine: Outline, kerf: float, fine_tol: float) -> float:
@@ -219,13 +214,13 @@ def cut_paths(parts: tuple[Part, ...], output: CutSpec) -> tuple[Part, ...]:
     tol = output.tolerance
     fine_tol = tol * DEFAULT.fine_fraction
     flat = output.dxf == "polyline-flat"
-    kerfed = [p.fine if output.kerf <= 0 else _kerf_keeps_shape(p.fine, output.kerf, fine_tol) for p in parts]
-    if any(k is None for k in kerfed):
-        failed = [p.name for p, k in zip(parts, kerfed) if k is None]
-        largest = min(_largest_kerf(p.fine, output.kerf, fine_tol) for p in parts)
+    kerfed = [p.fine if output.kerf <= 0 else kerf_path(p.fine, output.kerf / 2, fine_tol) for p in parts]
+    faults = [(p, kerf_fault(p.fine, k, output.kerf / 2, fine_tol)) for p, k in zip(parts, kerfed) if output.kerf > 0]
+    if any(f for _, f in faults):
+        spoilt = "; ".join(one.describe(p.name) for p, f in faults for one in f)
+        largest = min(_largest_kerf(p.fine, output.kerf, fine_tol) for p, f in faults if f)
         raise DesignError(
-            f"output.kerf = {output.kerf:g}: the laser's path would fill the tooth spaces or holes of "
-            f"{', '.join(failed)}; the largest kerf every part takes is {largest:.3f} mm"
+            f"output.kerf = {output.kerf:g}: {spoilt}; the largest kerf every part takes is {largest:.3f} mm"
         )
     # a part whose rings repeat an earlier part's (the two gears of a self-conjugate pair are cut
     # alike to ~1e-13 mm) takes that part's fitted paths: fitted once, they are within the

@@ -1,0 +1,68 @@
+"""Checks that can fail a build: exit status 3 for an interfering assembly or a jamming band,
+``--allow CODE`` to accept one by name; ``design.ok`` and ``raise_failures`` in the API; the
+library quiet on stderr."""
+
+import logging
+from pathlib import Path
+
+import pytest
+
+import gearcad
+from gearcad.cli import main
+from gearcad.errors import ChecksFailed
+
+ROOT = Path(__file__).parent.parent
+CENTRE = str(ROOT / "profiles" / "elliptic_centre.toml")
+INTERFERES = ["--set", "gear1.eccentricity=0.95", "--set", "teeth.count=40", "--set", "output.tolerance=0.01"]
+QUICK = ["--set", "output.charts=false", "--set", "output.animation=false", "--set", 'output.formats=["svg"]']
+
+
+@pytest.fixture(scope="module")
+def interfering():
+    over = {"gear1.eccentricity": 0.95, "teeth.count": 40, "output.tolerance": 0.01, "output.charts": False}
+    return gearcad.design(gearcad.load_profile(CENTRE, over))
+
+
+def test_an_interfering_design_is_not_ok_and_raises_unless_allowed(interfering):
+    assert not interfering.ok and interfering.report()["ok"] is False
+    assert [f.code for f in interfering.failures()] == ["interference"]
+    with pytest.raises(ChecksFailed, match=r"elliptic_centre: \[interference\] the toothed pair overlaps") as exc:
+        interfering.raise_failures()
+    assert exc.value.exit_code == 3 and exc.value.findings[0].code == "interference"
+    assert interfering.raise_failures(allow=["interference"]) is interfering
+    with pytest.raises(gearcad.ProfileError, match="not a finding code"):
+        interfering.raise_failures(allow=["interferense"])
+
+
+def test_check_exits_3_on_interference_and_0_when_allowed(capsys):
+    assert main(["check", CENTRE, *INTERFERES]) == 3
+    err = capsys.readouterr().err
+    assert "check failed: elliptic_centre: [interference]" in err and "--allow interference" in err
+    assert main(["check", CENTRE, *INTERFERES, "--allow", "interference"]) == 0
+
+
+def test_build_writes_the_files_and_exits_3(tmp_path, capsys):
+    out = tmp_path / "out"
+    assert main(["build", CENTRE, *INTERFERES, *QUICK, "--out", str(out)]) == 3
+    assert (out / "elliptic_centre" / "report.json").is_file()
+    assert "[interference]" in capsys.readouterr().err
+
+
+def test_an_unknown_allowed_code_is_bad_input(tmp_path, capsys):
+    assert main(["build", CENTRE, "--allow", "bogus", "--out", str(tmp_path / "out")]) == 2
+    assert "--allow 'bogus': not a finding code" in capsys.readouterr().err
+    assert not (tmp_path / "out").exists()
+
+
+def test_design_from_python_prints_nothing(capsys):
+    """Findings are returned, not printed: with no logging set up at all (no handler on the root
+    logger, gearcad's at WARNING) a design with findings writes nothing to stderr."""
+    root, lib = logging.getLogger(), logging.getLogger("gearcad")
+    handlers, level = root.handlers[:], lib.level
+    root.handlers, lib.level = [], logging.WARNING
+    try:
+        d = gearcad.design(gearcad.load_profile(CENTRE, {"output.tolerance": 0.01}))
+    finally:
+        root.handlers, lib.level = handlers, level
+    assert d.findings  # the claim's findings are there
+    assert capsys.readouterr().err == ""
