@@ -16,6 +16,7 @@ from typing import Any
 from . import profiles as _profiles
 from .batch import BuildResult
 from .batch import build as _build
+from .errors import ProfileError
 from .mechanisms import Design
 from .mechanisms import design as _design
 from .profiles import ProfileParams
@@ -43,15 +44,22 @@ def _params(profile: ProfileParams | str | Path | Mapping[str, Any]) -> ProfileP
     return profile
 
 
-def design(profile: ProfileParams | str | Path | Mapping[str, Any]) -> Design:
+STAGES = ("pitch", "teeth", "full")
+
+
+def design(profile: ProfileParams | str | Path | Mapping[str, Any], stage: str = "full") -> Design:
     """The checked design of a profile (params, a path or a dict): parts, findings, report.
+    ``stage``: "pitch" (the pitch curves and their checks only), "teeth" (and the teeth judged by
+    closed form) or "full" (parts, mesh proof, everything a build writes); gear pairs only stop early.
     Raises :class:`~gearcad.errors.DesignError` for a design that cannot be made."""
-    return _design(_params(profile))
+    if stage not in STAGES:
+        raise ProfileError(f"stage = {stage!r}: must be one of {', '.join(STAGES)}")
+    return _design(_params(profile), stage)
 
 
-def check(profile: ProfileParams | str | Path | Mapping[str, Any]) -> Design:
-    """Everything ``build`` checks, without writing a file; the same as :func:`design`."""
-    return design(profile)
+def check(profile: ProfileParams | str | Path | Mapping[str, Any], stage: str = "full") -> Design:
+    """Everything ``build`` checks (or a stage's part of it), without writing a file; as :func:`design`."""
+    return design(profile, stage)
 
 
 def build(

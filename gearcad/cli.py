@@ -42,6 +42,7 @@ def _parser() -> argparse.ArgumentParser:
     b.add_argument("--out", type=Path, default=Path("out"), help="output folder (default: out)")
     c = sub.add_parser("check", parents=[overrides], help="run every check of a build without writing anything")
     c.add_argument("profiles", nargs="+", type=Path)
+    c.add_argument("--stage", choices=["pitch", "teeth", "full"], default="full", help="stop early (gear pairs)")
     s = sub.add_parser("schema", help="print the JSON Schema of profiles (for TOML editors)")
     s.add_argument("--out", type=Path, help="write it to this file instead")
     bench = sub.add_parser("bench", help="measure speed against accuracy; charts, CSV and markdown")
@@ -87,7 +88,7 @@ def _progress(n: int, total: int, result) -> None:
 def _check(args) -> None:
     from .batch import design_all
 
-    for d in design_all(_load_all(args)):
+    for d in design_all(_load_all(args), args.stage):
         print(f"{d.name}: {d.summary}")
         for line in d.details:
             print(f"  {line}")

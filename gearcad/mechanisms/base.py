@@ -114,6 +114,9 @@ class Design:
     """Part name → its twisted sections (``teeth.helical.GearSections``): such a part's solid
     is lofted through them instead of extruded."""
     seconds: float = field(default=0.0, compare=False)
+    stage: str = "full"
+    """How far the design went: ``pitch`` and ``teeth`` (gear pairs only) have no parts, no
+    assembly and no files — their reports hold only what those stages compute."""
 
     @property
     def name(self) -> str:
@@ -137,6 +140,7 @@ class Design:
             "mechanism": self.mechanism,
             "summary": self.summary,
             "units": self.units,
+            "stage": self.stage,
             "tolerance": out.tolerance,
             **self.data,
             "parts": [
@@ -151,7 +155,7 @@ class Design:
                 }
                 for part in self.part_list
             ],
-            "assembly": self.assembly.as_dict(),
+            "assembly": self.assembly.as_dict() if self.assembly is not None else None,
             "output": {
                 "thickness": out.thickness,
                 "chamfer": out.chamfer,
@@ -163,6 +167,10 @@ class Design:
             "warnings": [f.as_dict() for f in self.findings],
             "files": dict(files or {}),
         }
+        if self.stage != "full":  # nothing was cut, placed or written
+            for key in ("parts", "assembly", "output", "files"):
+                del report[key]
+            return finite(report)
         if hasattr(p, "bore"):
             report["output"]["bore"] = {
                 k: getattr(p.bore, k) for k in ("diameter", "keyway_width", "keyway_depth", "flat", "pilot")

@@ -26,7 +26,7 @@ from .plan import ToothPlan, plan_teeth, tooth_count
 from .rack import Rack, RackParams
 from .sampling import Stopped
 
-__all__ = ["ToothSpec", "ToothedPairData", "cut_pair", "undercut_free_module"]
+__all__ = ["ToothSpec", "ToothedPairData", "cut_pair", "refuse_corners", "undercut_free_module"]
 
 
 class ToothSpec(Protocol):
@@ -59,6 +59,17 @@ class ToothedPairData:
     identical_deviation: float | None
     """Largest distance between gear 2 and gear 1 turned onto it, mm (identical pairs)."""
     findings: tuple[Finding, ...]
+
+
+def refuse_corners(gears: Sequence[GearData]) -> None:
+    """A :class:`DesignError` for the first gear whose pitch curve has corners."""
+    for gear in gears:
+        if gear.shape.corners:
+            where = ", ".join(f"{math.degrees(c.phi):.2f}°" for c in gear.shape.corners)
+            raise DesignError(
+                f"{gear.name} has corners (at φ = {where}): a rack cannot roll round a corner, so "
+                "teeth need a smooth pitch curve — blend the corners (e.g. gear1.blend_width_deg)"
+            )
 
 
 def undercut_free_module(min_curvature_radius: float, rack: RackParams) -> float:
@@ -133,13 +144,7 @@ def cut_pair(
     ``mate_rotation`` is δ with r2(θ) = r1(θ + δ) when gear 2 is gear 1 turned (a self-conjugate
     pair), None otherwise: then the teeth are planned so the two gears are one part.
     """
-    for gear in gears:
-        if gear.shape.corners:
-            where = ", ".join(f"{math.degrees(c.phi):.2f}°" for c in gear.shape.corners)
-            raise DesignError(
-                f"{gear.name} has corners (at φ = {where}): a rack cannot roll round a corner, so "
-                "teeth need a smooth pitch curve — blend the corners (e.g. gear1.blend_width_deg)"
-            )
+    refuse_corners(gears)
     # a self-conjugate noncircular pair: gear 2 is gear 1 turned, and the count must make the
     # toothed gears one part too (a circle's mate is the same part at any count and turn)
     identical = None if gears[0].round else mate_rotation
