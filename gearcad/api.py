@@ -21,7 +21,7 @@ from .mechanisms import Design
 from .mechanisms import design as _design
 from .profiles import ProfileParams
 
-__all__ = ["load_profile", "parse_profile", "design", "check", "build"]
+__all__ = ["load_profile", "parse_profile", "design", "check", "build", "sweep"]
 
 
 def load_profile(path: str | Path, overrides: Mapping[str, Any] | Sequence[str] = ()) -> ProfileParams:
@@ -69,3 +69,12 @@ def build(
 ) -> list[BuildResult]:
     """Build profiles into ``out/<name>/`` (all or nothing); returns each build's result."""
     return _build([_params(p) for p in profiles], out, progress)
+
+
+def sweep(profile: str | Path | Mapping[str, Any], vary: Sequence[str] | Mapping[str, Any] = (), **options):
+    """Design a profile over varied keys at a stage; the table as a pandas DataFrame, one row per
+    design (refused ones too). See :func:`gearcad.sweeps.sweep` for the options (stage, samples,
+    sampling, seed, constraints, minimise, maximise, workers, client, progress)."""
+    from .sweeps import sweep as _sweep
+
+    return _sweep(profile, vary, **options)

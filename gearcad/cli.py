@@ -1,4 +1,4 @@
-"""Command line: ``gearcad build``, ``gearcad check``, ``gearcad schema``, ``gearcad bench``.
+"""Command line: ``gearcad build``, ``check``, ``schema``, ``bench`` and ``sweep``.
 
 Parses arguments and calls the API; prints what it returns.  Exit status 2 for anything the
 user can mend (a bad value, a design that cannot be made), with one line per problem.
@@ -55,6 +55,9 @@ def _parser() -> argparse.ArgumentParser:
         choices=["peers", "goals"],
         help="leave out a section that runs whole processes (repeatable)",
     )
+    from .sweeps.command import add_parser as add_sweep
+
+    add_sweep(sub)
     return parser
 
 
@@ -112,6 +115,10 @@ def _run(args) -> int:
         rows = run_bench(args.out, quick=args.quick, skip=args.skip, echo=print)
         print(f"{len(rows)} measurements written to {args.out}/ (results.md, results.csv, *.png)")
         return 0
+    if args.command == "sweep":
+        from .sweeps.command import run
+
+        return run(args)
     if args.command == "check":
         _check(args)
         return 0
