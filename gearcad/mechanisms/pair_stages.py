@@ -17,7 +17,7 @@ there, pointed when it is ≤ 0.  The report says ``"stage"`` and claims nothing
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -26,6 +26,7 @@ from ..findings import Finding
 from ..pitch.curve import TWO_PI, PitchCurve
 from ..pitch.focus_pair import FocusPair, focus_pair
 from ..pitch.gear import gear_data
+from ..pitch.motion import MotionFit
 from ..pitch.pair import conjugate_pair, shape_difference
 from ..profiles import EllipseParams, GearPairParams
 from ..teeth.pair import refuse_corners, undercut_free_module
@@ -51,6 +52,8 @@ class _Pitch:
     lobes: tuple[int, int]
     identical_rotation: float | None
     findings: tuple[Finding, ...]
+    extra: dict = field(default_factory=dict)
+    """More report blocks (the fitted motion's)."""
 
 
 def _is_focus_pair(params: GearPairParams) -> bool:
@@ -120,7 +123,7 @@ def _focus_pitch(params: GearPairParams) -> _Pitch:
 
 
 def _synthesised_pitch(params: GearPairParams, tol, likeness: bool) -> _Pitch:
-    curve, _ = driver_curve(params)
+    curve, law = driver_curve(params)
     if params.center_distance is not None:
         _check_center_distance(params, curve, tol)
     pair = conjugate_pair(
@@ -166,7 +169,12 @@ def _synthesised_pitch(params: GearPairParams, tol, likeness: bool) -> _Pitch:
     if likeness:
         refuse_corners(gears)  # a rack cannot roll round a corner: the cut's refusal
     findings = tuple(f for g in gears for f in _shape_findings(g))
-    return _Pitch(blocks, block, (pair.gear1, pair.gear2), pair.lobes, rotation, findings)
+    extra = {}
+    if isinstance(law, MotionFit):
+        from .pair_motion import motion_block
+
+        extra["motion"] = motion_block(law, params)
+    return _Pitch(blocks, block, (pair.gear1, pair.gear2), pair.lobes, rotation, findings, extra)
 
 
 def tip_land(rho: float, rack: RackParams) -> float:
@@ -253,7 +261,7 @@ def staged_design(params: GearPairParams, stage: str) -> Design:
     tol = replace(DEFAULT, outline_mm=params.output.tolerance)
     toothed = stage == "teeth" and params.teeth is not None
     pitch = _focus_pitch(params) if _is_focus_pair(params) else _synthesised_pitch(params, tol, toothed)
-    data = {"gears": pitch.blocks, "pair": pitch.pair}
+    data = {"gears": pitch.blocks, "pair": pitch.pair, **pitch.extra}
     p = pitch.pair
     summary = (
         f"stage {stage}: E = {p['center_distance']:.6f} mm, closure {p['closure_error']:.1e} rad, "
