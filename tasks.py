@@ -54,7 +54,7 @@ def ensure_environment() -> None:
     if subprocess.run([*pip, "--version"], capture_output=True).returncode != 0:
         pip = [sys.executable, "-m", "pip", "--python", str(PYTHON)]
     _say("installing gearcad and its dependencies (first run only)")
-    subprocess.run([*pip, "install", "--quiet", "--disable-pip-version-check", "-e", f"{ROOT}[test]"], check=True)
+    subprocess.run([*pip, "install", "--quiet", "--disable-pip-version-check", "-e", f"{ROOT}[test,sweep]"], check=True)
     STAMP.write_text(want)
 
 

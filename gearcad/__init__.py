@@ -20,6 +20,7 @@ __all__ = [
     "design",
     "check",
     "build",
+    "sweep",
     "profile_schema",
     "Design",
     "Part",
@@ -36,6 +37,7 @@ _WHERE = {
     "design": "api",
     "check": "api",
     "build": "api",
+    "sweep": "api",
     "profile_schema": "profiles",
     "Design": "mechanisms",
     "Part": "mechanisms",
@@ -47,7 +49,7 @@ _WHERE = {
 }
 
 if TYPE_CHECKING:
-    from .api import build, check, design, load_profile, parse_profile
+    from .api import build, check, design, load_profile, parse_profile, sweep
     from .errors import ChecksFailed, DesignError, GearcadError, ProfileError
     from .findings import Finding
     from .mechanisms import Design, Part

@@ -16,11 +16,12 @@ from typing import Any
 from . import profiles as _profiles
 from .batch import BuildResult
 from .batch import build as _build
+from .errors import ProfileError
 from .mechanisms import Design
 from .mechanisms import design as _design
 from .profiles import ProfileParams
 
-__all__ = ["load_profile", "parse_profile", "design", "check", "build"]
+__all__ = ["load_profile", "parse_profile", "design", "check", "build", "sweep"]
 
 
 def load_profile(path: str | Path, overrides: Mapping[str, Any] | Sequence[str] = ()) -> ProfileParams:
@@ -43,19 +44,30 @@ def _params(profile: ProfileParams | str | Path | Mapping[str, Any]) -> ProfileP
     return profile
 
 
-def design(profile: ProfileParams | str | Path | Mapping[str, Any]) -> Design:
+STAGES = ("pitch", "teeth", "full")
+
+
+def design(profile: ProfileParams | str | Path | Mapping[str, Any], stage: str = "full") -> Design:
     """The checked design of a profile (params, a path or a dict): parts, findings, report.
+    ``stage``: "pitch" (the pitch curves and their checks only), "teeth" (and the teeth judged by
+    closed form) or "full" (parts, mesh proof, everything a build writes); gear pairs only stop early.
     Raises :class:`~gearcad.errors.DesignError` for a design that cannot be made."""
-    return _design(_params(profile))
+    if stage not in STAGES:
+        raise ProfileError(f"stage = {stage!r}: must be one of {', '.join(STAGES)}")
+    return _design(_params(profile), stage)
 
 
 def check(
-    profile: ProfileParams | str | Path | Mapping[str, Any], *, strict: bool = False, allow: Sequence[str] = ()
+    profile: ProfileParams | str | Path | Mapping[str, Any],
+    stage: str = "full",
+    *,
+    strict: bool = False,
+    allow: Sequence[str] = (),
 ) -> Design:
-    """Everything ``build`` checks, without writing a file: :func:`design`, and with ``strict``
-    :class:`~gearcad.errors.ChecksFailed` when a finding fails (``Design.failures``) whose code
-    is not in ``allow`` — what ``gearcad check`` exits 3 for."""
-    d = design(profile)
+    """Everything ``build`` checks (or a stage's part of it), without writing a file: :func:`design`,
+    and with ``strict`` :class:`~gearcad.errors.ChecksFailed` when a finding fails
+    (``Design.failures``) whose code is not in ``allow`` — what ``gearcad check`` exits 3 for."""
+    d = design(profile, stage)
     return d.raise_failures(allow) if strict else d
 
 
@@ -66,3 +78,12 @@ def build(
 ) -> list[BuildResult]:
     """Build profiles into ``out/<name>/`` (all or nothing); returns each build's result."""
     return _build([_params(p) for p in profiles], out, progress)
+
+
+def sweep(profile: str | Path | Mapping[str, Any], vary: Sequence[str] | Mapping[str, Any] = (), **options):
+    """Design a profile over varied keys at a stage; the table as a pandas DataFrame, one row per
+    design (refused ones too). See :func:`gearcad.sweeps.sweep` for the options (stage, samples,
+    sampling, seed, constraints, minimise, maximise, workers, client, progress)."""
+    from .sweeps import sweep as _sweep
+
+    return _sweep(profile, vary, **options)

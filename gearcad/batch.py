@@ -59,10 +59,10 @@ def _named(params: ProfileParams, work: Callable[[], object]):
         raise type(exc)(f"{params.name}: {exc}") from None
 
 
-def design_all(profiles: Sequence[ProfileParams]) -> list[Design]:
-    """Design every profile (every check a build makes, no file written)."""
+def design_all(profiles: Sequence[ProfileParams], stage: str = "full") -> list[Design]:
+    """Design every profile (every check a build makes, or a stage's, no file written)."""
     _unique(profiles)
-    return [_named(p, lambda p=p: design(p)) for p in profiles]
+    return [_named(p, lambda p=p: design(p, stage)) for p in profiles]
 
 
 def _build_one(job: tuple[ProfileParams, Path, bool]) -> BuildResult:

@@ -1,4 +1,4 @@
-"""Command line: ``gearcad build``, ``gearcad check``, ``gearcad schema``, ``gearcad bench``.
+"""Command line: ``gearcad build``, ``check``, ``schema``, ``bench`` and ``sweep``.
 
 Parses arguments and calls the API; prints what it returns.  Exit status 2 for anything the
 user can mend (a bad value, a design that cannot be made), with one line per problem; 3 when
@@ -53,6 +53,7 @@ def _parser() -> argparse.ArgumentParser:
     b.add_argument("--out", default="out", help="output folder (default: out)")  # a str: '' is refused, not '.'
     c = sub.add_parser("check", parents=[overrides], help="run every check of a build without writing anything")
     c.add_argument("profiles", nargs="+", type=Path)
+    c.add_argument("--stage", choices=["pitch", "teeth", "full"], default="full", help="stop early (gear pairs)")
     s = sub.add_parser("schema", help="print the JSON Schema of profiles (for TOML editors)")
     s.add_argument("--out", type=Path, help="write it to this file instead")
     bench = sub.add_parser("bench", help="measure speed against accuracy; charts, CSV and markdown")
@@ -65,6 +66,9 @@ def _parser() -> argparse.ArgumentParser:
         choices=["peers", "goals"],
         help="leave out a section that runs whole processes (repeatable)",
     )
+    from .sweeps.command import add_parser as add_sweep
+
+    add_sweep(sub)
     return parser
 
 
@@ -101,7 +105,7 @@ def _check(args) -> int:
 
     allow = check_codes(args.allow)
     failed = []
-    for d in design_all(_load_all(args)):
+    for d in design_all(_load_all(args), args.stage):
         print(f"{d.name}: {d.summary}")
         for line in d.details:
             print(f"  {line}")
@@ -134,6 +138,10 @@ def _run(args) -> int:
         rows = run_bench(args.out, quick=args.quick, skip=args.skip, echo=print)
         print(f"{len(rows)} measurements written to {args.out}/ (results.md, results.csv, *.png)")
         return 0
+    if args.command == "sweep":
+        from .sweeps.command import run
+
+        return run(args)
     if args.command == "check":
         return _check(args)
     from .batch import build

@@ -10,6 +10,7 @@ import time
 from dataclasses import replace
 from importlib import import_module
 
+from ..errors import GearcadError
 from ..profiles import ProfileParams
 from . import layouts
 from .base import Design
@@ -27,9 +28,18 @@ _MODULES = {
 load the roller bodies', the rack drive's or the trains' numerics)."""
 
 
-def design(params: ProfileParams) -> Design:
-    """The checked design of any mechanism's profile parameters."""
+def design(params: ProfileParams, stage: str = "full") -> Design:
+    """The checked design of any mechanism's profile parameters; ``stage`` "pitch" or "teeth"
+    stops a gear pair early (:mod:`.pair_stages`), with no parts."""
     start = time.perf_counter()
+    if stage != "full":
+        from .pair_stages import staged_design
+
+        if params.mechanism != "gear-pair":
+            raise GearcadError(
+                f"stage = {stage!r}: only a gear pair has stages before 'full' (this is a {params.mechanism})"
+            )
+        return replace(staged_design(params, stage), seconds=time.perf_counter() - start)
     result = import_module(f".{_MODULES[params.mechanism]}", __name__).design(params)
     out = params.output
     parts = cut_paths(result.part_list, out)

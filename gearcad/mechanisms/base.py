@@ -130,6 +130,9 @@ class Design:
     """Part name → its twisted sections (``teeth.helical.GearSections``): such a part's solid
     is lofted through them instead of extruded."""
     seconds: float = field(default=0.0, compare=False)
+    stage: str = "full"
+    """How far the design went: ``pitch`` and ``teeth`` (gear pairs only) have no parts, no
+    assembly and no files — their reports hold only what those stages compute."""
 
     @property
     def name(self) -> str:
@@ -174,6 +177,7 @@ class Design:
             "mechanism": self.mechanism,
             "summary": self.summary,
             "units": self.units,
+            "stage": self.stage,
             "tolerance": out.tolerance,
             **self.data,
             "parts": [
@@ -188,7 +192,7 @@ class Design:
                 }
                 for part in self.part_list
             ],
-            "assembly": self.assembly.as_dict(),
+            "assembly": self.assembly.as_dict() if self.assembly is not None else None,
             "output": {
                 "thickness": out.thickness,
                 "chamfer": out.chamfer,
@@ -201,6 +205,10 @@ class Design:
             "ok": self.ok,
             "files": dict(files or {}),
         }
+        if self.stage != "full":  # nothing was cut, placed or written
+            for key in ("parts", "assembly", "output", "files"):
+                del report[key]
+            return finite(report)
         if hasattr(p, "bore"):
             report["output"]["bore"] = {
                 k: getattr(p.bore, k) for k in ("diameter", "keyway_width", "keyway_depth", "flat", "pilot")

@@ -210,6 +210,10 @@ def _report_data(
         }
     if pitch.walker is not None:
         data["walker"] = dict(vars(pitch.walker))
+    if pitch.motion is not None:
+        from .pair_motion import motion_block
+
+        data["motion"] = motion_block(pitch.motion, params)
     return data
 
 

@@ -18,6 +18,7 @@ from ..pitch import walker as W
 from ..pitch.curve import TWO_PI, PitchCurve, radius_range
 from ..pitch.gear import GearData, gear_data
 from ..pitch.kinematics import KinematicsData, kinematics
+from ..pitch.motion import MotionFit, law_functions
 from ..pitch.pair import (
     ClaimData,
     PairData,
@@ -32,6 +33,7 @@ from ..profiles import (
     CircleParams,
     EllipseParams,
     GearPairParams,
+    MotionParams,
     OvalParams,
     RatioParams,
     SamplesParams,
@@ -83,10 +85,13 @@ class PairDesign:
     findings: tuple[Finding, ...]
     claim: ClaimData | None = None
     walker: WalkerData | None = None
+    motion: MotionFit | None = None
+    """The law fitted to a required motion (``curve = "motion"``)."""
 
 
-def driver_curve(params: GearPairParams) -> tuple[PitchCurve, W.RatioLaw | None]:
-    """Gear 1's pitch curve from its parameters (and the walker's ratio law if any)."""
+def driver_curve(params: GearPairParams) -> tuple[PitchCurve, W.RatioLaw | MotionFit | None]:
+    """Gear 1's pitch curve from its parameters (and the walker's ratio law, or the law fitted to
+    a required motion, if any)."""
     g = params.gear1
     if isinstance(g, EllipseParams):
         curve = shapes.ellipse_focus(g.a, g.b) if g.pivot == "focus" else shapes.ellipse_centre(g.a, g.b)
@@ -113,6 +118,12 @@ def driver_curve(params: GearPairParams) -> tuple[PitchCurve, W.RatioLaw | None]
     if isinstance(g, WalkerParams):
         law = W.ratio_law(_walker_geometry(params), blend_width=g.blend_width)
         return W.wheel_curve(law), law
+    if isinstance(g, MotionParams):
+        from .pair_motion import motion_law
+
+        fit = motion_law(params)
+        k, dk, d2k = law_functions(fit)
+        return shapes.from_ratio("curve from a motion", k, dk, d2k, params.center_distance, lobes=g.lobes), fit
     raise TypeError(f"unknown curve parameters {g!r}")  # pragma: no cover
 
 
@@ -152,7 +163,7 @@ def _check_center_distance(params: GearPairParams, curve: PitchCurve, tol: Toler
         raise DesignError(
             f"pair.center_distance = {e:g}: must exceed {params.gear1_name}'s largest radius {r_max:.6g} mm"
         )
-    if isinstance(params.gear1, (RatioParams, WalkerParams)):
+    if isinstance(params.gear1, (RatioParams, WalkerParams, MotionParams)):
         return  # the law closes by construction (checked in the profile, measured below)
     target = TWO_PI * curve.lobes / params.gear2_lobes
     turn = angle_map(curve, e, tol=tol).turn
@@ -283,7 +294,7 @@ def pitch_design(params: GearPairParams, *, tol: Tolerances = DEFAULT) -> PairDe
                 )
             )
     walker = None
-    if law is not None:
+    if isinstance(law, W.RatioLaw):
         walker, extra = _walker(params, law, pair, kin, tol)
         findings += extra
     likeness = shape_difference(pair.gear1, pair.gear2) if pair.lobes[0] == pair.lobes[1] else (None, None)
@@ -298,4 +309,5 @@ def pitch_design(params: GearPairParams, *, tol: Tolerances = DEFAULT) -> PairDe
         findings=tuple(findings),
         claim=claim,
         walker=walker,
+        motion=law if isinstance(law, MotionFit) else None,
     )

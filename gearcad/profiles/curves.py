@@ -8,6 +8,7 @@ from typing import Annotated, Literal
 from pydantic import Field, model_validator
 
 from .common import ParamsModel
+from .motion import MotionParams
 from .values import Length, Must, PartName, Problems, choice, close_enough, integer, number, terms
 
 __all__ = [
@@ -17,12 +18,13 @@ __all__ = [
     "RatioParams",
     "WalkerParams",
     "SamplesParams",
+    "MotionParams",
     "CurveParams",
     "Curve",
     "CURVES",
 ]
 
-CURVES = ("ellipse", "oval", "circle", "ratio", "walker", "samples")
+CURVES = ("ellipse", "oval", "circle", "ratio", "walker", "samples", "motion")
 
 Lobes = integer(ge=1, le=24)
 Eccentricity = number("an eccentricity", ge=0, lt=1)
@@ -210,6 +212,6 @@ class SamplesParams(ParamsModel):
     """Lobes of the curve (the samples should repeat that many times)."""
 
 
-CurveParams = EllipseParams | OvalParams | CircleParams | RatioParams | WalkerParams | SamplesParams
+CurveParams = EllipseParams | OvalParams | CircleParams | RatioParams | WalkerParams | SamplesParams | MotionParams
 Curve = Annotated[CurveParams, Field(discriminator="curve")]
 """``[gear1]`` as a field: the union, told apart by ``curve``."""

@@ -8,7 +8,7 @@ from typing import Annotated, Literal
 from pydantic import model_validator
 
 from .common import BoreParams, OutputParams, ParamsModel, distinct_names
-from .curves import Curve, Lobes, RatioParams, WalkerParams
+from .curves import Curve, Lobes, MotionParams, RatioParams, WalkerParams
 from .values import (
     LARGEST_LENGTH,
     SMALLEST_LENGTH,
@@ -180,7 +180,7 @@ class GearPairParams(ParamsModel):
             problems.add(
                 "pair.driver", driver, f"must be one of {gear1.name!r}, {self.gear2.name!r} (the gears' names)"
             )
-        if isinstance(gear1, RatioParams | WalkerParams) and self.center_distance is None:
+        if isinstance(gear1, RatioParams | WalkerParams | MotionParams) and self.center_distance is None:
             problems.add(
                 "pair.center_distance",
                 "solve",

@@ -27,7 +27,7 @@ from .rack import Rack, RackParams
 from .relief import Relief, relieve
 from .sampling import Stopped
 
-__all__ = ["ToothSpec", "ToothedPairData", "cut_pair", "undercut_free_module"]
+__all__ = ["ToothSpec", "ToothedPairData", "cut_pair", "refuse_corners", "undercut_free_module"]
 
 
 class ToothSpec(Protocol):
@@ -62,6 +62,17 @@ class ToothedPairData:
     findings: tuple[Finding, ...]
     relief: Relief | None = None
     """Gear 1's trim by the mate's sweep (None where the rack's teeth mesh as cut)."""
+
+
+def refuse_corners(gears: Sequence[GearData]) -> None:
+    """A :class:`DesignError` for the first gear whose pitch curve has corners."""
+    for gear in gears:
+        if gear.shape.corners:
+            where = ", ".join(f"{math.degrees(c.phi):.2f}°" for c in gear.shape.corners)
+            raise DesignError(
+                f"{gear.name} has corners (at φ = {where}): a rack cannot roll round a corner, so "
+                "teeth need a smooth pitch curve — blend the corners (e.g. gear1.blend_width_deg)"
+            )
 
 
 def undercut_free_module(min_curvature_radius: float, rack: RackParams) -> float:
@@ -139,13 +150,7 @@ def cut_pair(
     ``relief`` trims gear 1 by the mate's sweep where the proof finds the rack-cut pair too deep
     (:mod:`.relief`); False keeps the rack's teeth as cut.
     """
-    for gear in gears:
-        if gear.shape.corners:
-            where = ", ".join(f"{math.degrees(c.phi):.2f}°" for c in gear.shape.corners)
-            raise DesignError(
-                f"{gear.name} has corners (at φ = {where}): a rack cannot roll round a corner, so "
-                "teeth need a smooth pitch curve — blend the corners (e.g. gear1.blend_width_deg)"
-            )
+    refuse_corners(gears)
     # a self-conjugate noncircular pair: gear 2 is gear 1 turned, and the count must make the
     # toothed gears one part too (a circle's mate is the same part at any count and turn)
     identical = None if gears[0].round else mate_rotation

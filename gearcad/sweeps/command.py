@@ -1,0 +1,92 @@
+"""``gearcad sweep``: its arguments and what it runs (kept here so cli.py only registers it)."""
+
+from __future__ import annotations
+
+import argparse
+import time
+from pathlib import Path
+
+from ..errors import ProfileError
+
+__all__ = ["add_parser", "run"]
+
+
+def add_parser(sub) -> None:
+    s = sub.add_parser(
+        "sweep",
+        help="design a profile over varied keys at a stage: table (Parquet, CSV), Pareto front, HTML page",
+        description="Vary profile keys (grids, lists, random or Latin-hypercube samples), design every point "
+        "at a stage, and write sweep.parquet, sweep.csv, front.csv and sweep.html into --out.",
+    )
+    s.add_argument("profile", nargs="?", type=Path, help="the profile (or give it in --file)")
+    s.add_argument("--file", type=Path, help="a sweep TOML: profile, stage, [vary], samples, constraints, objectives")
+    s.add_argument(
+        "--vary",
+        action="append",
+        default=[],
+        metavar="KEY=a:b:n|a:b|v1,v2",
+        help="vary a profile key: n values from a to b, a range to sample, or a list (repeatable)",
+    )
+    s.add_argument("--stage", choices=["pitch", "teeth", "full"], help="how far each design goes (default: teeth)")
+    s.add_argument("--samples", type=int, help="draws for the a:b ranges")
+    s.add_argument("--sampling", choices=["lhs", "random"], help="how ranges are drawn (default: lhs)")
+    s.add_argument("--seed", type=int, help="the draws' seed (default: 0)")
+    s.add_argument(
+        "--constraint",
+        action="append",
+        default=[],
+        metavar="KEY OP VALUE",
+        help="e.g. 'gears.0.teeth.undercut == false' (repeatable)",
+    )
+    s.add_argument("--minimise", action="append", default=[], metavar="KEY", help="an objective (a report key)")
+    s.add_argument("--maximise", action="append", default=[], metavar="KEY", help="an objective (a report key)")
+    s.add_argument("--workers", type=int, help="local processes (default: every core)")
+    s.add_argument("--scheduler", metavar="ADDRESS", help="run on this Dask scheduler, e.g. tcp://10.0.0.5:8786")
+    s.add_argument("--out", type=Path, default=Path("out/sweep"), help="output folder (default: out/sweep)")
+
+
+def run(args: argparse.Namespace) -> int:
+    from . import stderr_progress, sweep, write_sweep
+    from .space import SweepSpec, parse_vary, read_sweep_file
+
+    spec = read_sweep_file(args.file) if args.file else SweepSpec()
+    profile = args.profile or spec.profile
+    if profile is None:
+        raise ProfileError('gearcad sweep: give a profile (or profile = "…" in --file)')
+    if args.workers is not None and args.workers < 1:
+        raise ProfileError(f"--workers {args.workers}: must be a whole number ≥ 1")
+    vary = [*spec.vary, *(parse_vary(v) for v in args.vary)]
+    client = None
+    if args.scheduler:
+        from distributed import Client
+
+        try:
+            client = Client(args.scheduler, timeout="20s")
+        except OSError as exc:
+            raise ProfileError(f"--scheduler {args.scheduler}: cannot reach it ({exc})") from None
+    start = time.perf_counter()
+    try:
+        table = sweep(
+            profile,
+            vary,
+            stage=args.stage or spec.stage,
+            samples=args.samples if args.samples is not None else spec.samples,
+            sampling=args.sampling or spec.sampling,
+            seed=args.seed if args.seed is not None else spec.seed,
+            constraints=[*spec.constraints, *args.constraint],
+            minimise=[*spec.minimise, *args.minimise],
+            maximise=[*spec.maximise, *args.maximise],
+            workers=args.workers,
+            client=client,
+            progress=stderr_progress(),
+        )
+    finally:
+        if client is not None:
+            client.close()
+    files = write_sweep(table, args.out)
+    made = int(table["refusal"].isna().sum())
+    print(
+        f"swept {len(table)} designs ({made} made, {len(table) - made} refused, {int(table['pareto'].sum())} on the "
+        f"front) in {time.perf_counter() - start:.2f} s: {', '.join(str(p) for p in files.values())}"
+    )
+    return 0

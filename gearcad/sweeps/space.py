@@ -1,0 +1,167 @@
+"""The designs a sweep visits: profile keys varied over grids, lists or samples.
+
+``KEY=a:b:n`` is n values from a to b (whole numbers when a, b and the step are whole);
+``KEY=v1,v2,…`` a list (each read as TOML); ``KEY=a:b`` a range that ``samples`` random or
+Latin-hypercube draws fill.  Grids and lists multiply; the drawn points repeat for each of their
+combinations.  The order of the points, and every drawn value, depends only on the inputs and
+the seed — never on how many workers evaluate them.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+import tomllib
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from ..errors import ProfileError
+from ..profiles.reading import _toml_value
+
+__all__ = ["Vary", "SweepSpec", "parse_vary", "points", "read_sweep_file", "SAMPLINGS", "MAX_POINTS"]
+
+SAMPLINGS = ("random", "lhs")
+MAX_POINTS = 1_000_000
+"""A sweep's designs at most: the table of a million rows is ~1 GB in memory."""
+
+
+@dataclass(frozen=True)
+class Vary:
+    """One varied key: fixed ``values`` (grid or list), or a ``span`` (lo, hi) to sample."""
+
+    key: str
+    values: tuple[Any, ...] = ()
+    span: tuple[float, float] | None = None
+
+
+@dataclass(frozen=True)
+class SweepSpec:
+    """What a sweep file (or the command line) asks for."""
+
+    profile: str | None = None
+    vary: tuple[Vary, ...] = ()
+    stage: str = "teeth"
+    samples: int = 0
+    sampling: str = "lhs"
+    seed: int = 0
+    constraints: tuple[str, ...] = ()
+    minimise: tuple[str, ...] = ()
+    maximise: tuple[str, ...] = ()
+
+
+def _number(text: str, item: str) -> float | int:
+    value = _toml_value(text.strip())
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+        raise ProfileError(f"--vary {item!r}: {text.strip()!r} must be a number")
+    return value
+
+
+def parse_vary(item: str) -> Vary:
+    """A ``--vary`` argument: ``KEY=a:b:n``, ``KEY=a:b`` or ``KEY=v1,v2,…``."""
+    key, sep, rest = item.partition("=")
+    key = key.strip()
+    if not sep or not key or not rest.strip():
+        raise ProfileError(f"--vary {item!r}: must be KEY=a:b:n, KEY=a:b (sampled) or KEY=v1,v2,…")
+    if ":" in rest:
+        parts = rest.split(":")
+        if len(parts) not in (2, 3):
+            raise ProfileError(f"--vary {item!r}: a range is a:b:n (n values) or a:b (sampled)")
+        lo, hi = (_number(p, item) for p in parts[:2])
+        if len(parts) == 2:
+            if not lo < hi:
+                raise ProfileError(f"--vary {item!r}: a sampled range needs a < b")
+            return Vary(key, span=(float(lo), float(hi)))
+        n = _number(parts[2], item)
+        if not isinstance(n, int) or not 1 <= n <= MAX_POINTS:
+            raise ProfileError(f"--vary {item!r}: n = {parts[2].strip()} must be a whole number from 1 to {MAX_POINTS}")
+        grid = np.linspace(lo, hi, n)
+        whole = all(isinstance(v, int) for v in (lo, hi)) and np.all(grid == np.round(grid))
+        return Vary(key, tuple(int(v) for v in grid) if whole else tuple(float(v) for v in grid))
+    values = tuple(_toml_value(v.strip()) for v in rest.split(","))
+    return Vary(key, values)
+
+
+def _draws(spans: list[tuple[float, float]], samples: int, sampling: str, seed: int) -> np.ndarray:
+    """(samples, len(spans)) values: uniform draws, or a Latin hypercube (one draw in each of
+    ``samples`` equal strata of every key, the strata paired at random)."""
+    rng = np.random.default_rng(seed)
+    if sampling == "random":
+        u = rng.random((samples, len(spans)))
+    else:
+        u = (np.argsort(rng.random((samples, len(spans))), axis=0) + rng.random((samples, len(spans)))) / samples
+    lo = np.array([s[0] for s in spans])
+    hi = np.array([s[1] for s in spans])
+    return lo + u * (hi - lo)
+
+
+def points(spec: SweepSpec) -> list[dict[str, Any]]:
+    """Every design's overrides {key: value}, in the sweep's order."""
+    keys = [v.key for v in spec.vary]
+    if len(set(keys)) != len(keys):
+        twice = next(k for k in keys if keys.count(k) > 1)
+        raise ProfileError(f"--vary {twice}: the key is varied twice")
+    if spec.sampling not in SAMPLINGS:
+        raise ProfileError(f"sampling = {spec.sampling!r}: must be one of {', '.join(SAMPLINGS)}")
+    fixed = [v for v in spec.vary if v.span is None]
+    spanned = [v for v in spec.vary if v.span is not None]
+    if spanned and spec.samples < 1:
+        raise ProfileError(f"--vary {spanned[0].key}: a range a:b is sampled; give --samples N (N ≥ 1) or a:b:n")
+    count = math.prod(len(v.values) for v in fixed) * (spec.samples if spanned else 1)
+    if count > MAX_POINTS:
+        raise ProfileError(f"the sweep has {count} designs: at most {MAX_POINTS}")
+    draws = _draws([v.span for v in spanned], spec.samples, spec.sampling, spec.seed) if spanned else [()]
+    out = []
+    for combo in itertools.product(*(v.values for v in fixed)):
+        for row in draws:
+            out.append({**dict(zip((v.key for v in fixed), combo)), **{v.key: float(x) for v, x in zip(spanned, row)}})
+    return out
+
+
+def _strings(data: dict, key: str) -> tuple[str, ...]:
+    value = data.get(key, [])
+    value = [value] if isinstance(value, str) else value
+    if not isinstance(value, list) or not all(isinstance(v, str) for v in value):
+        raise ProfileError(f"{key} = {value!r}: must be a list of strings")
+    return tuple(value)
+
+
+def read_sweep_file(path: Path) -> SweepSpec:
+    """A sweep TOML: profile, stage, samples, sampling, seed, constraints, minimise, maximise and a
+    ``[vary]`` table whose values are "a:b:n" / "a:b" strings or lists of values."""
+    try:
+        data = tomllib.loads(Path(path).read_text(encoding="utf-8"))
+    except (OSError, UnicodeDecodeError, tomllib.TOMLDecodeError) as exc:
+        raise ProfileError(f"{path}: cannot read the sweep file ({exc})") from None
+    known = {"profile", "vary", "stage", "samples", "sampling", "seed", "constraints", "minimise", "maximise"}
+    unknown = sorted(set(data) - known)
+    if unknown:
+        raise ProfileError(f"{path}: {unknown[0]}: unknown key (allowed: {', '.join(sorted(known))})")
+    vary = []
+    table = data.get("vary", {})
+    if not isinstance(table, dict):
+        raise ProfileError(f'{path}: vary must be a table of KEY = "a:b:n" or [values]')
+    for key, value in table.items():
+        if isinstance(value, list):
+            vary.append(Vary(key, tuple(value)))
+        else:
+            vary.append(parse_vary(f"{key}={value}"))
+    for key in ("samples", "seed"):
+        if not isinstance(data.get(key, 0), int) or data.get(key, 0) < 0:
+            raise ProfileError(f"{path}: {key} = {data[key]!r}: must be a whole number ≥ 0")
+    profile = data.get("profile")
+    if profile is not None:
+        profile = str((Path(path).parent / profile) if not Path(profile).is_absolute() else profile)
+    return SweepSpec(
+        profile=profile,
+        vary=tuple(vary),
+        stage=str(data.get("stage", "teeth")),
+        samples=data.get("samples", 0),
+        sampling=str(data.get("sampling", "lhs")),
+        seed=data.get("seed", 0),
+        constraints=_strings(data, "constraints"),
+        minimise=_strings(data, "minimise"),
+        maximise=_strings(data, "maximise"),
+    )
