@@ -1,4 +1,4 @@
-"""Command line: ``gearcad build``, ``check``, ``schema``, ``bench`` and ``sweep``.
+"""Command line: ``gearcad build``, ``check``, ``new``, ``compare``, ``sweep``, ``schema``, ``bench``.
 
 Parses arguments and calls the API; prints what it returns.  Exit status 2 for anything the
 user can mend (a bad value, a design that cannot be made), with one line per problem; 3 when
@@ -54,6 +54,12 @@ def _parser() -> argparse.ArgumentParser:
     c = sub.add_parser("check", parents=[overrides], help="run every check of a build without writing anything")
     c.add_argument("profiles", nargs="+", type=Path)
     c.add_argument("--stage", choices=["pitch", "teeth", "full"], default="full", help="stop early (gear pairs)")
+    n = sub.add_parser("new", help="start a profile of your own from an example, with the schema beside it")
+    n.add_argument("name", help="the new profile's name (NAME.toml, out/NAME)")
+    n.add_argument("--from", dest="source", default="elliptic_focus", help="an example's name or a profile's path")
+    n.add_argument("--dir", type=Path, default=Path("."), help="where to write (default: here)")
+    cmp = sub.add_parser("compare", parents=[overrides], help="two designs side by side (--set, --unset: the 2nd)")
+    cmp.add_argument("profiles", nargs=2, type=Path, metavar="PROFILE")
     s = sub.add_parser("schema", help="print the JSON Schema of profiles (for TOML editors)")
     s.add_argument("--out", type=Path, help="write it to this file instead")
     bench = sub.add_parser("bench", help="measure speed against accuracy; charts, CSV and markdown")
@@ -95,8 +101,15 @@ def _load_all(args) -> list:
     return profiles
 
 
-def _progress(n: int, total: int, result) -> None:
-    print(f"[{n}/{total}] {result.name}: {result.summary} ({1000 * result.seconds:.0f} ms)", flush=True)
+def _progress(out: Path):
+    """The line per built profile; it says when the build will replace an earlier one."""
+    earlier = {p.name for p in out.iterdir() if p.is_dir()} if out.is_dir() else set()
+
+    def line(n: int, total: int, result) -> None:
+        replaces = f", replaces {out / result.name}" if result.name in earlier else ""
+        print(f"[{n}/{total}] {result.name}: {result.summary} ({1000 * result.seconds:.0f} ms{replaces})", flush=True)
+
+    return line
 
 
 def _check(args) -> int:
@@ -132,6 +145,16 @@ def _run(args) -> int:
         else:
             sys.stdout.write(text)
         return 0
+    if args.command == "new":
+        from .starter import new_profile
+
+        print("wrote " + " and ".join(map(str, new_profile(args.name, args.source, args.dir))))
+        return 0
+    if args.command == "compare":
+        from .compare import compare_lines
+
+        print("\n".join(compare_lines(*args.profiles, args.overrides, args.unset)))
+        return 0
     if args.command == "bench":
         from .bench import run_bench
 
@@ -149,7 +172,7 @@ def _run(args) -> int:
 
     allow = check_codes(args.allow)
     start = time.perf_counter()
-    results = build(_load_all(args), args.out, _progress)
+    results = build(_load_all(args), args.out, _progress(Path(args.out)))
     wall, work = time.perf_counter() - start, math.fsum(r.seconds for r in results)
     side = f" ({work:.2f} s of building side by side)" if len(results) > 1 else ""
     print(f"built {len(results)} profile(s) into {args.out}/ in {wall:.2f} s{side}")

@@ -237,7 +237,11 @@ def _details(pitch: PairDesign, teeth: ToothedPairData | None) -> list[str]:
         for g in pitch.gears
     ]
     lo, hi = pitch.ratio_range
-    lines.append(f"ratio ω2/ω1 {lo:.6g}…{hi:.6g}")
+    one, two = (g.name for g in pitch.gears)
+    line = f"ratio ω2/ω1 = ω({two})/ω({one}) {lo:.6g}…{hi:.6g} against {one}'s angle"
+    if pitch.kinematics.driver == 2:  # the kinematics are per driver turn: say the inverse too
+        line += f"; ω({one})/ω({two}) {1 / hi:.6g}…{1 / lo:.6g} per driver ({two}) turn, as charted"
+    lines.append(line)
     if pitch.walker is not None:
         w = pitch.walker
         lines.append(

@@ -119,7 +119,8 @@ class BoreParams(ParamsModel):
     keyway_depth: LengthOrZero = 0.0
     """Depth of the keyway beyond the bore's edge, mm."""
     flat: LengthOrZero = 0.0
-    """Distance from the centre to a D-flat at polar angle 0, mm (0: none)."""
+    """D-flat: the distance from the bore's centre (the pivot) to the flat, which faces +x, mm (0: none);
+    under the bore radius, e.g. 2.5 for a 6 mm shaft whose flat is ground 0.5 mm deep."""
     pilot: PilotDiameter = 1.0
     """Where no bore is given, a pilot hole of this diameter marks the pivot exactly (a noncircular
     gear works only on its exact pivot), mm; 0 for none (the engraved cross remains)."""

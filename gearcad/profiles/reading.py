@@ -119,12 +119,15 @@ def apply_overrides(
     ``overrides`` is either ``KEY=VALUE`` strings, as ``--set`` gives them (VALUE is read as
     TOML, else taken as a plain string), or a mapping ``{dotted key: value}`` where None
     removes the key. Setting one of :data:`EXCLUSIVE_KEYS` removes its partner, so that
-    ``teeth.count=39`` works on a profile that gives ``teeth.module``.
+    ``teeth.count=39`` works on a profile that gives ``teeth.module``. Setting ``name`` but not
+    ``title`` appends `` (name)`` to the title, so that a variant is told apart from its original.
     """
     result = copy.deepcopy(dict(data))
     for key in [unset] if isinstance(unset, str) else unset:
         _remove(result, _parts(key, f"--unset {key!r}"))
-    for label, key, value in _items(overrides):
+    items = list(_items(overrides))
+    keys = {key.strip() for _, key, _ in items if isinstance(key, str)}
+    for label, key, value in items:
         parts = _parts(key, label)
         if value is None:
             _remove(result, parts)
@@ -138,6 +141,9 @@ def apply_overrides(
         partner = _PARTNER.get(".".join(parts))
         if partner is not None:
             _remove(result, partner.split("."))
+    name, title = result.get("name"), result.get("title")
+    if "name" in keys and "title" not in keys and isinstance(name, str) and isinstance(title, str) and title:
+        result["title"] = f"{title} ({name})"  # a variant must not look like the original in the index
     return result
 
 

@@ -1,0 +1,87 @@
+"""``gearcad new NAME --from PROFILE``: a design of one's own, started from an example.
+
+The copy keeps the example's comments and first line ``#:schema ./profile.schema.json``, and
+the schema is written beside it, so a TOML editor still completes and checks the copy.
+"""
+
+from __future__ import annotations
+
+import json
+import re
+import tomllib
+from pathlib import Path
+
+from .errors import ProfileError
+from .profiles import parse_profile, profile_schema
+
+__all__ = ["SCHEMA_LINE", "example_folders", "new_profile"]
+
+SCHEMA_LINE = "#:schema ./profile.schema.json"
+_TOP_KEY = re.compile(r'^(name|title)\s*=.*$', re.M)
+
+
+def example_folders() -> list[Path]:
+    """Where example names are looked up: ./profiles, then the checkout gearcad runs from."""
+    folders = [Path("profiles"), Path(__file__).resolve().parent.parent / "profiles"]
+    return [f for f in dict.fromkeys(folders) if f.is_dir()]
+
+
+def _source(name: str) -> Path:
+    path = Path(name)
+    if path.suffix == ".toml" and path.is_file():
+        return path
+    for folder in example_folders():
+        if (folder / f"{name}.toml").is_file():
+            return folder / f"{name}.toml"
+    known = sorted({p.stem for folder in example_folders() for p in folder.glob("*.toml")})
+    allowed = f"one of {', '.join(known)}" if known else "a profile file's path (no profiles/ folder found)"
+    raise ProfileError(f"--from = {name!r}: no such profile; give {allowed}")
+
+
+def _retitled(text: str, name: str, source: str) -> str:
+    """``text`` with its top-level ``name`` and ``title`` set (added if absent), schema line first."""
+    head, table, rest = text.partition("\n[")
+    head = _TOP_KEY.sub("", head)
+    lines = [ln for ln in head.rstrip("\n").split("\n") if ln.strip() != SCHEMA_LINE]
+    while lines and not lines[-1].strip():
+        lines.pop()
+    comments = 0
+    while comments < len(lines) and lines[comments].startswith("#"):
+        comments += 1
+    keys = [f"name = {json.dumps(name)}", f"title = {json.dumps(f'{name} (started from {source})')}"]
+    body = [SCHEMA_LINE, *lines[:comments], *keys, *[ln for ln in lines[comments:] if ln.strip()]]
+    return "\n".join(body) + "\n" + table + rest
+
+
+def new_profile(name: str, source: str = "elliptic_focus", folder: str | Path = ".") -> tuple[Path, Path]:
+    """Write ``folder/NAME.toml`` (from ``source``) and ``folder/profile.schema.json``.
+
+    Parameters
+    ----------
+    name : the new profile's name (its file and output folder); the rules of ``name`` apply.
+    source : an example's name (``elliptic_focus``) or a profile file's path.
+    folder : where to write; made if missing.
+
+    Returns the two paths written. Raises :class:`ProfileError` (nothing written) for a bad
+    name, an unknown source, or a profile that exists already.
+    """
+    path = _source(source)
+    text = _retitled(path.read_text(encoding="utf-8"), name, path.stem)
+    try:
+        parse_profile(tomllib.loads(text))  # the copy must be a valid profile (and the name a valid name)
+    except tomllib.TOMLDecodeError as exc:
+        raise ProfileError(f"--from = {source!r}: not valid TOML ({exc})") from None
+    except ProfileError as exc:
+        lines = str(exc).splitlines()
+        raise ProfileError("\n".join(ln if ln.startswith("name = ") else f"{path}: {ln}" for ln in lines)) from None
+    folder = Path(folder)
+    target, schema = folder / f"{name}.toml", folder / "profile.schema.json"
+    if target.exists():
+        raise ProfileError(f"{target}: exists already; choose another NAME or --dir (nothing was written)")
+    if folder.exists() and not folder.is_dir():
+        raise ProfileError(f"--dir = {str(folder)!r}: is a file, not a folder")
+    folder.mkdir(parents=True, exist_ok=True)
+    schema.write_text(json.dumps(profile_schema(), indent=2, ensure_ascii=False) + "\n", encoding="utf-8")
+    with open(target, "x", encoding="utf-8") as f:
+        f.write(text)
+    return target, schema
