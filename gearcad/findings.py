@@ -25,7 +25,6 @@ CODES: dict[str, str] = {
     "pointed": "some teeth have pointed or nearly pointed tips (under 0.2 module of tip land)",
     "interference": "the toothed pair overlaps in mesh beyond the tolerance, or loses contact",
     "relief": "a gear's teeth were trimmed by the mate's sweep where the rack's envelope is not conjugate",
-    "rack-overcut": "a generating rack or hob would cut beyond the outline on a concave stretch (cut it as drawn)",
 }
 """Every warning code gearcad emits, with what it means.  Codes never change meaning."""
 
