@@ -149,7 +149,8 @@ class Design:
         """The findings that fail a check (``findings.ERRORS``), but those whose code is in
         ``allow``; an assembly that does not fit fails as "interference" even unreported."""
         found = list(failing(self.findings, allow))
-        if not self.assembly.fits and "interference" not in allow and not any(f.code == "interference" for f in found):
+        unfit = self.assembly is not None and not self.assembly.fits  # a stage before "full" proves none
+        if unfit and "interference" not in allow and not any(f.code == "interference" for f in found):
             found.append(Finding("interference", f"the parts overlap by {self.assembly.overlap:.4g} mm² as assembled"))
         return tuple(found)
 
