@@ -18,7 +18,7 @@ from ..geometry.outline import Outline, arc_steps, rotate
 from ..geometry.verify import nearest, thin
 from ..pitch.gear import GearData
 from ..pitch.pair import PairData
-from ..tolerances import DEFAULT, Tolerances
+from ..tolerances import DEFAULT, Budget, Tolerances, designed_play
 from .frame import ArcFrame, arc_frame
 from .gear import ToothedGear, cut_teeth
 from .mesh import MeshData, backlash_range, mesh_check, nudge_arc
@@ -154,7 +154,7 @@ def cut_pair(
             f"the largest backlash module {plan.module:.4g} takes is {math.pi * plan.module / 2:.3f} mm"
         )
     shifts = (params.profile_shift, -params.profile_shift)
-    fine_tol = tol.outline_mm * tol.fine_fraction
+    fine_tol = Budget(tol.outline_mm, tol.fine_fraction).fine
 
     stop = threading.Event()  # a gear that cannot be cut calls off its mate's cut
 
@@ -173,7 +173,7 @@ def cut_pair(
             raise failed[0]
         fine = tuple(job.result() for job in jobs)
     toothed = tuple(_thinned(g, tol.outline_mm - fine_tol) for g in fine)
-    play = params.backlash + 4 * params.clearance / math.cos(params.pressure_angle)
+    play = designed_play(backlash=params.backlash, clearance=params.clearance, pressure_angle=params.pressure_angle)
     # the mesh proof and the play measurement are independent, and shapely's vectorised GEOS
     # calls release the GIL: run them side by side on the machine's two cores
     with ThreadPoolExecutor(max_workers=2) as pool:
