@@ -20,7 +20,7 @@ from .errors import GearcadError, ProfileError
 from .findings import Finding
 from .mechanisms import Design, design
 from .profiles import ProfileParams
-from .publish import Publisher, check_out, interrupt_guard
+from .publish import Interrupted, Publisher, check_out, interrupt_guard
 
 __all__ = ["BuildResult", "build", "design_all"]
 
@@ -45,11 +45,16 @@ def _unique(profiles: Sequence[ProfileParams]) -> None:
 
 
 def _named(params: ProfileParams, work: Callable[[], object]):
-    """Run ``work``; an error names the profile it came from."""
+    """Run ``work``; an error names the profile it came from (an interrupt is the whole build's,
+    and passes as it is).  The error's message is renamed, not the error made anew, so that one
+    whose constructor takes more than a message keeps its type and fields."""
     try:
         return work()
+    except Interrupted:
+        raise
     except GearcadError as exc:
-        raise type(exc)(f"{params.name}: {exc}") from None
+        exc.args = (f"{params.name}: {exc}", *exc.args[1:])
+        raise exc from None
 
 
 def design_all(profiles: Sequence[ProfileParams]) -> list[Design]:
