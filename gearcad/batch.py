@@ -25,7 +25,7 @@ from .errors import GearcadError, ProfileError
 from .findings import Finding
 from .mechanisms import Design, design
 from .profiles import ProfileParams
-from .publish import Publisher, check_out, interrupt_guard, out_lock
+from .publish import Interrupted, Publisher, check_out, interrupt_guard, out_lock
 
 __all__ = ["BuildResult", "build", "design_all"]
 
@@ -52,11 +52,16 @@ def _unique(profiles: Sequence[ProfileParams]) -> None:
 
 
 def _named(params: ProfileParams, work: Callable[[], object]):
-    """Run ``work``; an error names the profile it came from."""
+    """Run ``work``; an error names the profile it came from (an interrupt is the whole build's,
+    and passes as it is).  The error's message is renamed, not the error made anew, so that one
+    whose constructor takes more than a message keeps its type and fields."""
     try:
         return work()
+    except Interrupted:
+        raise
     except GearcadError as exc:
-        raise type(exc)(f"{params.name}: {exc}") from None
+        exc.args = (f"{params.name}: {exc}", *exc.args[1:])
+        raise exc from None
 
 
 def design_all(profiles: Sequence[ProfileParams], stage: str = "full") -> list[Design]:

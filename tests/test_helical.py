@@ -9,8 +9,9 @@ import numpy as np
 import pytest
 import trimesh
 
+from gearcad.bench.helical import helical_benchmark
 from gearcad.errors import DesignError
-from gearcad.export.loft import helical_benchmark, loft
+from gearcad.export.loft import loft
 from gearcad.export.mesh import extrude
 from gearcad.geometry.outline import Outline, ring_area, rotate
 from gearcad.geometry.rings import bore_ring

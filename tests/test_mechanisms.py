@@ -221,7 +221,7 @@ def test_train_profiles_build_and_assemble_without_overlap(tmp_path, name):
     assert main(["build", str(ROOT / "profiles" / f"{name}.toml"), "--out", str(out)]) == 0
     report = json.loads((out / name / "report.json").read_text())
     assert report["train"]["velocity_analysis_difference"] < 1e-12
-    assert report["train"]["assembly_overlap"] < 0.01
+    assert report["assembly"]["overlap"] < 0.01
     assert not report["warnings"]
     for gear in report["gears"]:
         mesh = trimesh.load(out / name / f"{gear['name']}.stl")

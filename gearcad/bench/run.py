@@ -6,12 +6,12 @@ import logging
 from collections.abc import Callable, Collection
 from pathlib import Path
 
-from ..export.loft import helical_benchmark
 from . import stability
 from .builds import bench_builds
 from .commands import PROFILES, gearcad_commands
 from .envelope import bench_envelope
 from .goals import goal_rows, goals_table
+from .helical import helical_benchmark
 from .output import bench_output
 from .peers import PEER, bench_peers, peer_version
 from .process import measure

@@ -5,12 +5,13 @@ from __future__ import annotations
 import csv
 import json
 import re
+from importlib import import_module
 from pathlib import Path
 
 from ..errors import GearcadError
+from ..formats import TABLE, Format
 from ..mechanisms import Design
 from .beside import Beside, can_fork
-from .drawing import assembly_drawing, part_drawing
 
 __all__ = ["write_design"]
 
@@ -84,6 +85,55 @@ def _charts(design: Design, folder: Path) -> dict[str, dict]:
     return files
 
 
+def _pieces(fmt: Format, design: Design, solids: dict) -> list[tuple[str, str | None, object]]:
+    """What a format's writer is handed, file by file: (file stem, whole or None, drawing or
+    solids) for every part, then for each of the format's wholes."""
+    if fmt.takes == "drawing":
+        from .drawing import assembly_drawing, part_drawing
+        from .sheet import sheet_drawing
+
+        wholes = {"assembly": assembly_drawing, "sheet": sheet_drawing}
+        pieces = [(p.name, None, part_drawing(design, p)) for p in design.parts()]
+        return pieces + [(w, w, wholes[w](design)) for w in fmt.wholes]
+    from .mesh import SolidItem
+
+    where = {"assembly": design.placements, "plate": design.plate}
+    pieces = [(name, None, [SolidItem(solid)]) for name, solid in solids.items()]
+    return pieces + [
+        (w, w, [SolidItem(solids[pl.part], pl.angle, (*pl.offset, 0.0)) for pl in where[w]]) for w in fmt.wholes
+    ]
+
+
+def _solids(design: Design) -> dict:
+    """Each part's solid, made once for every solid format: extruded, or lofted through its
+    twisted sections."""
+    from .loft import loft
+    from .mesh import extrude
+
+    out = design.params.output
+
+    def solid(part):
+        twisted = design.sections.get(part.name)
+        if twisted is None:
+            return extrude(part.outline, out.thickness, name=part.name, chamfer=out.chamfer)
+        holes = part.outline.rings[1:]
+        return loft(twisted.heights, twisted.rings, name=part.name, holes=holes, chamfer=out.chamfer)
+
+    return {p.name: solid(p) for p in design.parts()}
+
+
+def _write_format(fmt: Format, design: Design, folder: Path, solids: dict) -> dict[str, dict]:
+    """Every file of one format, through the writer the format table names."""
+    module, function = fmt.writer.split(":")
+    writer = getattr(import_module(f".{module}", __package__), function)
+    files = {}
+    for stem, whole, what in _pieces(fmt, design, solids):
+        path = folder / f"{stem}.{fmt.extension}"
+        entry = writer(path, what, design=design, whole=whole)
+        files[path.name] = _entry(path, kind=fmt.name, part=stem, **entry)
+    return files
+
+
 def write_design(design: Design, folder: Path, *, beside: bool = False) -> dict[str, dict]:
     """Write every file the profile's [output] asks for into ``folder`` (which must exist);
     return the files block of the report (the report itself written last).
@@ -108,72 +158,12 @@ def write_design(design: Design, folder: Path, *, beside: bool = False) -> dict[
 
 
 def _write(design: Design, folder: Path, drawing: dict) -> dict[str, dict]:
-    out = design.params.output
-    formats = set(out.formats)
+    formats = set(design.params.output.formats)
     files: dict[str, dict] = {}
-    parts = design.parts()
-    if "dxf" in formats:
-        from .dxf import write_dxf
-
-        for part in parts:
-            path = folder / f"{part.name}.dxf"
-            n = write_dxf(path, part_drawing(design, part), flavour=out.dxf, cut_layer=out.cut_layer)
-            files[path.name] = _entry(path, kind="dxf", part=part.name, vertices=n, flavour=out.dxf)
-        path = folder / "assembly.dxf"
-        n = write_dxf(path, assembly_drawing(design), flavour=out.dxf, cut_layer=out.cut_layer)
-        files[path.name] = _entry(path, kind="dxf", part="assembly", vertices=n, flavour=out.dxf)
-    if "svg" in formats:
-        from .svg import write_svg
-
-        layers = {"cut_layer": out.cut_layer, "mark_layer": out.mark_layer}
-        for part in parts:
-            path = folder / f"{part.name}.svg"
-            n = write_svg(path, part_drawing(design, part), title=f"{design.name}: {part.name}", **layers)
-            files[path.name] = _entry(path, kind="svg", part=part.name, segments=n)
-        path = folder / "assembly.svg"
-        n = write_svg(path, assembly_drawing(design), title=f"{design.name}: assembly", **layers)
-        files[path.name] = _entry(path, kind="svg", part="assembly", segments=n)
-    if formats & {"dxf", "svg"}:
-        from .sheet import sheet_drawing
-
-        sheet = sheet_drawing(design)
-        if "dxf" in formats:
-            path = folder / "sheet.dxf"
-            n = write_dxf(path, sheet, flavour=out.dxf, cut_layer=out.cut_layer)
-            files[path.name] = _entry(path, kind="dxf", part="sheet", vertices=n, flavour=out.dxf)
-        if "svg" in formats:
-            path = folder / "sheet.svg"
-            n = write_svg(path, sheet, title=f"{design.name}: cutting sheet", **layers)
-            files[path.name] = _entry(path, kind="svg", part="sheet", segments=n)
-    if formats & {"stl", "3mf"}:
-        from .loft import loft
-        from .mesh import SolidItem, extrude, write_3mf, write_stl
-
-        def solid(part):
-            twisted = design.sections.get(part.name)
-            if twisted is None:
-                return extrude(part.outline, out.thickness, name=part.name, chamfer=out.chamfer)
-            holes = part.outline.rings[1:]
-            return loft(twisted.heights, twisted.rings, name=part.name, holes=holes, chamfer=out.chamfer)
-
-        solids = {p.name: solid(p) for p in parts}
-        for name, solid in solids.items():
-            if "stl" in formats:
-                path = folder / f"{name}.stl"
-                count = write_stl(path, solid)
-                files[path.name] = _entry(path, kind="stl", part=name, triangles=count, volume=solid.volume)
-            if "3mf" in formats:
-                path = folder / f"{name}.3mf"
-                count = write_3mf(path, [SolidItem(solid)])
-                files[path.name] = _entry(path, kind="3mf", part=name, triangles=count, volume=solid.volume)
-        if "3mf" in formats:
-            path = folder / "assembly.3mf"
-            items = [SolidItem(solids[pl.part], pl.angle, (*pl.offset, 0.0)) for pl in design.placements]
-            files[path.name] = _entry(path, kind="3mf", part="assembly", triangles=write_3mf(path, items))
-            from .plate import write_plate
-
-            path = folder / "plate.3mf"
-            files[path.name] = _entry(path, kind="3mf", part="plate", triangles=write_plate(path, design, solids))
+    chosen = [f for f in TABLE if f.name in formats]
+    solids = _solids(design) if any(f.takes == "solid" for f in chosen) else {}
+    for fmt in chosen:
+        files.update(_write_format(fmt, design, folder, solids))
     for table in design.tables:
         path = folder / table.file
         _write_table(path, table)

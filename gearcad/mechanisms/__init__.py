@@ -1,4 +1,5 @@
-"""Mechanism designs: one module per mechanism, each a pure ``design(params) -> Design``.
+"""Mechanism designs: one module per mechanism, each a pure ``design(params) -> Draft`` of what
+is its own; :func:`~.finish.finish` makes any draft the complete :class:`Design`.
 
 No files are written here; every check a build makes is made here, so ``gearcad check`` and
 ``gearcad build`` refuse and accept the same profiles.
@@ -12,20 +13,12 @@ from importlib import import_module
 
 from ..errors import GearcadError
 from ..profiles import ProfileParams
-from . import layouts
 from .base import Design
-from .parts import Part, Placement, cut_paths
+from .finish import Draft, finish
+from .parts import Part, Placement
+from .registry import MECHANISMS
 
-__all__ = ["Design", "Part", "Placement", "design"]
-
-_MODULES = {
-    "gear-pair": "gear_pair",
-    "roller-body": "roller_body",
-    "rolling-wheel": "rolling_wheel",
-    "carrier-train": "carrier_train",
-}
-"""Each mechanism's module, imported when a profile of it is designed (a gear pair need not
-load the roller bodies', the rack drive's or the trains' numerics)."""
+__all__ = ["Design", "Draft", "Part", "Placement", "design", "MECHANISMS"]
 
 
 def design(params: ProfileParams, stage: str = "full") -> Design:
@@ -40,10 +33,5 @@ def design(params: ProfileParams, stage: str = "full") -> Design:
                 f"stage = {stage!r}: only a gear pair has stages before 'full' (this is a {params.mechanism})"
             )
         return replace(staged_design(params, stage), seconds=time.perf_counter() - start)
-    result = import_module(f".{_MODULES[params.mechanism]}", __name__).design(params)
-    out = params.output
-    parts = cut_paths(result.part_list, out)
-    formats = set(out.formats)
-    sheet = layouts.sheet_layout(parts, result.placements, out) if formats & {"dxf", "svg"} else ()
-    plate = layouts.plate_layout(parts, result.placements, out) if "3mf" in formats else ()
-    return replace(result, part_list=parts, sheet=sheet, plate=plate, seconds=time.perf_counter() - start)
+    draft = import_module(f".{MECHANISMS[params.mechanism].module}", __name__).design(params)
+    return finish(draft, start=start)

@@ -129,6 +129,8 @@ class Design:
     sections: dict = field(default_factory=dict)
     """Part name → its twisted sections (``teeth.helical.GearSections``): such a part's solid
     is lofted through them instead of extruded."""
+    charts: dict = field(default_factory=dict)
+    """Chart name → the data it is drawn from, computed with the design (exporters only draw)."""
     seconds: float = field(default=0.0, compare=False)
     stage: str = "full"
     """How far the design went: ``pitch`` and ``teeth`` (gear pairs only) have no parts, no
@@ -171,6 +173,23 @@ class Design:
         """The report as a JSON-ready dict (README, "report.json"): no NaN, no infinity."""
         p, out = self.params, self.params.output
         placed = {pl.part: pl for pl in reversed(self.placements)}
+        parts = [
+            {
+                "name": part.name,
+                "area": part.outline.area,
+                "vertices": part.outline.vertex_count,
+                "holes": len(part.outline.rings) - 1,
+                "cut_vertices": part.cut_vertices,
+                "pivot": {"marked_by": part.pivot, "diameter": part.pivot_diameter, "cross": part.pivot_mark},
+                "placement": {"angle": placed[part.name].angle, "offset": list(placed[part.name].offset)},
+            }
+            for part in self.part_list
+        ]
+        # each gear's entry names its part: area, vertices and holes as in parts[]
+        own = {e["name"]: {k: e[k] for k in ("area", "vertices", "holes")} for e in parts}
+        data = dict(self.data)
+        if "gears" in data:
+            data["gears"] = [{**g, "part": own[g["name"]]} if g.get("name") in own else g for g in data["gears"]]
         report = {
             "schema": SCHEMA_VERSION,
             "name": p.name,
@@ -180,19 +199,8 @@ class Design:
             "units": self.units,
             "stage": self.stage,
             "tolerance": out.tolerance,
-            **self.data,
-            "parts": [
-                {
-                    "name": part.name,
-                    "area": part.outline.area,
-                    "vertices": part.outline.vertex_count,
-                    "holes": len(part.outline.rings) - 1,
-                    "cut_vertices": part.cut_vertices,
-                    "pivot": {"marked_by": part.pivot, "diameter": part.pivot_diameter, "cross": part.pivot_mark},
-                    "placement": {"angle": placed[part.name].angle, "offset": list(placed[part.name].offset)},
-                }
-                for part in self.part_list
-            ],
+            **data,
+            "parts": parts,
             "assembly": self.assembly.as_dict() if self.assembly is not None else None,
             "output": {
                 "thickness": out.thickness,

@@ -13,7 +13,7 @@ from __future__ import annotations
 import math
 
 from ..errors import DesignError
-from ..tolerances import DEFAULT
+from ..tolerances import budget
 
 __all__ = [
     "POINT_BUDGET",
@@ -47,7 +47,7 @@ than a quarter module is no flank (on the spur pair the mesh proof fails below ~
 
 def teeth_points(teeth: int, module: float, tolerance: float) -> float:
     """About how many points the fine cut of ``teeth`` teeth of ``module`` takes (mm)."""
-    return POINTS_PER_TOOTH * teeth * math.sqrt(module / (tolerance * DEFAULT.fine_fraction))
+    return POINTS_PER_TOOTH * teeth * math.sqrt(module / budget(tolerance).fine)
 
 
 def check_teeth_work(
@@ -84,7 +84,7 @@ def check_teeth_work(
 def check_outline_work(length: float, min_radius: float, tolerance: float, *, what: str) -> None:
     """Refuse a plain outline of ``length`` mm whose tightest bend (radius mm) would take more
     than the point budget to sample within the fine tolerance (chord sag ≈ ds²/8ρ)."""
-    step = math.sqrt(8 * tolerance * DEFAULT.fine_fraction * max(min_radius, 1e-9))
+    step = math.sqrt(8 * budget(tolerance).fine * max(min_radius, 1e-9))
     need = length / step
     if need > POINT_BUDGET:
         raise DesignError(

@@ -11,15 +11,14 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import DesignError
-from ..findings import finding
 from ..geometry.rings import circle_ring
 from ..profiles import CarrierTrainParams
-from ..tolerances import DEFAULT
+from ..tolerances import budget
 from ..trains import carrier as CT
 from . import compound_ring as CR
-from .base import Assembly, Design, assembly_depth, assembly_overlap
 from .budget import check_teeth_work
-from .parts import Placement, make_part
+from .finish import Contact, Draft, PartSpec
+from .parts import Placement
 
 __all__ = ["TrainLayout", "design", "layout"]
 
@@ -78,7 +77,7 @@ def layout(p: CarrierTrainParams) -> TrainLayout:
     return TrainLayout(radii, sides, tuple(centres), tuple(ring))
 
 
-def _gear_part(p: CarrierTrainParams, k: int, ring: bool):
+def _gear_part(p: CarrierTrainParams, k: int, ring: bool) -> PartSpec:
     """Gear k as a part; a ring gear is a rim minus a gear-shaped hole whose teeth are the
     ring's tooth spaces (rack addendum and dedendum swapped); the compound gear, its external
     teeth minus such a hole."""
@@ -86,12 +85,12 @@ def _gear_part(p: CarrierTrainParams, k: int, ring: bool):
         return CR.compound_part(p)
     out = p.output
     z, m = p.teeth[k], p.modules[k]
-    pitch = circle_ring(m * z / 2, out.tolerance * DEFAULT.fine_fraction)
+    pitch = circle_ring(m * z / 2, budget(out.tolerance).fine)
     teeth = CR.toothing(p, z, m, internal=ring)  # tooth (or, on a ring, space) at angle 0
     if ring:
-        rim = circle_ring(m * z / 2 + 3.75 * m, out.tolerance * DEFAULT.fine_fraction)
-        return make_part(p.names[k], rim, output=out, hole=teeth, marks=(pitch,))
-    return make_part(p.names[k], teeth, output=out, bore=p.bore, wall=m, marks=(pitch,))
+        rim = circle_ring(m * z / 2 + 3.75 * m, budget(out.tolerance).fine)
+        return PartSpec(p.names[k], rim, hole=teeth, marks=(pitch,))
+    return PartSpec(p.names[k], teeth, bore=p.bore, wall=m, marks=(pitch,))
 
 
 def _phases(p: CarrierTrainParams) -> list[float]:
@@ -124,7 +123,7 @@ def _speeds(p: CarrierTrainParams, lay: TrainLayout):
     return train, direct, (meshes, block), [claim]
 
 
-def design(p: CarrierTrainParams) -> Design:
+def design(p: CarrierTrainParams) -> Draft:
     """Speeds, accelerations, parts and assembly of a train on a carrier."""
     lay = layout(p)
     radii, centres, ring = lay.radii, lay.centres, lay.ring
@@ -157,36 +156,8 @@ def design(p: CarrierTrainParams) -> Design:
         gears[p.compound].update(internal_teeth=True, **CR.gear_entry(p, compound[0]))
     parts = tuple(_gear_part(p, k, ring[k]) for k in range(len(radii)))
     placements = tuple(Placement(q.name, a, (c, 0.0)) for q, a, c in zip(parts, _phases(p), centres))
-    by_name = {q.name: q for q in parts}
-    neighbours = [(k, k + 1) for k in range(len(parts) - 1)]
-    overlap = assembly_overlap(by_name, list(placements), neighbours)
-    # turned a little either way, the second gear of each mesh must bite: they do touch
-    nudge = [200 * p.output.tolerance / r_to for _, r_to in lay.sides]
-    nudged = min(
-        max(
-            assembly_overlap(
-                by_name,
-                [
-                    placements[k],
-                    Placement(placements[k + 1].part, placements[k + 1].angle + d, placements[k + 1].offset),
-                ],
-                [(0, 1)],
-            )
-            for d in (-nudge[k], nudge[k])
-        )
-        for k in range(len(parts) - 1)
-    )
-    depth = assembly_depth(by_name, list(placements), neighbours, step=0.1 * min(p.modules))
-    tol = p.output.tolerance
-    assembly = Assembly(overlap, 2 * tol * 2.25 * max(p.modules), nudged, 1, depth, 2 * tol)
-    if not assembly.fits:
-        findings.append(
-            finding(
-                "interference",
-                f"neighbouring gears overlap by {overlap:.4g} mm², {depth * 1e3:.3g} µm deep, as assembled",
-                "train",
-            )
-        )
+    # each mesh: the second gear is nudged on its own pitch circle (the compound's inner one)
+    contacts = tuple(Contact(k, k + 1, module=p.modules[k + 1], radius=r_to) for k, (_, r_to) in enumerate(lay.sides))
     data = {
         "train": {
             "module": p.module,
@@ -195,7 +166,6 @@ def design(p: CarrierTrainParams) -> Design:
             "gear1_eps": p.gear1_eps,
             "carrier_eps": p.carrier_eps,
             "velocity_analysis_difference": difference,
-            "assembly_overlap": overlap,
         },
         "gears": gears,
     }
@@ -205,15 +175,16 @@ def design(p: CarrierTrainParams) -> Design:
     summary += f"; stopping vs velocities {difference:.1e} rad/s"
     if compound is not None:
         summary += f"; the seed's ω3 formula {compound[1]['omega3_seed_formula_rpm']:.4g} rpm"
-    return Design(
+    return Draft(
         params=p,
         mechanism="carrier-train",
         summary=summary,
         findings=tuple(findings),
-        part_list=parts,
+        parts=parts,
         placements=placements,
-        assembly=assembly,
+        contacts=contacts,
         data=data,
         units=UNITS,
-        details=(f"assembly: max overlap {overlap:.3g} mm² (allowed {assembly.allowed:.3g}), nudged {nudged:.3g} mm²",),
+        charts={"train.png": data} if p.output.charts else {},
+        where="train",
     )

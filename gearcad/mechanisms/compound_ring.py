@@ -22,9 +22,9 @@ from ..profiles import CarrierTrainParams
 from ..teeth.frame import arc_frame
 from ..teeth.gear import cut_teeth
 from ..teeth.rack import Rack, RackParams
-from ..tolerances import DEFAULT
+from ..tolerances import budget
 from ..trains import compound as CP
-from .parts import Part, make_part
+from .finish import PartSpec
 
 __all__ = ["toothing", "compound_part", "chain_meshes", "ring", "solve", "gear_entry", "report_block"]
 
@@ -35,7 +35,7 @@ def toothing(p: CarrierTrainParams, teeth: int, module: float, *, internal: bool
     """A toothed ring about the origin, sampled at the fine tolerance ((n, 2) float, mm): the
     gear's outline, tooth at angle 0; ``internal`` gives the hole of a ring whose teeth these
     are (rack addendum and dedendum swapped, clockwise), a tooth space at angle 0."""
-    fine = p.output.tolerance * DEFAULT.fine_fraction
+    fine = budget(p.output.tolerance).fine
     addendum, dedendum = (1.25, 1.0) if internal else (1.0, 1.25)
     rack = Rack.from_params(
         RackParams(module=module, pressure_angle=p.pressure_angle, addendum=addendum, dedendum=dedendum)
@@ -52,15 +52,15 @@ def toothing(p: CarrierTrainParams, teeth: int, module: float, *, internal: bool
     return outer[::-1].copy() if internal else outer
 
 
-def compound_part(p: CarrierTrainParams) -> Part:
+def compound_part(p: CarrierTrainParams) -> PartSpec:
     """The compound gear: its external teeth, and the internal teeth as its hole; both pitch
     circles engraved."""
-    k, fine = p.compound, p.output.tolerance * DEFAULT.fine_fraction
+    k, fine = p.compound, budget(p.output.tolerance).fine
     m, m_in, z_in = p.modules[k], p.inner_module, p.inner_teeth
     outer = toothing(p, p.teeth[k], m, internal=False)
     hole = toothing(p, z_in, m_in, internal=True)
     marks = (circle_ring(m * p.teeth[k] / 2, fine), circle_ring(m_in * z_in / 2, fine))
-    return make_part(p.names[k], outer, output=p.output, hole=hole, marks=marks)
+    return PartSpec(p.names[k], outer, hole=hole, marks=marks)
 
 
 def chain_meshes(kinds, sides) -> tuple[CP.Mesh, ...]:

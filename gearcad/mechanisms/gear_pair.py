@@ -19,12 +19,13 @@ from ..pitch.discretize import polyline
 from ..pitch.gear import GearData
 from ..profiles import GearPairParams
 from ..teeth.pair import ToothedPairData, cut_pair
-from ..tolerances import DEFAULT
-from .base import Assembly, Design, Motion, Table, assembly_overlap
+from ..tolerances import DEFAULT, budget, designed_play
+from .base import Motion, Table
 from .budget import check_section_work, check_teeth_work
+from .finish import Contact, Draft, PartSpec
 from .pair_papers import PaperExtras, paper_extras
 from .pair_pitch import PairDesign, pitch_design
-from .parts import Placement, make_part
+from .parts import Placement
 
 if TYPE_CHECKING:
     from ..teeth.helical import HelicalSections
@@ -138,7 +139,7 @@ def _helix_block(params: GearPairParams, teeth: ToothedPairData, helical: Helica
 
 
 def _report_data(
-    params: GearPairParams, pitch: PairDesign, teeth: ToothedPairData | None, parts, helical=None, proofs=None
+    params: GearPairParams, pitch: PairDesign, teeth: ToothedPairData | None, helical=None, proofs=None
 ) -> dict:
     pair, kin = pitch.pair, pitch.kinematics
     n1, n2 = pair.lobes
@@ -165,12 +166,6 @@ def _report_data(
             "follower_acceleration_max": float(np.max(kin.acceleration)),
         },
     }
-    for gear, part in zip(data["gears"], parts):
-        gear["part"] = {
-            "area": part.outline.area,
-            "vertices": part.outline.vertex_count,
-            "holes": len(part.outline.rings) - 1,
-        }
     if teeth is not None:
         for i in range(2):
             data["gears"][i]["teeth"] = _teeth_block(teeth, i)
@@ -263,11 +258,11 @@ def _details(pitch: PairDesign, teeth: ToothedPairData | None) -> list[str]:
     return lines
 
 
-def design(params: GearPairParams) -> Design:
+def design(params: GearPairParams) -> Draft:
     """Design, tooth, make and prove the pair a profile describes."""
     out = params.output
     tol = replace(DEFAULT, outline_mm=out.tolerance)
-    fine_tol = out.tolerance * DEFAULT.fine_fraction
+    fine_tol = budget(out.tolerance).fine
     pitch = pitch_design(params, tol=tol)
     teeth = helical = proofs = None
     if params.teeth is not None:
@@ -280,53 +275,38 @@ def design(params: GearPairParams) -> Design:
         check_teeth_work([(g.perimeter / (math.pi * module), module) for g in pitch.gears], out.tolerance)
         alike = pitch.mate_shape_difference is not None and pitch.mate_shape_difference < 1e-6
         teeth = cut_pair(pitch.pair, pitch.gears, spec, mate_rotation=pitch.mate_rotation if alike else None, tol=tol)
-    pitch_fine = [polyline(g.curve, fine_tol) for g in pitch.gears]
-    parts = []
-    for i, gear in enumerate(pitch.gears):
-        outer = teeth.fine[i] if teeth is not None else pitch_fine[i]
-        parts.append(
-            make_part(
-                gear.name,
-                outer,
-                output=out,
-                bore=params.bore,
-                wall=teeth.plan.module if teeth is not None else 0.0,
-                marks=(pitch_fine[i],) if teeth is not None else (),
+        if beta > 0:
+            helical = pair_sections(
+                teeth,
+                helix_angle=beta,
+                herringbone=params.teeth.herringbone,
+                face_width=out.thickness,
+                tolerance=out.tolerance,
+                clearance=params.teeth.clearance,
+                chamfer=out.chamfer,
+                names=(pitch.gears[0].name, pitch.gears[1].name),
+                check_work=partial(check_section_work, thickness=out.thickness, helix_angle=beta),
             )
-        )
-    if teeth is not None and beta > 0:  # after the parts: a bore that does not fit is found first
-        helical = pair_sections(
-            teeth,
-            helix_angle=beta,
-            herringbone=params.teeth.herringbone,
-            face_width=out.thickness,
-            tolerance=out.tolerance,
-            clearance=params.teeth.clearance,
-            chamfer=out.chamfer,
-            names=(pitch.gears[0].name, pitch.gears[1].name),
-            check_work=partial(check_section_work, thickness=out.thickness, helix_angle=beta),
-        )
-        play = spec.backlash + 4 * spec.clearance / math.cos(spec.pressure_angle)  # as cut_pair's
-        proofs = section_mesh(pitch.pair, helical, teeth.frames, tolerance=out.tolerance, play=play)
+            play = designed_play(backlash=spec.backlash, clearance=spec.clearance, pressure_angle=spec.pressure_angle)
+            proofs = section_mesh(pitch.pair, helical, teeth.frames, tolerance=out.tolerance, play=play)
+    pitch_fine = [polyline(g.curve, fine_tol) for g in pitch.gears]
+    wall = teeth.plan.module if teeth is not None else 0.0
+    parts = [
+        PartSpec(g.name, teeth.fine[i], bore=params.bore, wall=wall, marks=(pitch_fine[i],))
+        if teeth is not None
+        else PartSpec(g.name, pitch_fine[i], bore=params.bore)
+        for i, g in enumerate(pitch.gears)
+    ]
     placements = tuple(Placement(g.name, 0.0, g.pivot) for g in pitch.gears)
-    overlap = assembly_overlap({p.name: p for p in parts}, list(placements), [(0, 1)])
+    if teeth is not None:  # proven over the whole cycle (and on every section of twisted teeth)
+        contact = Contact(0, 1, module=teeth.plan.module, nudge=False)
+        meshes = (teeth.mesh,) + tuple(m for _, m in proofs or ())
+    else:  # pitch curves roll on each other: they touch along about the smaller radius
+        contact, meshes = Contact(0, 1, length=pitch.gears[0].r_min), ()
     papers = paper_extras(params, pitch)
     if papers.shoe is not None:  # the walker's leg, standing at hub angle 0 below the wheel's pivot
-        parts.append(make_part("shoe", papers.shoe, output=out))
+        parts.append(PartSpec("shoe", papers.shoe))
         placements += (Placement("shoe", 0.0, tuple(S.crank_pin(papers.geometry, 0.0)[0])),)
-    if teeth is not None:
-        mesh = teeth.mesh
-        meshes = [mesh] + ([m for _, m in proofs] if proofs else [])
-        assembly = Assembly(
-            max([overlap] + [m.max_overlap for m in meshes]),
-            mesh.allowed_overlap,
-            min(m.nudged_min_overlap for m in meshes),
-            mesh.positions,
-            max(m.max_depth for m in meshes),
-            mesh.allowed_depth,
-        )
-    else:
-        assembly = Assembly(overlap, 2 * out.tolerance * pitch.gears[0].r_min)
     findings = pitch.findings + (teeth.findings if teeth is not None else ()) + papers.findings
     cycle = pitch.pair.cycle
     phi1 = np.linspace(0.0, cycle, frames_for(cycle, teeth.plan.teeth[0] if teeth else None), endpoint=False)
@@ -336,20 +316,22 @@ def design(params: GearPairParams) -> Design:
         ("driver_angle_rad", "follower_angle_rad", "ratio", "follower_speed_rad_s", "follower_acceleration_rad_s2"),
         np.column_stack([kin.driver_angle, kin.follower_angle, kin.ratio, kin.speed, kin.acceleration]),
     )
-    rings = tuple(decimate(r, out.tolerance - fine_tol) for r in pitch_fine)
-    return Design(
+    rings = tuple(decimate(r, budget(out.tolerance).fit) for r in pitch_fine)
+    return Draft(
         params=params,
         mechanism="gear-pair",
         summary=_summary(pitch, teeth, len(findings)),
         findings=findings,
-        part_list=tuple(parts),
+        parts=tuple(parts),
         placements=placements,
-        assembly=assembly,
-        data={**_report_data(params, pitch, teeth, parts, helical, proofs), **papers.data},
+        contacts=(contact,),
+        proofs=meshes,
+        data={**_report_data(params, pitch, teeth, helical, proofs), **papers.data},
         sections={} if helical is None else {p.name: g for p, g in zip(parts, helical.gears)},
         units=UNITS,
         detail=GearPairDetail(pitch, teeth, rings, papers),
         details=tuple(_details(pitch, teeth)),
         motion=Motion((parts[0].name, parts[1].name), np.column_stack([-phi1, pitch.pair.angle_map(phi1)])),
         tables=(table,),
+        where="pair",
     )

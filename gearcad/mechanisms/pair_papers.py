@@ -14,7 +14,7 @@ from ..pitch import elliptic_claims as E
 from ..pitch import walker as W
 from ..pitch import walker_polar as WP
 from ..profiles import EllipseParams, GearPairParams, WalkerParams
-from ..tolerances import DEFAULT
+from ..tolerances import budget
 from .pair_pitch import PairDesign
 
 __all__ = ["PaperExtras", "paper_extras", "SHOE_POSES"]
@@ -54,7 +54,7 @@ def paper_extras(params: GearPairParams, pitch: PairDesign) -> PaperExtras:
     if isinstance(g, WalkerParams) and pitch.walker is not None:
         geometry = W.WalkerGeometry(L=params.center_distance, a=g.a, b=g.b, c=g.c)
         law = W.ratio_law(geometry, blend_width=g.blend_width)
-        ring = S.shoe_ring(geometry, tolerance=params.output.tolerance * DEFAULT.fine_fraction)
+        ring = S.shoe_ring(geometry, tolerance=budget(params.output.tolerance).fine)
         speed = S.speed_comparison(geometry, i_paper=pitch.walker.i_paper, law=law)
         placed = S.ring_stance_check(geometry, ring)
         placed["holds"] = placed["hub_height_mm"] <= params.output.tolerance and (

@@ -21,7 +21,7 @@ from ..geometry.kerf import kerf_fault, kerf_path
 from ..geometry.outline import Outline, ring_area, rotate
 from ..geometry.rings import bore_ring
 from ..geometry.verify import is_simple, max_distance, thin
-from ..tolerances import DEFAULT
+from ..tolerances import budget
 
 __all__ = ["Part", "Placement", "BoreSpec", "CutSpec", "make_part", "cut_paths", "placed_polygon"]
 
@@ -189,7 +189,7 @@ def make_part(
     for every part of a design together, by :func:`cut_paths`.
     """
     tol = output.tolerance
-    fine_tol = tol * DEFAULT.fine_fraction
+    fine_tol = budget(tol).fine
     if not is_simple(fine_outer):
         raise DesignError(f"{name}: the outline crosses itself (the design cannot be cut as one piece)")
     pivot, diameter = ("hole", 0.0) if hole is not None else _pivot_hole(bore, fine_outer, wall)
@@ -212,7 +212,7 @@ def cut_paths(parts: tuple[Part, ...], output: CutSpec) -> tuple[Part, ...]:
     arcs fitted, each checked simple and within the tolerance.  A kerf that would fill a tooth
     space or close a hole of any part is refused with the largest kerf every part takes."""
     tol = output.tolerance
-    fine_tol = tol * DEFAULT.fine_fraction
+    fine_tol = budget(tol).fine
     flat = output.dxf == "polyline-flat"
     kerfed = [p.fine if output.kerf <= 0 else kerf_path(p.fine, output.kerf / 2, fine_tol) for p in parts]
     faults = [(p, kerf_fault(p.fine, k, output.kerf / 2, fine_tol)) for p, k in zip(parts, kerfed) if output.kerf > 0]

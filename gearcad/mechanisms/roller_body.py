@@ -19,10 +19,11 @@ from ..profiles import RollerBodyParams
 from ..teeth.frame import ParametricFrame, arc_frame
 from ..teeth.gear import cut_teeth
 from ..teeth.rack import Rack, RackParams
-from ..tolerances import DEFAULT
-from .base import Assembly, Design, assembly_depth, assembly_overlap
+from ..tolerances import budget
 from .budget import COARSEST_TOLERANCE, POINT_BUDGET, check_teeth_work
-from .parts import Placement, make_part
+from .finish import Contact, Draft, PartSpec
+from .parts import Placement
+from .roller_charts import charts as _charts
 
 __all__ = ["RollerBodyDetail", "design", "PAPER_M"]
 
@@ -78,7 +79,7 @@ def _toothed_body(osc: RB.Oscillation, p: RollerBodyParams) -> dict:
     frame = ParametricFrame(RB.contour(osc, -u, r=r) * p.scale)
     if not math.isclose(frame.perimeter, z_b * math.pi * module, rel_tol=1e-9):
         raise DesignError("the body's perimeter does not fit its teeth (the contour is not a parallel of its path)")
-    fine = p.output.tolerance * DEFAULT.fine_fraction
+    fine = budget(p.output.tolerance).fine
     rack = Rack.from_params(RackParams(module=module, pressure_angle=p.pressure_angle))
     resize = "a larger teeth.roller_count (smaller teeth)"
     body = cut_teeth(frame, rack, z_b, rack.pitch / 2, tolerance=fine, resize=resize)
@@ -112,7 +113,7 @@ def _toothed_body(osc: RB.Oscillation, p: RollerBodyParams) -> dict:
 def _body_ring(osc: RB.Oscillation, p: RollerBodyParams, r: float) -> tuple[np.ndarray, np.ndarray]:
     """The plain contour and the roller path, sampled so that chords sag at most the fine
     tolerance where they bend most (sag ≈ κ·ds²/8), counter-clockwise, mm."""
-    fine = p.output.tolerance * DEFAULT.fine_fraction
+    fine = budget(p.output.tolerance).fine
     probe = np.linspace(0, TWO_PI, 4096, endpoint=False)
     kappa = float(np.max(np.abs(RB.contour_curvature(osc, probe, r=r)))) / p.scale
     ds = math.sqrt(8 * fine / max(kappa, 1e-12))
@@ -138,7 +139,7 @@ def _body_ring(osc: RB.Oscillation, p: RollerBodyParams, r: float) -> tuple[np.n
     return body, RB.roller_path(osc, tau)[::-1] * p.scale
 
 
-def design(p: RollerBodyParams) -> Design:
+def design(p: RollerBodyParams) -> Draft:
     """The body, its three rollers and their proof, from a roller-body profile."""
     osc = _oscillation(p)
     r = p.roller_radius
@@ -211,59 +212,34 @@ def design(p: RollerBodyParams) -> Design:
                 )
             )
         r = teeth["roller_radius"]
-    out = p.output
-    fine = out.tolerance * DEFAULT.fine_fraction
+    fine = budget(p.output.tolerance).fine
     body, path = _body_ring(osc, p, r)
     roller_circle = circle_ring(r * p.scale, fine)
     if teeth is None:
-        parts = (
-            make_part("body", body, output=out, bore=p.bore),
-            make_part("roller", roller_circle, output=out),
-        )
+        parts = (PartSpec("body", body, bore=p.bore), PartSpec("roller", roller_circle))
         turns = [0.0, 0.0, 0.0]
+        # plain rollers touch the body along their whole rim at most
+        contacts = tuple(Contact(0, k, length=TWO_PI * r * p.scale) for k in (1, 2, 3))
     else:
         parts = (
-            make_part("body", teeth["_body_ring"], output=out, bore=p.bore, wall=teeth["module"], marks=(body,)),
-            make_part("roller", teeth["_roller_ring"], output=out, marks=(roller_circle,)),
+            PartSpec("body", teeth["_body_ring"], bore=p.bore, wall=teeth["module"], marks=(body,)),
+            PartSpec("roller", teeth["_roller_ring"], marks=(roller_circle,)),
         )
         turns = teeth["_roller_turns"]
+        contacts = tuple(Contact(0, k, module=teeth["module"], radius=r * p.scale) for k in (1, 2, 3))
     centres = [(p.scale * math.sin(a), p.scale * math.cos(a)) for a in (0.0, TWO_PI / 3, 2 * TWO_PI / 3)]
     placements = (Placement("body"),) + tuple(Placement("roller", a, c) for a, c in zip(turns, centres))
-    by_name = {part.name: part for part in parts}
-    pairs = [(0, 1), (0, 2), (0, 3)]
-    overlap = assembly_overlap(by_name, list(placements), pairs)
-    if teeth is None:
-        assembly = Assembly(overlap, 2 * out.tolerance * TWO_PI * r * p.scale)
-    else:
-        # turned a little either way, every roller must bite into the body: they do touch
-        nudge = 200 * out.tolerance / (r * p.scale)
-        nudged = min(
-            max(
-                assembly_overlap(by_name, [placements[0], Placement("roller", pl.angle + d, pl.offset)], [(0, 1)])
-                for d in (-nudge, nudge)
-            )
-            for pl in placements[1:]
-        )
-        depth = assembly_depth(by_name, list(placements), pairs, step=0.1 * teeth["module"])
-        assembly = Assembly(overlap, 2 * out.tolerance * 2.25 * teeth["module"], nudged, 1, depth, 2 * out.tolerance)
-        if not assembly.fits:
-            findings.append(
-                finding(
-                    "interference",
-                    f"the body and a roller overlap by {overlap:.4g} mm², {depth * 1e3:.3g} µm deep, as assembled",
-                    "body",
-                )
-            )
-    return Design(
+    return Draft(
         params=p,
         mechanism="roller-body",
         summary=summary,
         findings=tuple(findings),
-        part_list=parts,
+        parts=parts,
         placements=placements,
-        assembly=assembly,
+        contacts=contacts,
         data=data,
         units=UNITS,
         detail=RollerBodyDetail(osc, r),
-        details=(f"assembly: max overlap {overlap:.3g} mm² (allowed {assembly.allowed:.3g})",),
+        charts=_charts(osc, p, r, data),
+        where="body",
     )

@@ -11,10 +11,10 @@ import numpy as np
 from ..findings import finding
 from ..geometry.rings import circle_ring
 from ..profiles import RollingWheelParams
-from ..tolerances import DEFAULT
+from ..tolerances import budget
 from ..trains import rack_drive as RD
-from .base import Assembly, Design, assembly_overlap
-from .parts import Placement, make_part
+from .finish import Contact, Draft, PartSpec
+from .parts import Placement
 
 __all__ = ["RollingWheelDetail", "design"]
 
@@ -50,7 +50,7 @@ def _motion(d: RD.RackDrive, p: RollingWheelParams, w1: float) -> RollingWheelDe
     return RollingWheelDetail(phi1, by_contour, by_rates, w2, w3, e2)
 
 
-def design(p: RollingWheelParams) -> Design:
+def design(p: RollingWheelParams) -> Draft:
     """The drive's geometry and motion, checked two ways, and its two wheels as parts."""
     d = RD.RackDrive(p.r, p.R, p.L, p.H)
     beta0 = float(RD.inclination(d))
@@ -116,28 +116,25 @@ def design(p: RollingWheelParams) -> Design:
         "checks": checks,
     }
     out = p.output
-    fine = out.tolerance * DEFAULT.fine_fraction
+    fine = budget(out.tolerance).fine
     # a plain wheel has no pitch curve to engrave apart from its cut: only the pivot is marked
-    parts = (
-        make_part("wheel1", circle_ring(p.r, fine), output=out),
-        make_part("wheel2", circle_ring(p.R, fine), output=out),
-    )
+    parts = (PartSpec("wheel1", circle_ring(p.r, fine)), PartSpec("wheel2", circle_ring(p.R, fine)))
     placements = (Placement("wheel1", 0.0, (p.L, p.H)), Placement("wheel2"))
-    overlap = assembly_overlap({q.name: q for q in parts}, list(placements), [(0, 1)])
     summary = (
         f"β {math.degrees(beta0):.3f}°→{math.degrees(beta_end):.3f}°, ω2/ω1 {w2.min() / w1:.5f}…"
         f"{w2.max() / w1:.5f}, motion laws agree to {difference:.1e} rad"
     )
-    return Design(
+    return Draft(
         params=p,
         mechanism="rolling-wheel",
         summary=summary,
         findings=tuple(findings),
-        part_list=parts,
+        parts=parts,
         placements=placements,
-        assembly=Assembly(overlap, 0.0),
+        contacts=(Contact(0, 1),),  # the wheels must not touch
         data=data,
         units=UNITS,
         detail=motion,
-        details=(f"assembly: max overlap {overlap:.3g} mm² (the wheels must not touch)",),
+        charts={"motion.png": motion},
+        where="drive",
     )

@@ -8,7 +8,7 @@ Every bad value gives one line naming the dotted key, the value and what is allo
 
 Lengths are mm; angles are degrees at this boundary (keys ending in ``_deg``) and radians in
 the properties the later stages read (``pressure_angle``, ``blend_width``). This package
-imports only the standard library, pydantic and :mod:`gearcad.errors`.
+imports only the standard library, pydantic, :mod:`gearcad.errors` and :mod:`gearcad.formats`.
 """
 
 from .carrier_train import CarrierTrainParams, TrainParams

@@ -6,12 +6,10 @@ from typing import Annotated, Any
 
 from pydantic import BaseModel, ConfigDict, model_validator
 
+from ..formats import DXF_FLAVOURS, FORMATS
 from .values import LARGEST_LENGTH, Flag, LayerName, LengthOrZero, Must, Problems, Size, choice, number
 
 __all__ = ["ParamsModel", "OutputParams", "BoreParams", "DXF_FLAVOURS", "FORMATS", "distinct_names"]
-
-DXF_FLAVOURS = ("polyline", "lines-arcs", "polyline-flat")
-FORMATS = ("dxf", "svg", "stl", "3mf")
 
 
 Tolerance = number(

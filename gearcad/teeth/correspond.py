@@ -21,6 +21,7 @@ import shapely
 from scipy.spatial import cKDTree
 
 from ..errors import DesignError
+from ..geometry.diagonals import rising_diagonals
 from .gear import ToothedGear
 from .rack import Rack
 
@@ -270,16 +271,6 @@ def correspond(anchored: list[AnchoredRing], tolerance: float) -> tuple[np.ndarr
 
 
 # ----------------------------------------------------------------------------- between sections
-
-
-def rising_diagonals(lower: np.ndarray, upper: np.ndarray) -> np.ndarray:
-    """(m,) bool: for each quad lower[j], lower[j+1], upper[j+1], upper[j] of two corresponding
-    rings, whether lower[j]–upper[j+1] is its shorter diagonal (ties: yes).  The loft splits
-    each quad along it, so that a triangle spans the larger of the chord and the twist's step."""
-    nxt = np.roll(np.arange(len(lower)), -1)
-    rising = np.sum((upper[nxt] - lower) ** 2, axis=1)
-    falling = np.sum((upper - lower[nxt]) ** 2, axis=1)
-    return rising <= falling
 
 
 def mid_section(lower: np.ndarray, upper: np.ndarray) -> np.ndarray:

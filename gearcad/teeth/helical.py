@@ -33,7 +33,7 @@ from ..geometry.outline import Outline
 from ..geometry.verify import is_simple
 from ..pitch.curve import corners
 from ..pitch.pair import PairData
-from ..tolerances import DEFAULT
+from ..tolerances import Budget
 from .correspond import ANCHORS, AnchoredRing, anchor_ring, correspond, mid_section, ring_distance
 from .frame import ArcFrame
 from .gear import ToothedGear, cut_teeth
@@ -241,8 +241,7 @@ def helical_sections(
     refuse_corners(frames, names, helix_angle)
     if face_width <= 0:
         raise DesignError(f"output.thickness = {face_width:g}: the face width must be > 0")
-    fine = tolerance * DEFAULT.fine_fraction
-    resample = tolerance * DEFAULT.fine_fraction
+    fine = resample = Budget(tolerance).fine
     budget = tolerance - fine - resample
     longest = plan.pitch / 8
     hands = (1.0, -1.0)

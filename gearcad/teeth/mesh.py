@@ -14,6 +14,7 @@ import shapely
 
 from ..geometry.depth import Depths, overlap_depths
 from ..pitch.pair import PairData
+from ..tolerances import budget
 from .frame import ArcFrame
 from .gear import ToothedGear
 
@@ -122,7 +123,7 @@ def nudge_arc(*, module: float, tolerance: float, play: float) -> float:
     """Gear 2's extra turn for the nudged test, as arc length at the contact (mm): more than the
     designed ``play`` by an overlap that dwarfs the allowance (~0.44·δ/tol times it), capped for
     coarse tolerances well under a pitch, so that the turn never carries a tooth past a space."""
-    return play + min(200 * tolerance, 0.5 * module)
+    return budget(tolerance).nudge_arc(module=module, play=play)
 
 
 def nudge_turns(pair: PairData, phi1: np.ndarray, arc: float) -> np.ndarray:
@@ -147,7 +148,7 @@ def mesh_check(
     phi1 = np.linspace(0.0, pair.cycle, positions, endpoint=False)
     # tolerance-level overlap: each of the two flanks in contact may stray by the tolerance
     # over its working depth (ha + hf ≈ 2.25 m)
-    allowed = 2 * tolerance * 2.25 * m
+    allowed = budget(tolerance).teeth_overlap(m)
     nudge = nudge_arc(module=m, tolerance=tolerance, play=play)
     turns = nudge_turns(pair, phi1[::4], nudge)
     placed = placing(pair, gears, frames, phi1)(0.0)
@@ -164,9 +165,9 @@ def mesh_check(
         nudged_min_overlap=float(np.min(nudged)),
         worst_phi=float(phi1[worst]),
         max_depth=float(np.max(depths.depth)),
-        allowed_depth=2 * tolerance,
+        allowed_depth=budget(tolerance).allowed_depth,
         depth_at=_deepest(depths, phi1, gears[0], frames[0]),
-        too_deep=tuple(float(a) for a in phi1[depths.depth > 2 * tolerance]),
+        too_deep=tuple(float(a) for a in phi1[depths.depth > budget(tolerance).allowed_depth]),
     )
 
 

@@ -18,13 +18,13 @@ from ..geometry.outline import Outline, arc_steps, rotate
 from ..geometry.verify import nearest, thin
 from ..pitch.gear import GearData
 from ..pitch.pair import PairData
-from ..tolerances import DEFAULT, Tolerances
+from ..tolerances import DEFAULT, Budget, Tolerances, designed_play
 from .frame import ArcFrame, arc_frame
 from .gear import ToothedGear, cut_teeth
 from .mesh import MeshData, backlash_range, mesh_check, nudge_arc
 from .plan import ToothPlan, plan_teeth, tooth_count
 from .rack import Rack, RackParams
-from .relief import Relief, relieve
+from .relief import MAX_RELIEF_MODULES, Relief, relieve
 from .sampling import Stopped
 
 __all__ = ["ToothSpec", "ToothedPairData", "cut_pair", "refuse_corners", "undercut_free_module"]
@@ -165,7 +165,7 @@ def cut_pair(
             f"the largest backlash module {plan.module:.4g} takes is {math.pi * plan.module / 2:.3f} mm"
         )
     shifts = (params.profile_shift, -params.profile_shift)
-    fine_tol = tol.outline_mm * tol.fine_fraction
+    fine_tol = Budget(tol.outline_mm, tol.fine_fraction).fine
 
     stop = threading.Event()  # a gear that cannot be cut calls off its mate's cut
 
@@ -186,7 +186,7 @@ def cut_pair(
     toothed = tuple(_thinned(g, tol.outline_mm - fine_tol) for g in fine)
     mesh, play_range = _prove(pair, toothed, frames, params, plan.module, tol.outline_mm)
     trim = None
-    if mesh.too_deep and relief and not plan.identical:
+    if mesh.too_deep and relief and not plan.identical and mesh.max_depth <= MAX_RELIEF_MODULES * plan.module:
         relieved, trim = relieve(pair, fine[0], toothed, frames, mesh, deep=np.array(mesh.too_deep))
         fine, toothed = (relieved, fine[1]), (_thinned(relieved, tol.outline_mm - fine_tol), toothed[1])
         mesh, play_range = _prove(pair, toothed, frames, params, plan.module, tol.outline_mm)
@@ -216,7 +216,7 @@ def cut_pair(
 def _prove(pair, toothed, frames, params, module: float, tolerance: float) -> tuple[MeshData, tuple[float, float]]:
     """The mesh proof and the play; interference counts as negative play (its depth along the
     normal, over cos α on the pitch curve)."""
-    play = params.backlash + 4 * params.clearance / math.cos(params.pressure_angle)
+    play = designed_play(backlash=params.backlash, clearance=params.clearance, pressure_angle=params.pressure_angle)
     # the mesh proof and the play measurement are independent, and shapely's vectorised GEOS
     # calls release the GIL: run them side by side on the machine's two cores
     with ThreadPoolExecutor(max_workers=2) as pool:

@@ -22,7 +22,13 @@ from .frame import ArcFrame
 from .gear import ToothedGear
 from .mesh import MeshData, placing
 
-__all__ = ["Relief", "relieve"]
+__all__ = ["Relief", "relieve", "MAX_RELIEF_MODULES"]
+
+MAX_RELIEF_MODULES = 0.02
+"""The deepest bite the trim takes off, in modules: the size of a tip relief (a few hundredths
+of a module; the walker's seams need 0.011 m).  A deeper bite is not a tip left by a
+non-conjugate rack but a pair that interferes (undercut, a rack path crossing itself, teeth too
+coarse for the curvature): it is refused as interference, not trimmed into a different gear."""
 
 STEP = np.radians(0.05)
 """Driver-angle step of the mate's sweep: the mate's tooth moves ~r·step ≈ 6 µm at the contact

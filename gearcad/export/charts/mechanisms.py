@@ -2,19 +2,17 @@
 
 from __future__ import annotations
 
-import math
 from pathlib import Path
 
 import numpy as np
 
-from ...bodies import rollers as RB
 from ...geometry.outline import rotate
 from .png import plt, save_png
 
 __all__ = ["draw", "limits_chart", "field_chart", "rolling_chart", "train_chart"]
 
 
-def limits_chart(limits: dict, params, path: Path) -> None:
+def limits_chart(limits: dict, direction: str, roller_radius: float, path: Path) -> None:
     """Largest amplitudes (convex and simple) against m: exact, the paper's, their fits."""
     m = np.array(limits["m"], dtype=float)
     fig, ax = plt.subplots(figsize=(7.5, 5))
@@ -35,38 +33,30 @@ def limits_chart(limits: dict, params, path: Path) -> None:
     ax.set_xlabel("oscillation frequency m")
     ax.set_ylabel("largest amplitude a / R")
     ax.set_xticks(m, [str(int(v)) for v in m])
-    ax.set_title(f"{params.direction} oscillation, roller radius r = {params.roller_radius:g} R")
+    ax.set_title(f"{direction} oscillation, roller radius r = {roller_radius:g} R")
     ax.grid(alpha=0.3, which="both")
     ax.legend(fontsize=8)
     fig.tight_layout()
     save_png(fig, path)
 
 
-def field_chart(osc, params, path: Path, roller_radius: float) -> None:
-    """Velocity and acceleration of contour points at four turn angles (w from the profile)."""
-    w = params.rpm * 2 * math.pi / 60
-    tau = np.linspace(0, 2 * math.pi, 49, endpoint=False)
+def field_chart(chart: dict, path: Path) -> None:
+    """Velocity and acceleration of contour points at four turn angles (``chart`` as the design
+    computed it: ``mechanisms.roller_charts``), for the rollers the parts are cut with."""
     fig, axes = plt.subplots(2, 4, figsize=(14, 7))
-    dense = np.linspace(0, 2 * math.pi, 2000)
-    for col, phi in enumerate(np.radians([0, 30, 60, 90])):
-        t = phi / w
-        for row, (label, k) in enumerate((("velocity", 1), ("acceleration", 2))):
+    for col, at in enumerate(chart["field"]):
+        for row, (label, key) in enumerate((("velocity", "velocity"), ("acceleration", "acceleration"))):
             ax = axes[row, col]
-            outline = RB.contour(osc, dense, r=roller_radius)
-            pos = [RB.point_motion(osc, x, y, w=w, t=np.array([t]))[0][0] for x, y in outline[::10]]
-            ax.plot(*np.array(pos).T, color="0.5", lw=0.8)
-            pts = RB.contour(osc, tau, r=roller_radius)
-            motion = [RB.point_motion(osc, x, y, w=w, t=np.array([t])) for x, y in pts]
-            p = np.array([mo[0][0] for mo in motion])
-            v = np.array([mo[k][0] for mo in motion])
-            ax.quiver(p[:, 0], p[:, 1], v[:, 0], v[:, 1], color="C0" if k == 1 else "C3", angles="xy")
+            ax.plot(*at["outline"].T, color="0.5", lw=0.8)
+            p, v = at["points"], at[key]
+            ax.quiver(p[:, 0], p[:, 1], v[:, 0], v[:, 1], color="C0" if row == 0 else "C3", angles="xy")
             ax.set_aspect("equal")
-            ax.set_title(f"{label}, φ = {math.degrees(phi):.0f}°", fontsize=9)
+            ax.set_title(f"{label}, φ = {at['degrees']:.0f}°", fontsize=9)
             ax.set_xticks([])
             ax.set_yticks([])
     fig.suptitle(
-        f"body on three rollers: {params.direction}, m = {params.m}, a = {params.amplitude:g} R, "
-        f"{params.rpm:g} rpm (units of R)"
+        f"body on three rollers: {chart['direction']}, m = {chart['m']}, a = {chart['amplitude']:g} R, "
+        f"r = {chart['roller_radius']:.6g} R, {chart['rpm']:g} rpm (units of R)"
     )
     fig.tight_layout()
     save_png(fig, path)
@@ -126,31 +116,29 @@ def train_chart(report: dict, parts, placements, path: Path) -> None:
 
 def draw(design, folder: Path) -> list[str]:
     """Every chart of a roller-body, rolling-wheel or carrier-train design; returns file names."""
-    p, names = design.params, []
-    if design.mechanism == "roller-body":
-        if "limits" in design.data:
-            limits_chart(design.data["limits"], p, folder / "amplitude_limits.png")
-            names.append("amplitude_limits.png")
-        field_chart(design.detail.oscillation, p, folder / "velocity_field.png", p.roller_radius)
+    names = []
+    charts = design.charts
+    if "amplitude_limits.png" in charts:
+        c = charts["amplitude_limits.png"]
+        limits_chart(c["limits"], c["direction"], c["roller_radius"], folder / "amplitude_limits.png")
+        names.append("amplitude_limits.png")
+    if "velocity_field.png" in charts:
+        field_chart(charts["velocity_field.png"], folder / "velocity_field.png")
         names.append("velocity_field.png")
-        if "limits_vs_r" in design.data:
-            from ...bodies import claims as C
-            from ...bodies import limits as LM
-            from . import papers
+    if "limits_vs_r.png" in charts:
+        from . import papers
 
-            table = design.data["limits_vs_r"]
-            papers.limits_vs_r_chart(table, folder / "limits_vs_r.png", paper_by_eye=C.PAPER_BY_EYE)
-            names.append("limits_vs_r.png")
-            # the paper's Figs. 1 and 2: contours for several amplitudes and roller radii
-            for fig, m, amplitudes in ((1, 3, [0.1, 0.15, 0.2]), (2, 6, [0.03, 0.05, 0.1])):
-                family = LM.shape_family(p.direction, m, amplitudes, LM.PAPER_RADII)
-                name = f"shape_family_m{m}.png"
-                papers.shape_family_chart(family, folder / name, title=f"Fig. {fig}: {p.direction}, m = {m}")
-                names.append(name)
-    elif design.mechanism == "rolling-wheel":
-        rolling_chart(design.detail, p, folder / "motion.png")
+        c = charts["limits_vs_r.png"]
+        papers.limits_vs_r_chart(c["table"], folder / "limits_vs_r.png", paper_by_eye=c["paper_by_eye"])
+        names.append("limits_vs_r.png")
+        # the paper's Figs. 1 and 2: contours for several amplitudes and roller radii
+        for name in sorted(n for n in charts if n.startswith("shape_family_")):
+            papers.shape_family_chart(charts[name]["family"], folder / name, title=charts[name]["title"])
+            names.append(name)
+    if "motion.png" in charts:
+        rolling_chart(charts["motion.png"], design.params, folder / "motion.png")
         names.append("motion.png")
-    elif design.mechanism == "carrier-train":
-        train_chart(design.data, design.parts(), design.placements, folder / "train.png")
+    if "train.png" in charts:
+        train_chart(charts["train.png"], design.parts(), design.placements, folder / "train.png")
         names.append("train.png")
     return names

@@ -1,0 +1,52 @@
+"""The output formats: one entry per format, read by the profiles (which names a profile may
+ask for in ``output.formats``) and by the writing loop (which writer makes which files).
+
+A format's writer is named, not imported (``"module:function"`` under :mod:`gearcad.export`), so
+that its file library is loaded only when a profile asks for it.  Adding a format is its writer
+module plus one entry below.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+__all__ = ["Format", "TABLE", "FORMATS", "DXF_FLAVOURS", "by_name"]
+
+
+@dataclass(frozen=True)
+class Format:
+    """One output format.
+
+    ``takes`` is what its writer is handed: ``"drawing"`` (the cut and mark paths of the parts as
+    placed, ``export.drawing.Drawing``) or ``"solid"`` (the parts as solids, a list of
+    ``export.mesh.SolidItem``); the writer is called ``writer(path, what, design=, whole=)`` and
+    returns the file's entry in the report (counts: vertices, triangles, …).  Every part is written
+    to ``<part>.<extension>``; ``wholes`` are the files over all parts it also writes
+    ("assembly": as assembled, "sheet": laid flat on output.sheet, "plate": on output.bed).
+    """
+
+    name: str
+    extension: str
+    takes: str
+    writer: str
+    wholes: tuple[str, ...] = ()
+    flavours: tuple[str, ...] = ()
+    """The ways it may be written (``output.dxf`` for DXF), the default first."""
+
+
+TABLE: tuple[Format, ...] = (
+    Format(
+        "dxf", "dxf", "drawing", "files:write_dxf", ("assembly", "sheet"), ("polyline", "lines-arcs", "polyline-flat")
+    ),
+    Format("svg", "svg", "drawing", "files:write_svg", ("assembly", "sheet")),
+    Format("stl", "stl", "solid", "files:write_stl"),
+    Format("3mf", "3mf", "solid", "files:write_3mf", ("assembly", "plate")),
+)
+
+FORMATS: tuple[str, ...] = tuple(f.name for f in TABLE)
+"""The formats ``output.formats`` may name (and writes by default)."""
+DXF_FLAVOURS: tuple[str, ...] = next(f.flavours for f in TABLE if f.name == "dxf")
+
+
+def by_name(name: str) -> Format:
+    return next(f for f in TABLE if f.name == name)

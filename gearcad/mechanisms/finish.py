@@ -1,0 +1,173 @@
+"""The one finishing line: any mechanism's :class:`Draft` made into the complete :class:`Design`.
+
+A mechanism draws only what is its own — its parts' rings, where they sit, which of them touch,
+its report blocks, findings and chart data — and :func:`finish` does the rest the same way for
+every mechanism, in one pass: make the parts and cut their paths, prove the assembly with one
+overlap and nudge policy (:class:`~gearcad.tolerances.Budget`), lay out the sheet and the plate,
+and build the :class:`Design` whole.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from ..findings import Finding, finding
+from ..tolerances import budget
+from . import layouts
+from .base import Assembly, Design, Motion, Table, assembly_depth, assembly_overlap
+from .parts import BoreSpec, Part, Placement, cut_paths, make_part
+
+__all__ = ["Contact", "Draft", "PartSpec", "Proof", "finish", "prove"]
+
+
+@dataclass(frozen=True)
+class PartSpec:
+    """A part as its mechanism draws it, pivot at the origin: rings sampled at the budget's fine
+    tolerance ((n, 2) float, mm) — the outer ring counter-clockwise; ``hole`` a given inner ring
+    (clockwise) instead of the bore; ``marks`` closed rings to engrave; ``bore`` the shaft hole,
+    leaving ``wall`` mm to the outline."""
+
+    name: str
+    outer: np.ndarray
+    bore: BoreSpec | None = None
+    wall: float = 0.0
+    marks: tuple[np.ndarray, ...] = ()
+    hole: np.ndarray | None = None
+
+
+@dataclass(frozen=True)
+class Contact:
+    """Two placed parts (indices into the placements) that touch as assembled.
+
+    Toothed (``module`` given), they may overlap by the teeth's allowance and, the second turned
+    by the budget's nudge arc over ``radius`` (its pitch radius at the contact, mm) either way,
+    must overlap by more — unless ``nudge`` is False because the mechanism proved the mesh over
+    a whole cycle itself (a :class:`Proof`).  Plain outlines may overlap by the tolerance along
+    ``length`` mm of their contact (0: they must not touch at all).
+    """
+
+    first: int
+    second: int
+    module: float | None = None
+    radius: float = 0.0
+    length: float = 0.0
+    nudge: bool = True
+
+
+class Proof:
+    """What a mechanism's own mesh proof over a cycle reports (``teeth.mesh.MeshData`` is one)."""
+
+    positions: int
+    max_overlap: float
+    allowed_overlap: float
+    nudged_min_overlap: float
+    max_depth: float
+
+
+@dataclass(frozen=True)
+class Draft:
+    """What a mechanism's ``design(params)`` returns: only what is its own."""
+
+    params: Any
+    mechanism: str
+    summary: str
+    findings: tuple[Finding, ...]
+    parts: tuple[PartSpec, ...]
+    placements: tuple[Placement, ...]
+    contacts: tuple[Contact, ...]
+    data: dict
+    units: dict
+    detail: Any = None
+    details: tuple[str, ...] = ()
+    motion: Motion | None = None
+    tables: tuple[Table, ...] = ()
+    sections: dict = field(default_factory=dict)
+    charts: dict = field(default_factory=dict)
+    """Chart name → the data it is drawn from (the exporters compute nothing of the model)."""
+    proofs: tuple = ()
+    """The mechanism's own mesh proofs over a cycle (:class:`Proof` each), joined to the assembly's."""
+    where: str = "assembly"
+    """What a finding about the assembly names as its place."""
+
+
+def prove(parts: dict[str, Part], draft: Draft) -> Assembly:
+    """The interference proof of the draft's contacts, with one overlap and nudge policy."""
+    b = budget(draft.params.output.tolerance)
+    placements = list(draft.placements)
+    pairs = [(c.first, c.second) for c in draft.contacts]
+    overlap = assembly_overlap(parts, placements, pairs)
+    allowed = max(
+        (b.teeth_overlap(c.module) if c.module is not None else b.allowed_overlap(c.length) for c in draft.contacts),
+        default=0.0,
+    )
+    nudged = [p.nudged_min_overlap for p in draft.proofs]
+    for c in draft.contacts:
+        if c.module is None or not c.nudge:
+            continue
+        turn = b.nudge_arc(module=c.module) / c.radius
+        first, mate = placements[c.first], placements[c.second]
+        # turned a little either way, the second part must bite into the first: they do touch
+        turned = [Placement(mate.part, mate.angle + d, mate.offset) for d in (-turn, turn)]
+        nudged.append(max(assembly_overlap(parts, [first, t], [(0, 1)]) for t in turned))
+    proofs = draft.proofs
+    # depth, not only area: a long thin sliver passes an area bound but binds the made parts
+    toothed = [(c.first, c.second) for c in draft.contacts if c.module is not None]
+    depths = [p.max_depth for p in proofs]
+    if toothed:
+        step = 0.1 * min(c.module for c in draft.contacts if c.module is not None)
+        depths.append(assembly_depth(parts, placements, toothed, step=step))
+    return Assembly(
+        max([overlap] + [p.max_overlap for p in proofs]),
+        proofs[0].allowed_overlap if proofs else allowed,
+        min(nudged) if nudged else None,
+        proofs[0].positions if proofs else 1,
+        max(depths) if depths else None,
+        b.allowed_depth if depths else None,
+    )
+
+
+def finish(draft: Draft, *, start: float | None = None) -> Design:
+    """The complete design of a draft: parts with their cut paths, the assembly proven, the
+    sheet and plate laid out (``start``: when the design began, for its ``seconds``)."""
+    start = time.perf_counter() if start is None else start
+    out = draft.params.output
+    made = tuple(
+        make_part(s.name, s.outer, output=out, bore=s.bore, wall=s.wall, marks=s.marks, hole=s.hole)
+        for s in draft.parts
+    )
+    parts = cut_paths(made, out)
+    assembly = prove({p.name: p for p in parts}, draft)
+    findings = draft.findings
+    if not assembly.fits and not any(f.code == "interference" for f in findings):
+        message = f"parts overlap by {assembly.overlap:.4g} mm² as assembled (allowed {assembly.allowed:.3g} mm²)"
+        if assembly.depth is not None and assembly.depth > assembly.allowed_depth:
+            message += f", {assembly.depth * 1e3:.3g} µm deep (allowed {assembly.allowed_depth * 1e3:.3g} µm)"
+        findings += (finding("interference", message, draft.where),)
+    line = f"assembly: max overlap {assembly.overlap:.3g} mm² (allowed {assembly.allowed:.3g})"
+    if assembly.nudged is not None:
+        line += f", nudged {assembly.nudged:.3g} mm²"
+    formats = set(out.formats)
+    return Design(
+        params=draft.params,
+        mechanism=draft.mechanism,
+        summary=draft.summary,
+        findings=findings,
+        part_list=parts,
+        placements=draft.placements,
+        assembly=assembly,
+        data=draft.data,
+        units=draft.units,
+        detail=draft.detail,
+        details=(*draft.details, line),
+        motion=draft.motion,
+        tables=draft.tables,
+        sheet=layouts.sheet_layout(parts, draft.placements, out) if formats & {"dxf", "svg"} else (),
+        plate=layouts.plate_layout(parts, draft.placements, out) if "3mf" in formats else (),
+        sections=draft.sections,
+        charts=draft.charts,
+        seconds=time.perf_counter() - start,
+    )
