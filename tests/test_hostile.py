@@ -205,3 +205,71 @@ def test_a_long_steep_herringbone_is_refused_at_once(overrides, key):
     if key.startswith("output.thickness"):  # the largest thickness that fits, as a number
         fits = float(re.search(r"output\.thickness ≤ ([\d.]+) mm", str(info.value)).group(1))
         assert 5 < fits < 50, str(info.value)
+
+
+CIRCLES = {"gear1": {"curve": "circle", "radius": 20.0}, "output": {"tolerance": 0.05}}
+"""The cheapest gear pair: two toothless circles."""
+
+
+@pytest.mark.parametrize("title", [r"Spur $\frac{1}{$ pair", "$" + "x^{" * 80 + "x" + "}" * 80 + "$"])
+def test_a_title_is_drawn_as_text_never_as_mathtext(tmp_path, title):
+    """Item 6: ``check`` accepted these titles and the charts crashed on them (mathtext; the
+    audit nested 200 deep, over the 500 characters a title may now hold)."""
+    from gearcad.export.charts.pair import pitch_chart
+
+    d = gearcad.check({**CIRCLES, "title": title})
+    pitch_chart(d.detail.pitch, tmp_path / "pitch.png", d.detail.pitch_rings)
+    assert (tmp_path / "pitch.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_a_command_line_byte_that_is_not_utf8_is_one_line(tmp_path, capsys):
+    """Item 6: ``--set title=<0xff>`` arrives as a lone surrogate; it crashed the charts and
+    report.json.  Refused like a file's bad byte, before any work."""
+    out = tmp_path / "out"
+    assert main([*_quick_args(out), "--set", "title=a\udcffb"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "title = 'a\\udcffb': must be UTF-8 text" in err[0], err
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_the_herringbone_chamfer_check_refuses_is_what_build_refuses_and_says_what_fits():
+    """Item 6: chamfer 0.45 passed ``check`` (the planar outline) and the build refused it (the
+    twisted end sections); now ``check`` tests the end sections too, and names a chamfer that builds."""
+    params = gearcad.load_profile(HERRINGBONE, overrides={**QUICK, "output.chamfer": 0.45})
+    with pytest.raises(GearcadError, match=r"output\.chamfer = 0\.45: too large .* use output\.chamfer ≤ 0\.29 mm"):
+        gearcad.check(params)
+
+
+def test_a_train_of_thousands_of_gears_is_refused_at_once():
+    """Item 20: 9300 gears were accepted (check 220 s); 2000 refused after 37 s in one 16 kB line."""
+    import time
+
+    start = time.process_time()
+    with pytest.raises(GearcadError) as info:
+        gearcad.load_profile(ROOT / "profiles" / "planetary_external.toml", overrides={"train.teeth": [20] * 9300})
+    assert time.process_time() - start < 2
+    (line,) = str(info.value).splitlines()
+    assert "train.teeth = [20, 20" in line and "2 to 24 tooth counts" in line and len(line) < 400
+
+
+def test_many_unknown_keys_are_refused_in_linear_time_and_few_lines():
+    """Item 21: 100 000 unknown keys took 56 s (a list searched per line) and printed 26 MB."""
+    import time
+
+    def refuse(n: int) -> tuple[float, list[str]]:
+        data = {**CIRCLES, **{f"k{i}": 1 for i in range(n)}}
+        start = time.process_time()
+        with pytest.raises(GearcadError) as info:
+            gearcad.parse_profile(data)
+        return time.process_time() - start, str(info.value).splitlines()
+
+    small, _ = refuse(2_000)
+    large, lines = refuse(40_000)
+    assert large < 40 * small + 1.0, (small, large)  # quadratic would be 400 times
+    assert len(lines) == 41 and lines[0].startswith("k0: unknown key") and lines[-1] == "… and 39960 more problems"
+
+
+def test_a_title_has_a_length_limit():
+    """Item 22: a 300 kB title took 41 s in the charts."""
+    with pytest.raises(GearcadError, match="title = 'xxx.*: must be a string of at most 500 characters"):
+        gearcad.check({**CIRCLES, "title": "x" * 300_000})

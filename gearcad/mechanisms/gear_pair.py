@@ -15,6 +15,7 @@ import numpy as np
 
 from ..bodies import shoe as S
 from ..geometry.arcfit import decimate
+from ..geometry.inset import check_chamfer
 from ..pitch.discretize import polyline
 from ..pitch.gear import GearData
 from ..profiles import GearPairParams
@@ -287,6 +288,8 @@ def design(params: GearPairParams) -> Design:
         )
         play = spec.backlash + 4 * spec.clearance / math.cos(spec.pressure_angle)  # as cut_pair's
         proofs = section_mesh(pitch.pair, helical, teeth.frames, tolerance=out.tolerance, play=play)
+        for part, g in zip(parts, helical.gears):  # the solid's caps are its end sections: as the loft checks
+            check_chamfer(part.outline, out.thickness, out.chamfer, name=part.name, sections=g.rings[[0, -1]])
     placements = tuple(Placement(g.name, 0.0, g.pivot) for g in pitch.gears)
     overlap = assembly_overlap({p.name: p for p in parts}, list(placements), [(0, 1)])
     papers = paper_extras(params, pitch)

@@ -12,7 +12,7 @@ import math
 from dataclasses import dataclass
 from typing import Annotated, Any, Literal
 
-from pydantic import AfterValidator, Field, ValidationError
+from pydantic import AfterValidator, BeforeValidator, Field, ValidationError
 from pydantic_core import PydanticCustomError, core_schema
 
 __all__ = [
@@ -181,7 +181,28 @@ StandardRackPressureAngleDeg = number(
     why=" (the standard rack, tip rounding 0.38·m and dedendum 1.25·m, comes to a point beyond 23.1°)",
 )
 """The pressure angle of a mechanism whose rack has no other keys (carrier trains, roller bodies)."""
-Text = Annotated[str, Field(strict=True), Must("a string")]
+MOST_TEXT = 500
+"""Characters a text value (a title, a source) may hold: a chart's title is one line, and
+matplotlib lays a 300 kB one out in ~40 s."""
+
+
+def _utf8(text: Any) -> Any:
+    try:
+        if isinstance(text, str):
+            text.encode("utf-8")
+    except UnicodeEncodeError as exc:  # a lone surrogate: a byte of a command line that was not UTF-8
+        raise PydanticCustomError(
+            VALUE_ERROR, "must be UTF-8 text: character {at} is an undecodable byte", {"at": exc.start + 1}
+        ) from None
+    return text
+
+
+Text = Annotated[
+    str,
+    Field(strict=True, max_length=MOST_TEXT),
+    Must(f"a string of at most {MOST_TEXT} characters"),
+    BeforeValidator(_utf8),
+]
 Flag = Annotated[bool, Field(strict=True), Must("true or false")]
 
 RESERVED_NAMES = ("assembly", "sheet", "plate", "index", "report", "kinematics", "animation")
