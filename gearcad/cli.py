@@ -124,7 +124,17 @@ def _run(args) -> int:
     return 0
 
 
+def _printable_streams() -> None:
+    """A terminal that is not UTF-8 (LC_ALL=C, PYTHONIOENCODING=latin-1) shows β, ω, ² escaped
+    rather than ending the build with UnicodeEncodeError."""
+    for stream in (sys.stdout, sys.stderr):
+        encoding = (getattr(stream, "encoding", None) or "").lower().replace("-", "").replace("_", "")
+        if encoding != "utf8" and hasattr(stream, "reconfigure"):
+            stream.reconfigure(errors="backslashreplace")
+
+
 def main(argv: list[str] | None = None) -> int:
+    _printable_streams()
     args = _parser().parse_args(argv)
     logging.basicConfig(level=logging.ERROR, format="%(levelname)s: %(message)s")
     try:

@@ -9,6 +9,7 @@ import multiprocessing
 import os
 import re
 import signal
+import sys
 from pathlib import Path
 
 import pytest
@@ -273,3 +274,25 @@ def test_a_title_has_a_length_limit():
     """Item 22: a 300 kB title took 41 s in the charts."""
     with pytest.raises(GearcadError, match="title = 'xxx.*: must be a string of at most 500 characters"):
         gearcad.check({**CIRCLES, "title": "x" * 300_000})
+
+
+def _circles_toml(folder: Path, extra: str = "") -> Path:
+    path = folder / "circles.toml"
+    text = '[gear1]\ncurve = "circle"\nradius = 20.0\n[output]\ntolerance = 0.05\nformats = ["dxf"]\n'
+    path.write_text(text + "charts = false\nanimation = false\n" + extra, encoding="utf-8")
+    return path
+
+
+@pytest.mark.parametrize("encoding", ["ascii", "latin-1"])
+def test_a_terminal_that_is_not_utf8_gets_escapes_not_a_traceback(tmp_path, monkeypatch, encoding):
+    """Item 7: ``LC_ALL=C`` or ``PYTHONIOENCODING=latin-1``: ω, …, ² ended the build (nothing published)."""
+    import io
+
+    raw = io.BytesIO()
+    monkeypatch.setattr(sys, "stdout", io.TextIOWrapper(raw, encoding=encoding))
+    profile = _circles_toml(tmp_path)
+    assert main(["check", str(profile)]) == 0
+    assert main(["build", str(profile), "--out", str(tmp_path / "out")]) == 0
+    sys.stdout.flush()
+    assert "\\u03c92/\\u03c91" in raw.getvalue().decode("ascii")
+    assert (tmp_path / "out" / "circles" / "report.json").is_file()
