@@ -296,3 +296,18 @@ def test_a_terminal_that_is_not_utf8_gets_escapes_not_a_traceback(tmp_path, monk
     sys.stdout.flush()
     assert "\\u03c92/\\u03c91" in raw.getvalue().decode("ascii")
     assert (tmp_path / "out" / "circles" / "report.json").is_file()
+
+
+def test_a_walker_whose_shoe_cannot_take_its_post_names_the_key():
+    """Item 8: ``gear1.a = 1000`` gave a raw ``ValueError: post_width 20 mm does not fit the shoe``."""
+    params = gearcad.load_profile(ROOT / "profiles" / "walker.toml", overrides={**QUICK, "gear1.a": 1000.0})
+    with pytest.raises(GearcadError, match=r"gear1\.a = 1000: the walker's shoe .* use gear1\.a ≤ (\d+) mm") as info:
+        gearcad.check(params)
+    limit = float(re.search(r"≤ (\d+) mm", str(info.value)).group(1))
+    from gearcad.bodies.shoe import shoe_ring
+    from gearcad.pitch.walker import WalkerGeometry
+
+    fits = WalkerGeometry(L=params.pair.center_distance, a=limit, b=params.gear1.b, c=params.gear1.c)
+    assert len(shoe_ring(fits, tolerance=0.01)) > 8  # the suggested a takes the post
+    with pytest.raises(ValueError, match="post_width"):
+        shoe_ring(WalkerGeometry(L=fits.L, a=1.02 * limit, b=fits.b, c=fits.c), tolerance=0.01)
