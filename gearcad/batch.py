@@ -17,7 +17,7 @@ import time
 from collections.abc import Callable, Iterator, Sequence
 from concurrent.futures import ProcessPoolExecutor
 from concurrent.futures.process import BrokenProcessPool
-from contextlib import suppress
+from contextlib import contextmanager, suppress
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -69,7 +69,8 @@ def _build_one(job: tuple[ProfileParams, Path, bool]) -> BuildResult:
     from .export.write import write_design  # the file libraries only when files are written
 
     d = _named(params, lambda: design(params))
-    files = _named(params, lambda: write_design(d, folder, beside=beside))
+    with _writing(f"{params.name}: cannot write its files"):
+        files = _named(params, lambda: write_design(d, folder, beside=beside))
     return BuildResult(d.name, d.summary, d.findings, files, time.perf_counter() - start)
 
 
@@ -131,7 +132,8 @@ def build(
     with interrupt_guard(out), Publisher(out) as publisher:
         # a core left over (one profile on two cores): each build draws its pictures beside its files
         beside = _workers(len(profiles) + 1) > count
-        jobs = [(p, publisher.folder(p.name), beside) for p in profiles]
+        with _writing(f"--out {out}: cannot make a folder to build in"):
+            jobs = [(p, publisher.folder(p.name), beside) for p in profiles]
         if count == 1:
             built, pool = map(_build_one, jobs), None
         else:
@@ -147,8 +149,20 @@ def build(
             if pool is not None:
                 _stop(pool)
         publisher.commit()
-    _write_index(publisher.path)
+    with _writing(f"--out {out}: the profiles were published, but not index.html over them"):
+        _write_index(publisher.path)
     return results
+
+
+@contextmanager
+def _writing(what: str):
+    """A full disk (ENOSPC, EDQUOT), a read-only or failing filesystem: one line, not a traceback."""
+    try:
+        yield
+    except OSError as exc:
+        if isinstance(exc, BrokenPipeError):  # the reader of our output has gone: the CLI's to handle
+            raise
+        raise GearcadError(f"{what} ({exc.strerror or exc})") from None
 
 
 def _write_index(out: Path) -> None:

@@ -10,6 +10,7 @@ import os
 import re
 import signal
 import sys
+from contextlib import suppress
 from pathlib import Path
 
 import pytest
@@ -311,3 +312,44 @@ def test_a_walker_whose_shoe_cannot_take_its_post_names_the_key():
     assert len(shoe_ring(fits, tolerance=0.01)) > 8  # the suggested a takes the post
     with pytest.raises(ValueError, match="post_width"):
         shoe_ring(WalkerGeometry(L=fits.L, a=1.02 * limit, b=fits.b, c=fits.c), tolerance=0.01)
+
+
+@pytest.fixture
+def small_disk(tmp_path):
+    """A 2 MiB tmpfs of 16 inodes at ``tmp_path / "disk"`` (needs root; skipped otherwise)."""
+    import subprocess
+
+    disk = tmp_path / "disk"
+    disk.mkdir()
+    if os.geteuid() != 0:
+        pytest.skip("mounting a small tmpfs needs root")
+    options = "size=2m,nr_inodes=16"
+    mount = subprocess.run(["mount", "-t", "tmpfs", "-o", options, "tmpfs", str(disk)], capture_output=True)
+    if mount.returncode != 0:
+        pytest.skip(f"cannot mount a tmpfs here: {mount.stderr.decode(errors='replace').strip()}")
+    try:
+        yield disk
+    finally:
+        subprocess.run(["umount", str(disk)], check=True)
+
+
+@pytest.mark.parametrize("full", ["space", "inodes"])
+def test_a_full_disk_is_one_line_and_exit_2(small_disk, tmp_path, capsys, full):
+    """Item 9: ENOSPC while writing the files, or no inode for the staging folder: an OSError
+    traceback before; one line, exit 2, nothing left on the disk but what was there."""
+    if full == "space":
+        fd = os.open(small_disk / "filler", os.O_WRONLY | os.O_CREAT)
+        with suppress(OSError):
+            while True:  # page by page until not one is left
+                os.write(fd, b"\0" * 4096)
+        os.close(fd)
+    else:
+        with suppress(OSError):
+            for i in range(100):
+                (small_disk / f"f{i}").touch()
+    before = sorted(os.listdir(small_disk))
+    profile = _circles_toml(tmp_path)
+    assert main(["build", str(profile), "--out", str(small_disk / "out")]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "(No space left on device)" in err[0], err
+    assert sorted(os.listdir(small_disk)) == before
