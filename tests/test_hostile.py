@@ -353,3 +353,39 @@ def test_a_full_disk_is_one_line_and_exit_2(small_disk, tmp_path, capsys, full):
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "(No space left on device)" in err[0], err
     assert sorted(os.listdir(small_disk)) == before
+
+
+@pytest.mark.parametrize("kind", ["long-name", "long-path", "sys"])
+def test_an_out_the_system_cannot_make_is_one_line(tmp_path, capsys, kind):
+    """Item 10: a component over 255 bytes or a path over 4096 (ENAMETOOLONG), and a folder that
+    ``access()`` calls writable for root but ``mkdir`` refuses (``/sys``): tracebacks before."""
+    out = {
+        "long-name": tmp_path / ("a" * 300) / "x",
+        "long-path": tmp_path.joinpath(*["abcdefgh"] * 500),
+        "sys": Path("/sys/gearcad-out"),
+    }[kind]
+    if kind == "sys" and not (os.path.isdir("/sys/kernel") and os.access("/sys", os.W_OK)):
+        pytest.skip("needs /sys and root (access() calls it writable)")
+    assert main(["build", str(_circles_toml(tmp_path)), "--out", str(out)]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and err[0].startswith("gearcad: error: --out "), err
+    assert sorted(os.listdir(tmp_path)) == ["circles.toml"]
+
+
+def test_the_index_reads_only_what_gearcad_wrote_and_never_blocks(tmp_path, capsys):
+    """Item 11: foreign ``*/report.json`` (not an object, no name, another's name), a FIFO as a
+    report (it blocked forever), a folder at the old fixed temp name; and a profile named
+    ``index.html`` is refused by ``check`` as by ``build``."""
+    out = tmp_path / "out"
+    for name, text in {"list": "[]", "nameless": '{"schema": 2}', "other": '{"schema": 2, "name": "x"}'}.items():
+        (out / name).mkdir(parents=True)
+        (out / name / "report.json").write_text(text)
+    (out / "fifo").mkdir()
+    os.mkfifo(out / "fifo" / "report.json")
+    (out / ".index.html.tmp").mkdir()
+    profile = _circles_toml(tmp_path)
+    assert main(["build", str(profile), "--out", str(out)]) == 0
+    page = (out / "index.html").read_text(encoding="utf-8")
+    assert "circles/index.html" in page and not any(f"{n}/index.html" in page for n in ("list", "nameless", "other"))
+    assert main(["check", str(profile), "--set", "name=index.html"]) == 2
+    assert "must not be 'index.html'" in capsys.readouterr().err

@@ -205,7 +205,7 @@ Text = Annotated[
 ]
 Flag = Annotated[bool, Field(strict=True), Must("true or false")]
 
-RESERVED_NAMES = ("assembly", "sheet", "plate", "index", "report", "kinematics", "animation")
+RESERVED_NAMES = ("assembly", "sheet", "plate", "index", "index.html", "report", "kinematics", "animation")
 """Names the build gives its own files; a part or profile may not take them (any case)."""
 NAME_RULE = (
     "a name of 1 to 64 characters: letters A–Z a–z, digits, '-', '_' or '.', "
