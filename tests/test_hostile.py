@@ -389,3 +389,30 @@ def test_the_index_reads_only_what_gearcad_wrote_and_never_blocks(tmp_path, caps
     assert "circles/index.html" in page and not any(f"{n}/index.html" in page for n in ("list", "nameless", "other"))
     assert main(["check", str(profile), "--set", "name=index.html"]) == 2
     assert "must not be 'index.html'" in capsys.readouterr().err
+
+
+def _deep(depth: int) -> dict:
+    node: dict = {}
+    for _ in range(depth):
+        node = {"a": node}
+    return node
+
+
+@pytest.mark.parametrize("where", ["file-arrays", "file-headers", "set", "api"])
+def test_500_deep_nesting_is_one_line(tmp_path, capsys, where):
+    """Item 12: a 1.5 kB profile of 500-deep arrays or dotted headers: ``RecursionError``."""
+    profile = _circles_toml(tmp_path)
+    if where == "api":
+        with pytest.raises(GearcadError, match="nested more than 32"):
+            gearcad.load_profile(profile, overrides={"title": _deep(500)})
+        return
+    args = ["check", str(profile)]
+    if where == "file-arrays":
+        profile.write_text(profile.read_text() + "title = " + "[" * 500 + "]" * 500 + "\n")
+    elif where == "file-headers":
+        profile.write_text(profile.read_text() + "[" + ".".join(["a"] * 500) + "]\nx = 1\n")
+    else:
+        args += ["--set", "title=" + "[" * 500 + "]" * 500]
+    assert main(args) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "nested" in err[0] and len(err[0]) < 300, err
