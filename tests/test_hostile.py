@@ -416,3 +416,19 @@ def test_500_deep_nesting_is_one_line(tmp_path, capsys, where):
     assert main(args) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "nested" in err[0] and len(err[0]) < 300, err
+
+
+@pytest.mark.parametrize(
+    ("profile", "key"),
+    [
+        ("roller_body_m3", "body.scale"),
+        ("rolling_wheel", "drive.r"),
+        ("rolling_wheel", "drive.R"),
+        ("planetary_external", "train.module"),
+    ],
+)
+def test_lengths_share_the_floor_of_every_length(profile, key):
+    """Item 13: these were bounded only by > 0; 1e-200 crashed the sheet layout, below 0.001
+    gave meaningless parts.  Now 0.001 mm is the floor, as for every other length."""
+    with pytest.raises(GearcadError, match=rf"{re.escape(key)} = 1e-200: must be .* from 0\.001 to"):
+        gearcad.load_profile(ROOT / "profiles" / f"{profile}.toml", overrides={key: 1e-200})

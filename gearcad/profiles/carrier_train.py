@@ -8,7 +8,18 @@ from typing import Annotated, Literal
 from pydantic import Field, model_validator
 
 from .common import BoreParams, OutputParams, ParamsModel, distinct_names
-from .values import FASTEST, Must, PartName, Problems, StandardRackPressureAngleDeg, Text, choice, integer, number
+from .values import (
+    FASTEST,
+    SMALLEST_LENGTH,
+    Must,
+    PartName,
+    Problems,
+    StandardRackPressureAngleDeg,
+    Text,
+    choice,
+    integer,
+    number,
+)
 
 __all__ = ["CompoundParams", "TrainParams", "CarrierTrainParams", "compound_wall"]
 
@@ -16,7 +27,7 @@ _RING_MARGIN = 12  # teeth: a ring closer in size to its pinion than this interf
 _DEDENDUM = 1.25  # modules: the standard rack's dedendum, which sets every root circle
 _WALL = 2.0  # modules (the larger of the two): material a compound ring keeps between its root circles
 
-TrainModule = number("a module in mm", gt=0, le=50)
+TrainModule = number("a module in mm", ge=SMALLEST_LENGTH, le=50)
 _MOST_TEETH = 2000
 _MOST_GEARS = 24  # each gear is cut, placed and proved against its mate: ~0.1 s each, a train in seconds
 ToothCount = integer(ge=8, le=_MOST_TEETH)
