@@ -101,7 +101,10 @@ def _run(args) -> int:
 
         text = json.dumps(profile_schema(), indent=2, ensure_ascii=False) + "\n"
         if args.out:
-            args.out.write_text(text, encoding="utf-8")
+            try:
+                args.out.write_text(text, encoding="utf-8")
+            except OSError as exc:  # a folder, a missing folder, a read-only place
+                raise GearcadError(f"--out {args.out}: cannot write the schema there ({exc.strerror or exc})") from None
         else:
             sys.stdout.write(text)
         return 0
@@ -138,7 +141,7 @@ def main(argv: list[str] | None = None) -> int:
     args = _parser().parse_args(argv)
     logging.basicConfig(level=logging.ERROR, format="%(levelname)s: %(message)s")
     try:
-        if args.command == "build":
+        if args.command in ("build", "bench"):
             from .publish import check_out
 
             check_out(args.out)  # before any work: a bad --out is found in a moment

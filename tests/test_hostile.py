@@ -432,3 +432,29 @@ def test_lengths_share_the_floor_of_every_length(profile, key):
     gave meaningless parts.  Now 0.001 mm is the floor, as for every other length."""
     with pytest.raises(GearcadError, match=rf"{re.escape(key)} = 1e-200: must be .* from 0\.001 to"):
         gearcad.load_profile(ROOT / "profiles" / f"{profile}.toml", overrides={key: 1e-200})
+
+
+def test_build_from_a_worker_thread(tmp_path):
+    """Item 14: ``ValueError: signal only works in main thread``; signals are handled only where
+    Python lets them be (the main thread), and the build runs the same."""
+    from concurrent.futures import ThreadPoolExecutor
+
+    with ThreadPoolExecutor(1) as pool:
+        results = pool.submit(gearcad.build, [_circles_toml(tmp_path)], tmp_path / "out").result()
+    assert [r.name for r in results] == ["circles"]
+    assert (tmp_path / "out" / "circles" / "report.json").is_file()
+
+
+@pytest.mark.parametrize("case", ["schema-into-a-folder", "schema-into-a-missing-folder", "bench-into-a-file"])
+def test_schema_and_bench_outs_are_one_line(tmp_path, capsys, case):
+    """Item 15: tracebacks before (IsADirectoryError, FileNotFoundError, NotADirectoryError)."""
+    (tmp_path / "afile").write_text("the user's")
+    args = {
+        "schema-into-a-folder": ["schema", "--out", str(tmp_path)],
+        "schema-into-a-missing-folder": ["schema", "--out", str(tmp_path / "missing" / "x")],
+        "bench-into-a-file": ["bench", "--quick", "--out", str(tmp_path / "afile")],
+    }[case]
+    assert main(args) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and err[0].startswith("gearcad: error: --out "), err
+    assert sorted(os.listdir(tmp_path)) == ["afile"] and (tmp_path / "afile").read_text() == "the user's"
