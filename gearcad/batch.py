@@ -127,6 +127,8 @@ def build(
     """
     check_out(out)
     _unique(profiles)
+    if not profiles:  # nothing to publish: out is left as it is (not made)
+        return []
     count = _workers(len(profiles)) if workers is None else max(1, workers)
     results: list[BuildResult] = []
     with interrupt_guard(out), Publisher(out) as publisher:

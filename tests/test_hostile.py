@@ -458,3 +458,42 @@ def test_schema_and_bench_outs_are_one_line(tmp_path, capsys, case):
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and err[0].startswith("gearcad: error: --out "), err
     assert sorted(os.listdir(tmp_path)) == ["afile"] and (tmp_path / "afile").read_text() == "the user's"
+
+
+@pytest.mark.parametrize("device", ["/dev/zero", "/dev/urandom"])
+def test_a_device_as_profile_is_read_only_up_to_the_limit(capsys, device):
+    """Item 16: read whole before, a ``MemoryError`` at 3.3 GB; now 16 MiB and a byte at most."""
+    if not os.path.exists(device):
+        pytest.skip(f"no {device} here")
+    assert main(["check", device]) == 2
+    assert capsys.readouterr().err.strip().splitlines() == [
+        f"gearcad: error: {device}: more than 16 MiB, too large for a profile"
+    ]
+
+
+@pytest.mark.parametrize(
+    ("call", "message"),
+    [
+        (lambda out: gearcad.design(None), "a profile is a path, a dict .* got NoneType"),
+        (lambda out: gearcad.design(42), "got int"),
+        (lambda out: gearcad.check([]), "got list"),
+        (lambda out: gearcad.parse_profile(None), "parse_profile: data must be a dict .* got NoneType"),
+        (lambda out: gearcad.parse_profile("text"), "got str"),
+        (lambda out: gearcad.load_profile(None), "load_profile: path must be a str or pathlib.Path"),
+        (lambda out: gearcad.build(SPUR, out), r"build: profiles must be a list .* build\(\[p\], out\)"),
+        (lambda out: gearcad.build([gearcad.Design], out), "got type"),
+        (lambda out: gearcad.build([SPUR], out, progress=1), "progress must be a function"),
+    ],
+)
+def test_api_misuse_is_a_clear_type_error_up_front(tmp_path, call, message):
+    """Item 17: raw AttributeError, ValueError, or a failure after the work, before."""
+    with pytest.raises(TypeError, match=message):
+        call(tmp_path / "out")
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_api_forgiving_where_the_meaning_is_plain(tmp_path):
+    """Item 17: ``overrides=None`` is no overrides; ``build([])`` builds nothing and makes no folder."""
+    assert gearcad.load_profile(SPUR, overrides=None).name == "spur_pair"
+    assert gearcad.build([], tmp_path / "missing" / "x") == []
+    assert list(tmp_path.iterdir()) == []

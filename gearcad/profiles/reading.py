@@ -169,6 +169,8 @@ def _toml_value(raw: str, label: str) -> Any:
     return parsed["v"] if parsed.keys() == {"v"} else raw
 
 
+_MOST_BYTES = 16 << 20
+"""The largest profile file read, bytes (100 000 sampled radii take about 2 MB)."""
 _MOST_NESTING = 32
 """Tables and lists inside one another a profile may hold (a profile needs 4; Python's own
 recursion gives out near 500)."""
@@ -212,9 +214,12 @@ def load_profile(
     """
     path = Path(path)
     try:
-        raw = path.read_bytes()
+        with open(path, "rb") as fh:  # at most the limit and a byte: /dev/zero has no end
+            raw = fh.read(_MOST_BYTES + 1)
     except OSError as exc:
         raise ProfileError(f"{path}: cannot read the profile ({exc.strerror or exc})") from None
+    if len(raw) > _MOST_BYTES:
+        raise ProfileError(f"{path}: more than {_MOST_BYTES >> 20} MiB, too large for a profile")
     skip = len(codecs.BOM_UTF8) if raw.startswith(codecs.BOM_UTF8) else 0
     try:
         text = raw[skip:].decode("utf-8")
