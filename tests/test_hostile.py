@@ -497,3 +497,37 @@ def test_api_forgiving_where_the_meaning_is_plain(tmp_path):
     assert gearcad.load_profile(SPUR, overrides=None).name == "spur_pair"
     assert gearcad.build([], tmp_path / "missing" / "x") == []
     assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize(
+    ("profile", "message"),
+    [
+        (
+            {"gear1": {"curve": "ellipse", "pivot": "focus", "a": 30.0, "eccentricity": 0.9995}},
+            "gear1.eccentricity = 0.9995: must be an eccentricity from 0 to 0.998",
+        ),
+        (
+            {"gear1": {"curve": "ellipse", "pivot": "centre", "a": 30.0, "b": 0.6}},
+            r"gear1.b = 0.6: must be at least 1.896 mm = 0.0632·a \(eccentricity ≤ 0.998\)",
+        ),
+        ({"gear1": {"curve": "oval", "a": 30.0, "b": 0.03}}, r"gear1.b = 0.03: must be at least 0.15 mm = 0.005·a"),
+        (
+            {"gear1": {"curve": "circle", "radius": 0.001}, "output": {"tolerance": 0.01}},
+            r"output.tolerance = 0.01: gear1 is 0.002 mm across, too small to draw within it; use output.tolerance ≤",
+        ),
+    ],
+    ids=["focus-needle", "centre-needle", "oval-needle", "tiny-circle"],
+)
+def test_failures_name_the_key_and_what_is_allowed(profile, message):
+    """Item 23: "the synthesised pair fails its checks …; please report this profile" and "the
+    outline crosses itself" named no key."""
+    with pytest.raises(GearcadError, match=message):
+        gearcad.check({"output": {"tolerance": 0.05}, **profile})
+
+
+def test_a_series_roller_body_that_crosses_itself_names_its_terms():
+    """Item 23: a ``series`` body was blamed on ``body.amplitude = 0``, a key it ignores."""
+    series = {"body.direction": "series", "body.f": [[3, 0.5, 0.0]], "body.g": [[3, 0.0, 0.5]]}
+    params = gearcad.load_profile(ROOT / "profiles" / "roller_body_m3.toml", overrides={**QUICK, **series})
+    with pytest.raises(GearcadError, match=r"^body\.f / body\.g: the body contour crosses itself"):
+        gearcad.check(params)

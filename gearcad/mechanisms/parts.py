@@ -21,6 +21,7 @@ from ..geometry.outline import Outline, ring_area, rotate
 from ..geometry.rings import bore_ring, offset_outline
 from ..geometry.verify import is_simple, max_distance, thin
 from ..tolerances import DEFAULT
+from .budget import FINEST_TOLERANCE
 
 __all__ = ["Part", "Placement", "BoreSpec", "CutSpec", "make_part", "cut_paths", "placed_polygon"]
 
@@ -196,6 +197,12 @@ def make_part(
     tol = output.tolerance
     fine_tol = tol * DEFAULT.fine_fraction
     if not is_simple(fine_outer):
+        across = float(np.ptp(fine_outer, axis=0).max()) if len(fine_outer) else 0.0
+        if across < 10 * tol:  # a ring of a few chords folds on itself: the tolerance, not the shape
+            raise DesignError(
+                f"output.tolerance = {tol:g}: {name} is {across:.3g} mm across, too small to draw within it; "
+                f"use output.tolerance ≤ {max(across / 10, FINEST_TOLERANCE):.2g} mm or a larger part"
+            )
         raise DesignError(f"{name}: the outline crosses itself (the design cannot be cut as one piece)")
     pivot, diameter = ("hole", 0.0) if hole is not None else _pivot_hole(bore, fine_outer, wall)
     root = float(np.min(np.hypot(fine_outer[:, 0], fine_outer[:, 1])))
