@@ -25,7 +25,7 @@ from .errors import GearcadError, ProfileError
 from .findings import Finding
 from .mechanisms import Design, design
 from .profiles import ProfileParams
-from .publish import Publisher, check_out, interrupt_guard, out_lock
+from .publish import Publisher, _shown, check_out, interrupt_guard, out_lock
 
 __all__ = ["BuildResult", "build", "design_all"]
 
@@ -134,7 +134,7 @@ def build(
     with interrupt_guard(out), Publisher(out) as publisher:
         # a core left over (one profile on two cores): each build draws its pictures beside its files
         beside = _workers(len(profiles) + 1) > count
-        with _writing(f"--out {out}: cannot make a folder to build in"):
+        with _writing(f"--out {_shown(out)}: cannot make a folder to build in"):
             jobs = [(p, publisher.folder(p.name), beside) for p in profiles]
         if count == 1:
             built, pool = map(_build_one, jobs), None
@@ -151,7 +151,7 @@ def build(
             if pool is not None:
                 _stop(pool)
         publisher.commit()
-    with _writing(f"--out {out}: the profiles were published, but not index.html over them"):
+    with _writing(f"--out {_shown(out)}: the profiles were published, but not index.html over them"):
         _write_index(publisher.path)
     return results
 

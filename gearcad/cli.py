@@ -13,6 +13,7 @@ import math
 import os
 import sys
 import time
+import warnings
 from pathlib import Path
 
 from .errors import GearcadError
@@ -140,6 +141,14 @@ def main(argv: list[str] | None = None) -> int:
     _printable_streams()
     args = _parser().parse_args(argv)
     logging.basicConfig(level=logging.ERROR, format="%(levelname)s: %(message)s")
+    with warnings.catch_warnings():
+        # numpy's overflow or invalid-value notes on an extreme profile are no news to the user:
+        # the design is checked, and what is wrong is the one line below
+        warnings.simplefilter("ignore", RuntimeWarning)
+        return _main(args)
+
+
+def _main(args) -> int:
     try:
         if args.command in ("build", "bench"):
             from .publish import check_out

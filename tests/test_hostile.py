@@ -531,3 +531,62 @@ def test_a_series_roller_body_that_crosses_itself_names_its_terms():
     params = gearcad.load_profile(ROOT / "profiles" / "roller_body_m3.toml", overrides={**QUICK, **series})
     with pytest.raises(GearcadError, match=r"^body\.f / body\.g: the body contour crosses itself"):
         gearcad.check(params)
+
+
+def test_no_sheet_beyond_the_largest_allowed_is_advised():
+    """Item 24: a 50 m circle was advised a sheet of 100106 mm, which no profile may give."""
+    with pytest.raises(GearcadError, match=r"no sheet a profile allows \(at most 100000 mm a side\) is large enough"):
+        gearcad.check({**CIRCLES, "gear1": {"curve": "circle", "radius": 50_000.0}})
+
+
+@pytest.mark.parametrize("kind", ["dangling", "loop"])
+def test_a_dangling_or_looping_out_is_called_what_it_is(tmp_path, capsys, kind):
+    """Item 24: both were called "a file"."""
+    out = tmp_path / "out"
+    out.symlink_to(tmp_path / "nowhere" if kind == "dangling" else out)
+    assert main(["build", str(_circles_toml(tmp_path)), "--out", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert ("a symbolic link to missing" if kind == "dangling" else "symbolic link loop") in err, err
+
+
+def test_numpy_numbers_are_numbers():
+    """Item 24: ``np.int64(39)`` teeth were refused as "must be an integer"."""
+    import numpy as np
+
+    params = gearcad.load_profile(SPUR, overrides={"teeth.count": np.int64(39), "output.thickness": np.float32(4)})
+    assert (params.teeth.count, params.output.thickness) == (39, 4.0) and type(params.teeth.count) is int
+
+
+def test_a_file_name_cannot_forge_an_error_line(tmp_path, capsys):
+    """Item 24: a newline in the profile's file name printed a second, forged error line."""
+    path = tmp_path / "a\ngearcad: error: forged.toml"
+    path.write_text("x = 1\n")
+    assert main(["check", str(path)]) == 2
+    lines = capsys.readouterr().err.strip().splitlines()
+    assert lines and all("a\\ngearcad: error: forged.toml: " in ln for ln in lines), lines
+
+
+def test_numpy_warnings_do_not_precede_the_error_line(tmp_path, capsys, monkeypatch):
+    """Item 24: numpy's RuntimeWarnings (overflow, invalid value) were printed before the one line."""
+    import warnings
+
+    import numpy as np
+
+    def noisy(profiles):
+        np.exp(np.array([1000.0]))  # overflow
+        warnings.warn("invalid value encountered", RuntimeWarning, stacklevel=1)
+        raise GearcadError("circles: the one line")
+
+    monkeypatch.setattr(batch, "design_all", noisy)
+    with warnings.catch_warnings():
+        warnings.simplefilter("default")  # as a user's Python shows them
+        assert main(["check", str(_circles_toml(tmp_path))]) == 2
+    assert capsys.readouterr().err == "gearcad: error: circles: the one line\n"
+
+
+def test_no_minus_zero_rpm_in_a_summary():
+    """Item 24: a train at rest read "idler -0 rpm"."""
+    rest = {"train.gear1_rpm": 0.0, "train.carrier_rpm": 0.0, "output.tolerance": 0.05}
+    params = gearcad.load_profile(ROOT / "profiles" / "planetary_external.toml", overrides=rest)
+    summary = gearcad.check(params).summary
+    assert "idler 0 rpm" in summary and "-0 rpm" not in summary, summary

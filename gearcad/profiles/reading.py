@@ -213,31 +213,32 @@ def load_profile(
     The file must be UTF-8 (a byte-order mark is accepted); ``name`` defaults to its stem.
     """
     path = Path(path)
+    where = str(path) if str(path).isprintable() else str(path).encode("unicode_escape", "backslashreplace").decode()
     try:
         with open(path, "rb") as fh:  # at most the limit and a byte: /dev/zero has no end
             raw = fh.read(_MOST_BYTES + 1)
     except OSError as exc:
-        raise ProfileError(f"{path}: cannot read the profile ({exc.strerror or exc})") from None
+        raise ProfileError(f"{where}: cannot read the profile ({exc.strerror or exc})") from None
     if len(raw) > _MOST_BYTES:
-        raise ProfileError(f"{path}: more than {_MOST_BYTES >> 20} MiB, too large for a profile")
+        raise ProfileError(f"{where}: more than {_MOST_BYTES >> 20} MiB, too large for a profile")
     skip = len(codecs.BOM_UTF8) if raw.startswith(codecs.BOM_UTF8) else 0
     try:
         text = raw[skip:].decode("utf-8")
     except UnicodeDecodeError as exc:
         at = skip + exc.start
-        raise ProfileError(f"{path}: not UTF-8 text (byte 0x{raw[at]:02x} at offset {at})") from None
+        raise ProfileError(f"{where}: not UTF-8 text (byte 0x{raw[at]:02x} at offset {at})") from None
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
-        raise ProfileError(f"{path}: not valid TOML ({exc})") from None
+        raise ProfileError(f"{where}: not valid TOML ({exc})") from None
     except ValueError:
-        raise ProfileError(f"{path}: not valid TOML (an integer of more than 4300 digits)") from None
+        raise ProfileError(f"{where}: not valid TOML (an integer of more than 4300 digits)") from None
     except RecursionError:
-        raise ProfileError(f"{path}: not valid TOML here: lists or tables nested hundreds deep") from None
+        raise ProfileError(f"{where}: not valid TOML here: lists or tables nested hundreds deep") from None
     try:
         return parse_profile(apply_overrides(data, overrides, unset=unset), default_name=path.stem)
     except ProfileError as exc:
-        raise ProfileError("\n".join(f"{path}: {line}" for line in str(exc).splitlines())) from None
+        raise ProfileError("\n".join(f"{where}: {line}" for line in str(exc).splitlines())) from None
 
 
 class _TomlSchema(GenerateJsonSchema):

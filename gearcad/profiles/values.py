@@ -9,6 +9,7 @@ bad, its error is that phrase, which :mod:`.messages` puts after the dotted key 
 from __future__ import annotations
 
 import math
+import numbers
 from dataclasses import dataclass
 from typing import Annotated, Any, Literal
 
@@ -130,13 +131,23 @@ def number(what: str, *, gt=None, ge=None, lt=None, le=None, why: str = "") -> A
         float,
         Field(strict=True, allow_inf_nan=False, gt=gt, ge=ge, lt=lt, le=le),
         Must(f"{rule}{why}"),
+        BeforeValidator(_plain_number),
     ]
 
 
 def integer(what: str = "an integer", *, ge=None, le=None, multiple_of=None, why: str = "") -> Any:
     """An int (a bool or a float such as 2.0 is refused)."""
     rule = " ".join(part for part in (what, bounds_text(ge=ge, le=le)) if part)
-    return Annotated[int, Field(strict=True, ge=ge, le=le, multiple_of=multiple_of), Must(f"{rule}{why}")]
+    strict = Field(strict=True, ge=ge, le=le, multiple_of=multiple_of)
+    return Annotated[int, strict, Must(f"{rule}{why}"), BeforeValidator(_plain_number)]
+
+
+def _plain_number(value: Any) -> Any:
+    """A numpy integer or float as the Python number it stands for (an API caller's ``np.int64(39)``);
+    a bool stays a bool, to be refused."""
+    if isinstance(value, bool | int | float) or not isinstance(value, numbers.Real):
+        return value
+    return int(value) if isinstance(value, numbers.Integral) else float(value)
 
 
 def choice(*options: str) -> Any:
