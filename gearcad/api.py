@@ -9,7 +9,8 @@ True
 
 from __future__ import annotations
 
-from collections.abc import Callable, Mapping, Sequence
+import os
+from collections.abc import Callable, Iterable, Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -28,11 +29,15 @@ def load_profile(path: str | Path, overrides: Mapping[str, Any] | Sequence[str] 
     """Read and validate a TOML profile; ``overrides`` map dotted keys to values (None unsets a
     key; one of two exclusive keys replaces the other, e.g. teeth.count for teeth.module).
     Raises :class:`~gearcad.errors.ProfileError` with one line per bad value."""
-    return _profiles.load_profile(path, overrides)
+    if not isinstance(path, (str, os.PathLike)):
+        raise TypeError(f"load_profile: path must be a str or pathlib.Path, got {type(path).__name__}")
+    return _profiles.load_profile(path, () if overrides is None else overrides)
 
 
 def parse_profile(data: Mapping[str, Any], *, name: str = "profile") -> ProfileParams:
     """Validate a profile given as a dict (the TOML's tables as nested dicts)."""
+    if not isinstance(data, Mapping):
+        raise TypeError(f"parse_profile: data must be a dict of the TOML's tables, got {type(data).__name__}")
     return _profiles.parse_profile(dict(data), default_name=name)
 
 
@@ -41,6 +46,11 @@ def _params(profile: ProfileParams | str | Path | Mapping[str, Any]) -> ProfileP
         return load_profile(profile)
     if isinstance(profile, Mapping):
         return parse_profile(profile)
+    if not isinstance(profile, ProfileParams):
+        raise TypeError(
+            "a profile is a path, a dict of the TOML's tables or loaded parameters (gearcad.load_profile), "
+            f"got {type(profile).__name__}"
+        )
     return profile
 
 
@@ -77,6 +87,11 @@ def build(
     progress: Callable[[int, int, BuildResult], None] | None = None,
 ) -> list[BuildResult]:
     """Build profiles into ``out/<name>/`` (all or nothing); returns each build's result."""
+    if isinstance(profiles, (str, Path, Mapping, *ProfileParams.__args__)) or not isinstance(profiles, Iterable):
+        kind = type(profiles).__name__
+        raise TypeError(f"build: profiles must be a list of profiles, got a {kind} (for one: build([p], out))")
+    if progress is not None and not callable(progress):
+        raise TypeError(f"build: progress must be a function (n, total, result) or None, got {type(progress).__name__}")
     return _build([_params(p) for p in profiles], out, progress)
 
 

@@ -17,7 +17,7 @@ import time
 from collections.abc import Callable, Iterator, Sequence
 from concurrent.futures import ProcessPoolExecutor
 from concurrent.futures.process import BrokenProcessPool
-from contextlib import suppress
+from contextlib import contextmanager, suppress
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -25,7 +25,7 @@ from .errors import GearcadError, ProfileError
 from .findings import Finding
 from .mechanisms import Design, design
 from .profiles import ProfileParams
-from .publish import Interrupted, Publisher, check_out, interrupt_guard, out_lock
+from .publish import Interrupted, Publisher, _shown, check_out, interrupt_guard, out_lock
 
 __all__ = ["BuildResult", "build", "design_all"]
 
@@ -76,7 +76,8 @@ def _build_one(job: tuple[ProfileParams, Path, bool]) -> BuildResult:
     from .export.write import write_design  # the file libraries only when files are written
 
     d = _named(params, lambda: design(params))
-    files = _named(params, lambda: write_design(d, folder, beside=beside))
+    with _writing(f"{params.name}: cannot write its files"):
+        files = _named(params, lambda: write_design(d, folder, beside=beside))
     return BuildResult(d.name, d.summary, d.findings, files, time.perf_counter() - start, d.failures())
 
 
@@ -133,12 +134,15 @@ def build(
     """
     check_out(out)
     _unique(profiles)
+    if not profiles:  # nothing to publish: out is left as it is (not made)
+        return []
     count = _workers(len(profiles)) if workers is None else max(1, workers)
     results: list[BuildResult] = []
     with interrupt_guard(out), Publisher(out) as publisher:
         # a core left over (one profile on two cores): each build draws its pictures beside its files
         beside = _workers(len(profiles) + 1) > count
-        jobs = [(p, publisher.folder(p.name), beside) for p in profiles]
+        with _writing(f"--out {_shown(out)}: cannot make a folder to build in"):
+            jobs = [(p, publisher.folder(p.name), beside) for p in profiles]
         if count == 1:
             built, pool = map(_build_one, jobs), None
         else:
@@ -154,8 +158,20 @@ def build(
             if pool is not None:
                 _stop(pool)
         publisher.commit()
-    _write_index(publisher.path)
+    with _writing(f"--out {_shown(out)}: the profiles were published, but not index.html over them"):
+        _write_index(publisher.path)
     return results
+
+
+@contextmanager
+def _writing(what: str):
+    """A full disk (ENOSPC, EDQUOT), a read-only or failing filesystem: one line, not a traceback."""
+    try:
+        yield
+    except OSError as exc:
+        if isinstance(exc, BrokenPipeError):  # the reader of our output has gone: the CLI's to handle
+            raise
+        raise GearcadError(f"{what} ({exc.strerror or exc})") from None
 
 
 def _write_index(out: Path) -> None:

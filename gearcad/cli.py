@@ -16,6 +16,7 @@ import math
 import os
 import sys
 import time
+import warnings
 from pathlib import Path
 
 from .errors import GearcadError
@@ -141,7 +142,10 @@ def _run(args) -> int:
 
         text = json.dumps(profile_schema(), indent=2, ensure_ascii=False) + "\n"
         if args.out:
-            args.out.write_text(text, encoding="utf-8")
+            try:
+                args.out.write_text(text, encoding="utf-8")
+            except OSError as exc:  # a folder, a missing folder, a read-only place
+                raise GearcadError(f"--out {args.out}: cannot write the schema there ({exc.strerror or exc})") from None
         else:
             sys.stdout.write(text)
         return 0
@@ -179,11 +183,29 @@ def _run(args) -> int:
     return _failed([(r.name, f) for r in results for f in r.failures if f.code not in allow])
 
 
+def _printable_streams() -> None:
+    """A terminal that is not UTF-8 (LC_ALL=C, PYTHONIOENCODING=latin-1) shows β, ω, ² escaped
+    rather than ending the build with UnicodeEncodeError."""
+    for stream in (sys.stdout, sys.stderr):
+        encoding = (getattr(stream, "encoding", None) or "").lower().replace("-", "").replace("_", "")
+        if encoding != "utf8" and hasattr(stream, "reconfigure"):
+            stream.reconfigure(errors="backslashreplace")
+
+
 def main(argv: list[str] | None = None) -> int:
+    _printable_streams()
     args = _parser().parse_args(argv)
     logging.basicConfig(level=logging.ERROR, format="%(levelname)s: %(message)s")
+    with warnings.catch_warnings():
+        # numpy's overflow or invalid-value notes on an extreme profile are no news to the user:
+        # the design is checked, and what is wrong is the one line below
+        warnings.simplefilter("ignore", RuntimeWarning)
+        return _main(args)
+
+
+def _main(args) -> int:
     try:
-        if args.command == "build":
+        if args.command in ("build", "bench"):
             from .publish import check_out
 
             check_out(args.out)  # before any work: a bad --out is found in a moment

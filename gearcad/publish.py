@@ -90,6 +90,8 @@ def interrupt_guard(out: Path | str | None = None):
     def interrupt(signum, frame):
         raise Interrupted(f"interrupted; {out} left as it was" if out else "interrupted", signum)
 
+    if threading.current_thread() is not threading.main_thread():  # Python lets only it handle signals
+        return nullcontext()
     return _handling(interrupt)
 
 

@@ -37,6 +37,7 @@ import re
 import resource
 import select
 import signal
+import stat
 import traceback
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
@@ -818,3 +819,194 @@ def test_profile_errors_name_a_key(data):
     with pytest.raises(ProfileError) as caught:
         gearcad.check(data)
     check_error(caught.value)
+
+
+# ---------------------------------------------------------------------------------------------
+# the build's files: what lies around --out, and builds side by side (issue 23)
+#
+# The design is stubbed (a report the index reads): what is under test is where files go.
+
+
+def _stub_build(job):
+    from gearcad import batch
+    from gearcad.mechanisms.base import SCHEMA_VERSION
+
+    params, folder, _ = job
+    (folder / "report.json").write_text(json.dumps({"schema": SCHEMA_VERSION, "name": params.name, "files": {}}))
+    return batch.BuildResult(params.name, "stub", (), {}, 0.0)
+
+
+class _Named:
+    def __init__(self, name: str) -> None:
+        self.name = name
+
+
+_PLANTS = (
+    "index-link",  # OUT/index.html a link to the user's file
+    "old-temp-link",  # the old fixed temp name, a link to the user's file
+    "old-temp-folder",  # ... a folder
+    "profile-link",  # OUT/<profile> a link to a folder outside
+    "fifo-report",  # OUT/x/report.json a FIFO
+    "foreign-report",  # OUT/y/report.json not gearcad's
+    "staging-leftover",  # a killed build's staging folder
+    "file-at-out",  # OUT itself a file
+    "dangling-out",  # OUT a link to nothing
+    "loop-out",  # OUT a link to itself
+    "out-via-link-dotdot",  # OUT spelt A/link/../out
+)
+
+
+@st.composite
+def filesystems(draw: Callable) -> dict:
+    """A state of the folders around --out: whether it exists, how deep its missing parents go,
+    and a few of :data:`_PLANTS`."""
+    return {
+        "exists": draw(st.booleans()),
+        "depth": draw(st.integers(0, 2)),
+        "plants": draw(st.lists(st.sampled_from(_PLANTS), max_size=4, unique=True)),
+        "names": draw(st.lists(st.sampled_from(["p", "q", "index", "r.s"]), min_size=1, max_size=3, unique=True)),
+    }
+
+
+def _snapshot(root, skip) -> dict:
+    """Every path under ``root`` outside ``skip`` with its kind and (files) content."""
+    seen = {}
+    for dirpath, dirnames, filenames in os.walk(root):
+        if os.path.realpath(dirpath).startswith(os.path.realpath(skip)):
+            continue
+        for name in dirnames + filenames:
+            path = os.path.join(dirpath, name)
+            if os.path.realpath(path) == os.path.realpath(skip):
+                continue
+            info = os.lstat(path)
+            content = None
+            if stat.S_ISREG(info.st_mode):
+                with open(path, "rb") as fh:
+                    content = fh.read()
+            seen[os.path.relpath(path, root)] = (stat.S_IFMT(info.st_mode), content)
+    return seen
+
+
+def _plant(root, state) -> tuple[str, Any]:
+    """Make the state under ``root``; the --out to give."""
+    from pathlib import Path
+
+    root = Path(root)
+    victim = root / "victim.txt"
+    victim.write_text("the user's file")
+    (root / "elsewhere").mkdir()
+    base = root.joinpath(*["m"] * state["depth"]) if state["depth"] else root
+    out = base / "out"
+    plants = state["plants"]
+    if state["exists"] or {"index-link", "old-temp-link", "old-temp-folder", "fifo-report", "foreign-report"} & set(
+        plants
+    ):
+        out.mkdir(parents=True, exist_ok=True)
+        if "index-link" in plants:
+            (out / "index.html").symlink_to(victim)
+        if "old-temp-link" in plants:
+            (out / ".index.html.tmp").symlink_to(victim)
+        if "old-temp-folder" in plants and "old-temp-link" not in plants:
+            (out / ".index.html.tmp").mkdir()
+        if "fifo-report" in plants:
+            (out / "x").mkdir()
+            os.mkfifo(out / "x" / "report.json")
+        if "foreign-report" in plants:
+            (out / "y").mkdir()
+            (out / "y" / "report.json").write_text('{"schema": 2, "name": "z"}')
+        if "profile-link" in plants:
+            (out / state["names"][0]).symlink_to(root / "elsewhere")
+        if "staging-leftover" in plants:
+            (out / ".gearcad-staging-abcdefgh").mkdir()
+    if "file-at-out" in plants and not out.exists():
+        out.parent.mkdir(parents=True, exist_ok=True)
+        out.write_text("a file")
+    if "dangling-out" in plants and not os.path.lexists(out):
+        out.parent.mkdir(parents=True, exist_ok=True)
+        out.symlink_to(root / "nowhere")
+    if "loop-out" in plants and not os.path.lexists(out):
+        out.parent.mkdir(parents=True, exist_ok=True)
+        out.symlink_to(out)
+    given = str(out)
+    if "out-via-link-dotdot" in plants and out.parent.is_dir():
+        (root / "A").mkdir()
+        (root / "A" / "link").symlink_to(out.parent / "sub", target_is_directory=True)
+        (out.parent / "sub").mkdir(exist_ok=True)
+        given = f"{root}/A/link/../out"
+    return given, out
+
+
+@_settings
+@given(state=filesystems())
+def test_a_build_writes_only_inside_out_whatever_lies_around_it(state):
+    """Any planted state: the build publishes its folders and a page, or refuses in one
+    GearcadError line; nothing outside --out changes, nothing is followed out of it, and no
+    staging or temp file is left."""
+    import tempfile
+    from pathlib import Path
+    from unittest import mock
+
+    from gearcad import batch
+
+    with tempfile.TemporaryDirectory() as root, mock.patch.object(batch, "_build_one", _stub_build):
+        given, out = _plant(root, state)
+        real = Path(os.path.realpath(given))
+        before = _snapshot(root, real)
+        try:
+            batch.build([_Named(n) for n in state["names"]], given, workers=1)
+        except GearcadError as exc:
+            assert "\n" not in str(exc), str(exc)
+            ok = False
+        else:
+            ok = True
+        after = _snapshot(root, real)
+        made = {os.path.relpath(p, root) for p in real.parents if str(p).startswith(root + os.sep)} - set(before)
+        assert {k: v for k, v in after.items() if k not in made} == before, "something outside --out changed"
+        assert Path(root, "victim.txt").read_text() == "the user's file"
+        if ok:
+            assert real.is_dir() and (real / "index.html").is_file() and not (real / "index.html").is_symlink()
+            for name in state["names"]:
+                assert (real / name / "report.json").is_file() and not (real / name).is_symlink()
+            left = [n for n in os.listdir(real) if n.startswith(".gearcad-")]
+            assert left == [], left
+        leftovers = [p for p in Path(root).rglob(".gearcad-staging-*") if p.name != ".gearcad-staging-abcdefgh"]
+        assert leftovers == [] or not ok
+
+
+def _concurrent(job) -> str:
+    from gearcad import batch
+
+    names, out = job
+    batch._build_one = _stub_build  # the forked child's own module
+    try:
+        batch.build([_Named(n) for n in names], out, workers=1)
+    except BaseException as exc:  # noqa: BLE001 - the test reports whatever a build died of
+        return f"{names}: {type(exc).__name__}: {exc}"
+    return ""
+
+
+@_settings
+@given(
+    builds=st.lists(st.lists(st.sampled_from("abcdef"), min_size=1, max_size=3, unique=True), min_size=2, max_size=4),
+    exists=st.booleans(),
+    depth=st.integers(0, 2),
+)
+def test_concurrent_builds_into_one_out_all_publish(builds, exists, depth):
+    """Builds side by side into one --out (new, under missing parents, or existing): every one
+    succeeds, every folder is there, the page names each, no staging is left."""
+    import multiprocessing
+    import tempfile
+    from pathlib import Path
+
+    with tempfile.TemporaryDirectory() as root:
+        out = Path(root).joinpath(*["m"] * depth, "out")
+        if exists:
+            out.mkdir(parents=True)
+        with multiprocessing.get_context("fork").Pool(len(builds)) as pool:
+            errors = [e for e in pool.map(_concurrent, [(b, out) for b in builds]) if e]
+        assert errors == []
+        names = sorted({n for b in builds for n in b})
+        assert sorted(os.listdir(out)) == [*names, "index.html"]
+        page = (out / "index.html").read_text(encoding="utf-8")
+        assert [n for n in names if f"{n}/index.html" not in page] == []
+        assert list(Path(root).rglob(".gearcad-*")) == []

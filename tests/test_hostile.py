@@ -9,6 +9,8 @@ import multiprocessing
 import os
 import re
 import signal
+import sys
+from contextlib import suppress
 from pathlib import Path
 
 import pytest
@@ -205,3 +207,387 @@ def test_a_long_steep_herringbone_is_refused_at_once(overrides, key):
     if key.startswith("output.thickness"):  # the largest thickness that fits, as a number
         fits = float(re.search(r"output\.thickness ≤ ([\d.]+) mm", str(info.value)).group(1))
         assert 5 < fits < 50, str(info.value)
+
+
+CIRCLES = {"gear1": {"curve": "circle", "radius": 20.0}, "output": {"tolerance": 0.05}}
+"""The cheapest gear pair: two toothless circles."""
+
+
+@pytest.mark.parametrize("title", [r"Spur $\frac{1}{$ pair", "$" + "x^{" * 80 + "x" + "}" * 80 + "$"])
+def test_a_title_is_drawn_as_text_never_as_mathtext(tmp_path, title):
+    """Item 6: ``check`` accepted these titles and the charts crashed on them (mathtext; the
+    audit nested 200 deep, over the 500 characters a title may now hold)."""
+    from gearcad.export.charts.pair import pitch_chart
+
+    d = gearcad.check({**CIRCLES, "title": title})
+    pitch_chart(d.detail.pitch, tmp_path / "pitch.png", d.detail.pitch_rings)
+    assert (tmp_path / "pitch.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_a_command_line_byte_that_is_not_utf8_is_one_line(tmp_path, capsys):
+    """Item 6: ``--set title=<0xff>`` arrives as a lone surrogate; it crashed the charts and
+    report.json.  Refused like a file's bad byte, before any work."""
+    out = tmp_path / "out"
+    assert main([*_quick_args(out), "--set", "title=a\udcffb"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "title = 'a\\udcffb': must be UTF-8 text" in err[0], err
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_the_herringbone_chamfer_check_refuses_is_what_build_refuses_and_says_what_fits():
+    """Item 6: chamfer 0.45 passed ``check`` (the planar outline) and the build refused it (the
+    twisted end sections); now ``check`` tests the end sections too, and names a chamfer that builds."""
+    params = gearcad.load_profile(HERRINGBONE, overrides={**QUICK, "output.chamfer": 0.45})
+    with pytest.raises(GearcadError, match=r"output\.chamfer = 0\.45: too large .* use output\.chamfer ≤ 0\.29 mm"):
+        gearcad.check(params)
+
+
+def test_a_train_of_thousands_of_gears_is_refused_at_once():
+    """Item 20: 9300 gears were accepted (check 220 s); 2000 refused after 37 s in one 16 kB line."""
+    import time
+
+    start = time.process_time()
+    with pytest.raises(GearcadError) as info:
+        gearcad.load_profile(ROOT / "profiles" / "planetary_external.toml", overrides={"train.teeth": [20] * 9300})
+    assert time.process_time() - start < 2
+    (line,) = str(info.value).splitlines()
+    assert "train.teeth = [20, 20" in line and "2 to 24 tooth counts" in line and len(line) < 400
+
+
+def test_many_unknown_keys_are_refused_in_linear_time_and_few_lines():
+    """Item 21: 100 000 unknown keys took 56 s (a list searched per line) and printed 26 MB."""
+    import time
+
+    def refuse(n: int) -> tuple[float, list[str]]:
+        data = {**CIRCLES, **{f"k{i}": 1 for i in range(n)}}
+        start = time.process_time()
+        with pytest.raises(GearcadError) as info:
+            gearcad.parse_profile(data)
+        return time.process_time() - start, str(info.value).splitlines()
+
+    small, _ = refuse(2_000)
+    large, lines = refuse(40_000)
+    assert large < 40 * small + 1.0, (small, large)  # quadratic would be 400 times
+    assert len(lines) == 41 and lines[0].startswith("k0: unknown key") and lines[-1] == "… and 39960 more problems"
+
+
+def test_a_title_has_a_length_limit():
+    """Item 22: a 300 kB title took 41 s in the charts."""
+    with pytest.raises(GearcadError, match="title = 'xxx.*: must be a string of at most 500 characters"):
+        gearcad.check({**CIRCLES, "title": "x" * 300_000})
+
+
+def _circles_toml(folder: Path, extra: str = "") -> Path:
+    path = folder / "circles.toml"
+    text = '[gear1]\ncurve = "circle"\nradius = 20.0\n[output]\ntolerance = 0.05\nformats = ["dxf"]\n'
+    path.write_text(text + "charts = false\nanimation = false\n" + extra, encoding="utf-8")
+    return path
+
+
+@pytest.mark.parametrize("encoding", ["ascii", "latin-1"])
+def test_a_terminal_that_is_not_utf8_gets_escapes_not_a_traceback(tmp_path, monkeypatch, encoding):
+    """Item 7: ``LC_ALL=C`` or ``PYTHONIOENCODING=latin-1``: ω, …, ² ended the build (nothing published)."""
+    import io
+
+    raw = io.BytesIO()
+    monkeypatch.setattr(sys, "stdout", io.TextIOWrapper(raw, encoding=encoding))
+    profile = _circles_toml(tmp_path)
+    assert main(["check", str(profile)]) == 0
+    assert main(["build", str(profile), "--out", str(tmp_path / "out")]) == 0
+    sys.stdout.flush()
+    text = raw.getvalue().decode(encoding)  # what the terminal can show is shown, the rest escaped
+    assert "\\u03c92/\\u03c91" in text
+    assert (tmp_path / "out" / "circles" / "report.json").is_file()
+
+
+def test_a_walker_whose_shoe_cannot_take_its_post_names_the_key():
+    """Item 8: ``gear1.a = 1000`` gave a raw ``ValueError: post_width 20 mm does not fit the shoe``."""
+    params = gearcad.load_profile(ROOT / "profiles" / "walker.toml", overrides={**QUICK, "gear1.a": 1000.0})
+    with pytest.raises(GearcadError, match=r"gear1\.a = 1000: the walker's shoe .* use gear1\.a ≤ (\d+) mm") as info:
+        gearcad.check(params)
+    limit = float(re.search(r"≤ (\d+) mm", str(info.value)).group(1))
+    from gearcad.bodies.shoe import shoe_ring
+    from gearcad.pitch.walker import WalkerGeometry
+
+    fits = WalkerGeometry(L=params.pair.center_distance, a=limit, b=params.gear1.b, c=params.gear1.c)
+    assert len(shoe_ring(fits, tolerance=0.01)) > 8  # the suggested a takes the post
+    with pytest.raises(ValueError, match="post_width"):
+        shoe_ring(WalkerGeometry(L=fits.L, a=1.02 * limit, b=fits.b, c=fits.c), tolerance=0.01)
+
+
+@pytest.fixture
+def small_disk(tmp_path):
+    """A 2 MiB tmpfs of 16 inodes at ``tmp_path / "disk"`` (needs root; skipped otherwise)."""
+    import subprocess
+
+    disk = tmp_path / "disk"
+    disk.mkdir()
+    if os.geteuid() != 0:
+        pytest.skip("mounting a small tmpfs needs root")
+    options = "size=2m,nr_inodes=16"
+    mount = subprocess.run(["mount", "-t", "tmpfs", "-o", options, "tmpfs", str(disk)], capture_output=True)
+    if mount.returncode != 0:
+        pytest.skip(f"cannot mount a tmpfs here: {mount.stderr.decode(errors='replace').strip()}")
+    try:
+        yield disk
+    finally:
+        subprocess.run(["umount", str(disk)], check=True)
+
+
+@pytest.mark.parametrize("full", ["space", "inodes"])
+def test_a_full_disk_is_one_line_and_exit_2(small_disk, tmp_path, capsys, full):
+    """Item 9: ENOSPC while writing the files, or no inode for the staging folder: an OSError
+    traceback before; one line, exit 2, nothing left on the disk but what was there."""
+    if full == "space":
+        fd = os.open(small_disk / "filler", os.O_WRONLY | os.O_CREAT)
+        with suppress(OSError):
+            while True:  # page by page until not one is left
+                os.write(fd, b"\0" * 4096)
+        os.close(fd)
+    else:
+        with suppress(OSError):
+            for i in range(100):
+                (small_disk / f"f{i}").touch()
+    before = sorted(os.listdir(small_disk))
+    profile = _circles_toml(tmp_path)
+    assert main(["build", str(profile), "--out", str(small_disk / "out")]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "(No space left on device)" in err[0], err
+    assert sorted(os.listdir(small_disk)) == before
+
+
+@pytest.mark.parametrize("kind", ["long-name", "long-path", "sys"])
+def test_an_out_the_system_cannot_make_is_one_line(tmp_path, capsys, kind):
+    """Item 10: a component over 255 bytes or a path over 4096 (ENAMETOOLONG), and a folder that
+    ``access()`` calls writable for root but ``mkdir`` refuses (``/sys``): tracebacks before."""
+    out = {
+        "long-name": tmp_path / ("a" * 300) / "x",
+        "long-path": tmp_path.joinpath(*["abcdefgh"] * 500),
+        "sys": Path("/sys/gearcad-out"),
+    }[kind]
+    if kind == "sys" and not (os.path.isdir("/sys/kernel") and os.access("/sys", os.W_OK)):
+        pytest.skip("needs /sys and root (access() calls it writable)")
+    assert main(["build", str(_circles_toml(tmp_path)), "--out", str(out)]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and err[0].startswith("gearcad: error: --out "), err
+    assert sorted(os.listdir(tmp_path)) == ["circles.toml"]
+
+
+def test_the_index_reads_only_what_gearcad_wrote_and_never_blocks(tmp_path, capsys):
+    """Item 11: foreign ``*/report.json`` (not an object, no name, another's name), a FIFO as a
+    report (it blocked forever), a folder at the old fixed temp name; and a profile named
+    ``index.html`` is refused by ``check`` as by ``build``."""
+    out = tmp_path / "out"
+    for name, text in {"list": "[]", "nameless": '{"schema": 2}', "other": '{"schema": 2, "name": "x"}'}.items():
+        (out / name).mkdir(parents=True)
+        (out / name / "report.json").write_text(text)
+    (out / "fifo").mkdir()
+    os.mkfifo(out / "fifo" / "report.json")
+    (out / ".index.html.tmp").mkdir()
+    profile = _circles_toml(tmp_path)
+    assert main(["build", str(profile), "--out", str(out)]) == 0
+    page = (out / "index.html").read_text(encoding="utf-8")
+    assert "circles/index.html" in page and not any(f"{n}/index.html" in page for n in ("list", "nameless", "other"))
+    assert main(["check", str(profile), "--set", "name=index.html"]) == 2
+    assert "must not be 'index.html'" in capsys.readouterr().err
+
+
+def _deep(depth: int) -> dict:
+    node: dict = {}
+    for _ in range(depth):
+        node = {"a": node}
+    return node
+
+
+@pytest.mark.parametrize("where", ["file-arrays", "file-headers", "set", "api"])
+def test_500_deep_nesting_is_one_line(tmp_path, capsys, where):
+    """Item 12: a 1.5 kB profile of 500-deep arrays or dotted headers: ``RecursionError``."""
+    profile = _circles_toml(tmp_path)
+    if where == "api":
+        with pytest.raises(GearcadError, match="nested more than 32"):
+            gearcad.load_profile(profile, overrides={"title": _deep(500)})
+        return
+    args = ["check", str(profile)]
+    if where == "file-arrays":
+        profile.write_text(profile.read_text() + "title = " + "[" * 500 + "]" * 500 + "\n")
+    elif where == "file-headers":
+        profile.write_text(profile.read_text() + "[" + ".".join(["a"] * 500) + "]\nx = 1\n")
+    else:
+        args += ["--set", "title=" + "[" * 500 + "]" * 500]
+    assert main(args) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "nested" in err[0] and len(err[0]) < 300, err
+
+
+@pytest.mark.parametrize(
+    ("profile", "key"),
+    [
+        ("roller_body_m3", "body.scale"),
+        ("rolling_wheel", "drive.r"),
+        ("rolling_wheel", "drive.R"),
+        ("planetary_external", "train.module"),
+    ],
+)
+def test_lengths_share_the_floor_of_every_length(profile, key):
+    """Item 13: these were bounded only by > 0; 1e-200 crashed the sheet layout, below 0.001
+    gave meaningless parts.  Now 0.001 mm is the floor, as for every other length."""
+    with pytest.raises(GearcadError, match=rf"{re.escape(key)} = 1e-200: must be .* from 0\.001 to"):
+        gearcad.load_profile(ROOT / "profiles" / f"{profile}.toml", overrides={key: 1e-200})
+
+
+def test_build_from_a_worker_thread(tmp_path):
+    """Item 14: ``ValueError: signal only works in main thread``; signals are handled only where
+    Python lets them be (the main thread), and the build runs the same."""
+    from concurrent.futures import ThreadPoolExecutor
+
+    with ThreadPoolExecutor(1) as pool:
+        results = pool.submit(gearcad.build, [_circles_toml(tmp_path)], tmp_path / "out").result()
+    assert [r.name for r in results] == ["circles"]
+    assert (tmp_path / "out" / "circles" / "report.json").is_file()
+
+
+@pytest.mark.parametrize("case", ["schema-into-a-folder", "schema-into-a-missing-folder", "bench-into-a-file"])
+def test_schema_and_bench_outs_are_one_line(tmp_path, capsys, case):
+    """Item 15: tracebacks before (IsADirectoryError, FileNotFoundError, NotADirectoryError)."""
+    (tmp_path / "afile").write_text("the user's")
+    args = {
+        "schema-into-a-folder": ["schema", "--out", str(tmp_path)],
+        "schema-into-a-missing-folder": ["schema", "--out", str(tmp_path / "missing" / "x")],
+        "bench-into-a-file": ["bench", "--quick", "--out", str(tmp_path / "afile")],
+    }[case]
+    assert main(args) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and err[0].startswith("gearcad: error: --out "), err
+    assert sorted(os.listdir(tmp_path)) == ["afile"] and (tmp_path / "afile").read_text() == "the user's"
+
+
+@pytest.mark.parametrize("device", ["/dev/zero", "/dev/urandom"])
+def test_a_device_as_profile_is_read_only_up_to_the_limit(capsys, device):
+    """Item 16: read whole before, a ``MemoryError`` at 3.3 GB; now 16 MiB and a byte at most."""
+    if not os.path.exists(device):
+        pytest.skip(f"no {device} here")
+    assert main(["check", device]) == 2
+    assert capsys.readouterr().err.strip().splitlines() == [
+        f"gearcad: error: {device}: more than 16 MiB, too large for a profile"
+    ]
+
+
+@pytest.mark.parametrize(
+    ("call", "message"),
+    [
+        (lambda out: gearcad.design(None), "a profile is a path, a dict .* got NoneType"),
+        (lambda out: gearcad.design(42), "got int"),
+        (lambda out: gearcad.check([]), "got list"),
+        (lambda out: gearcad.parse_profile(None), "parse_profile: data must be a dict .* got NoneType"),
+        (lambda out: gearcad.parse_profile("text"), "got str"),
+        (lambda out: gearcad.load_profile(None), "load_profile: path must be a str or pathlib.Path"),
+        (lambda out: gearcad.build(SPUR, out), r"build: profiles must be a list .* build\(\[p\], out\)"),
+        (lambda out: gearcad.build([gearcad.Design], out), "got type"),
+        (lambda out: gearcad.build([SPUR], out, progress=1), "progress must be a function"),
+    ],
+)
+def test_api_misuse_is_a_clear_type_error_up_front(tmp_path, call, message):
+    """Item 17: raw AttributeError, ValueError, or a failure after the work, before."""
+    with pytest.raises(TypeError, match=message):
+        call(tmp_path / "out")
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_api_forgiving_where_the_meaning_is_plain(tmp_path):
+    """Item 17: ``overrides=None`` is no overrides; ``build([])`` builds nothing and makes no folder."""
+    assert gearcad.load_profile(SPUR, overrides=None).name == "spur_pair"
+    assert gearcad.build([], tmp_path / "missing" / "x") == []
+    assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize(
+    ("profile", "message"),
+    [
+        (
+            {"gear1": {"curve": "ellipse", "pivot": "focus", "a": 30.0, "eccentricity": 0.9995}},
+            "gear1.eccentricity = 0.9995: must be an eccentricity from 0 to 0.998",
+        ),
+        (
+            {"gear1": {"curve": "ellipse", "pivot": "centre", "a": 30.0, "b": 0.6}},
+            r"gear1.b = 0.6: must be at least 1.896 mm = 0.0632·a \(eccentricity ≤ 0.998\)",
+        ),
+        ({"gear1": {"curve": "oval", "a": 30.0, "b": 0.03}}, r"gear1.b = 0.03: must be at least 0.15 mm = 0.005·a"),
+        (
+            {"gear1": {"curve": "circle", "radius": 0.001}, "output": {"tolerance": 0.01}},
+            r"output.tolerance = 0.01: gear1 is 0.002 mm across, too small to draw within it; use output.tolerance ≤",
+        ),
+    ],
+    ids=["focus-needle", "centre-needle", "oval-needle", "tiny-circle"],
+)
+def test_failures_name_the_key_and_what_is_allowed(profile, message):
+    """Item 23: "the synthesised pair fails its checks …; please report this profile" and "the
+    outline crosses itself" named no key."""
+    with pytest.raises(GearcadError, match=message):
+        gearcad.check({"output": {"tolerance": 0.05}, **profile})
+
+
+def test_a_series_roller_body_that_crosses_itself_names_its_terms():
+    """Item 23: a ``series`` body was blamed on ``body.amplitude = 0``, a key it ignores."""
+    series = {"body.direction": "series", "body.f": [[3, 0.5, 0.0]], "body.g": [[3, 0.0, 0.5]]}
+    params = gearcad.load_profile(ROOT / "profiles" / "roller_body_m3.toml", overrides={**QUICK, **series})
+    with pytest.raises(GearcadError, match=r"^body\.f / body\.g: the body contour crosses itself"):
+        gearcad.check(params)
+
+
+def test_no_sheet_beyond_the_largest_allowed_is_advised():
+    """Item 24: a 50 m circle was advised a sheet of 100106 mm, which no profile may give."""
+    with pytest.raises(GearcadError, match=r"no sheet a profile allows \(at most 100000 mm a side\) is large enough"):
+        gearcad.check({**CIRCLES, "gear1": {"curve": "circle", "radius": 50_000.0}})
+
+
+@pytest.mark.parametrize("kind", ["dangling", "loop"])
+def test_a_dangling_or_looping_out_is_called_what_it_is(tmp_path, capsys, kind):
+    """Item 24: both were called "a file"."""
+    out = tmp_path / "out"
+    out.symlink_to(tmp_path / "nowhere" if kind == "dangling" else out)
+    assert main(["build", str(_circles_toml(tmp_path)), "--out", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert ("a symbolic link to missing" if kind == "dangling" else "symbolic link loop") in err, err
+
+
+def test_numpy_numbers_are_numbers():
+    """Item 24: ``np.int64(39)`` teeth were refused as "must be an integer"."""
+    import numpy as np
+
+    params = gearcad.load_profile(SPUR, overrides={"teeth.count": np.int64(39), "output.thickness": np.float32(4)})
+    assert (params.teeth.count, params.output.thickness) == (39, 4.0) and type(params.teeth.count) is int
+
+
+def test_a_file_name_cannot_forge_an_error_line(tmp_path, capsys):
+    """Item 24: a newline in the profile's file name printed a second, forged error line."""
+    path = tmp_path / "a\ngearcad: error: forged.toml"
+    path.write_text("x = 1\n")
+    assert main(["check", str(path)]) == 2
+    lines = capsys.readouterr().err.strip().splitlines()
+    assert lines and all("a\\ngearcad: error: forged.toml: " in ln for ln in lines), lines
+
+
+def test_numpy_warnings_do_not_precede_the_error_line(tmp_path, capsys, monkeypatch):
+    """Item 24: numpy's RuntimeWarnings (overflow, invalid value) were printed before the one line."""
+    import warnings
+
+    import numpy as np
+
+    def noisy(profiles, stage="full"):
+        np.exp(np.array([1000.0]))  # overflow
+        warnings.warn("invalid value encountered", RuntimeWarning, stacklevel=1)
+        raise GearcadError("circles: the one line")
+
+    monkeypatch.setattr(batch, "design_all", noisy)
+    with warnings.catch_warnings():
+        warnings.simplefilter("default")  # as a user's Python shows them
+        assert main(["check", str(_circles_toml(tmp_path))]) == 2
+    assert capsys.readouterr().err == "gearcad: error: circles: the one line\n"
+
+
+def test_no_minus_zero_rpm_in_a_summary():
+    """Item 24: a train at rest read "idler -0 rpm"."""
+    rest = {"train.gear1_rpm": 0.0, "train.carrier_rpm": 0.0, "output.tolerance": 0.05}
+    params = gearcad.load_profile(ROOT / "profiles" / "planetary_external.toml", overrides=rest)
+    summary = gearcad.check(params).summary
+    assert "idler 0 rpm" in summary and "-0 rpm" not in summary, summary

@@ -2,13 +2,16 @@
 
 from __future__ import annotations
 
+import math
+from collections.abc import Sequence
+
 import numpy as np
 import shapely
 
 from ..errors import DesignError
 from .outline import Outline
 
-__all__ = ["inset_ring", "check_chamfer"]
+__all__ = ["inset_ring", "chamfer_fits", "check_chamfer"]
 
 
 def inset_ring(ring: np.ndarray, distance: float) -> np.ndarray:
@@ -39,13 +42,38 @@ def inset_ring(ring: np.ndarray, distance: float) -> np.ndarray:
     return inset
 
 
-def check_chamfer(outline: Outline, thickness: float, chamfer: float, *, name: str) -> None:
+def chamfer_fits(outer: np.ndarray, holes: Sequence[np.ndarray], chamfer: float) -> bool:
+    """Whether a solid's cap takes ``chamfer``: ``outer`` and ``holes`` inset by it still bound
+    a valid polygon (the test :func:`~gearcad.export.loft.loft` makes of its end sections)."""
+    return shapely.Polygon(inset_ring(outer, chamfer), [inset_ring(h, chamfer) for h in holes]).is_valid
+
+
+def check_chamfer(
+    outline: Outline, thickness: float, chamfer: float, *, name: str, sections: Sequence[np.ndarray] = ()
+) -> None:
     """Refuse a chamfer the part cannot take: half the thickness or more, or an inset that crosses
-    itself (teeth too thin for it)."""
+    itself (teeth too thin for it) — of the outline, or of ``sections`` (other outer rings of the
+    solid's caps, e.g. a helical gear's end sections, with the outline's holes).  The refusal
+    suggests 90 % of the largest chamfer whose caps fit, rounded down to 0.01 mm: the walls
+    between a cap and the next section can fold a little before the cap does (a herringbone's
+    sections also move with the chamfer)."""
     if chamfer <= 0:
         return
     if 2 * chamfer >= thickness:
         raise DesignError(f"output.chamfer = {chamfer:g}: must be under half the thickness {thickness:g}")
-    insets = [inset_ring(np.asarray(r, dtype=float), chamfer) for r in outline.rings]
-    if not shapely.Polygon(insets[0], insets[1:]).is_valid:
-        raise DesignError(f"output.chamfer = {chamfer:g}: too large for the teeth of {name} (the inset crosses itself)")
+    rings = [np.asarray(r, dtype=float) for r in outline.rings]
+    outers = [rings[0], *(np.asarray(r, dtype=float) for r in sections)]
+
+    def fits(c: float) -> bool:
+        return all(chamfer_fits(outer, rings[1:], c) for outer in outers)
+
+    if fits(chamfer):
+        return
+    good, bad = 0, math.ceil(chamfer / 1e-3)  # in thousandths of a mm: no chamfer always fits
+    while bad - good > 1:
+        mid = (good + bad) // 2
+        good, bad = (mid, bad) if fits(mid * 1e-3) else (good, mid)
+    raise DesignError(
+        f"output.chamfer = {chamfer:g}: too large for the teeth of {name} (the inset crosses itself); "
+        f"use output.chamfer ≤ {math.floor(0.9 * good / 10) / 100:.2f} mm"
+    )

@@ -171,7 +171,7 @@ def design(p: CarrierTrainParams) -> Draft:
     }
     if compound is not None:
         data["compound"] = compound[1]
-    summary = ", ".join(f"{g['name']} {g['omega_rpm']:.4g} rpm" for g in gears)
+    summary = ", ".join(f"{g['name']} {g['omega_rpm'] + 0.0:.4g} rpm" for g in gears)  # + 0.0: never '-0 rpm'
     summary += f"; stopping vs velocities {difference:.1e} rad/s"
     if compound is not None:
         summary += f"; the seed's ω3 formula {compound[1]['omega3_seed_formula_rpm']:.4g} rpm"

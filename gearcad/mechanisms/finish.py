@@ -37,6 +37,8 @@ class PartSpec:
     wall: float = 0.0
     marks: tuple[np.ndarray, ...] = ()
     hole: np.ndarray | None = None
+    caps: tuple[np.ndarray, ...] = ()
+    """Other outer rings of the solid's end faces the chamfer must fit (a twisted gear's end sections)."""
 
 
 @dataclass(frozen=True)
@@ -136,7 +138,7 @@ def finish(draft: Draft, *, start: float | None = None) -> Design:
     start = time.perf_counter() if start is None else start
     out = draft.params.output
     made = tuple(
-        make_part(s.name, s.outer, output=out, bore=s.bore, wall=s.wall, marks=s.marks, hole=s.hole)
+        make_part(s.name, s.outer, output=out, bore=s.bore, wall=s.wall, marks=s.marks, hole=s.hole, caps=s.caps)
         for s in draft.parts
     )
     parts = cut_paths(made, out)

@@ -25,7 +25,7 @@ from .budget import check_section_work, check_teeth_work
 from .finish import Contact, Draft, PartSpec
 from .pair_papers import PaperExtras, paper_extras
 from .pair_pitch import PairDesign, pitch_design
-from .parts import Placement
+from .parts import Placement, check_bore
 
 if TYPE_CHECKING:
     from ..teeth.helical import HelicalSections
@@ -276,6 +276,8 @@ def design(params: GearPairParams) -> Draft:
         alike = pitch.mate_shape_difference is not None and pitch.mate_shape_difference < 1e-6
         teeth = cut_pair(pitch.pair, pitch.gears, spec, mate_rotation=pitch.mate_rotation if alike else None, tol=tol)
         if beta > 0:
+            for i, g in enumerate(pitch.gears):  # the bore first: cheap, where the sections are not
+                check_bore(g.name, teeth.fine[i], params.bore, out.tolerance, teeth.plan.module)
             helical = pair_sections(
                 teeth,
                 helix_angle=beta,
@@ -291,8 +293,10 @@ def design(params: GearPairParams) -> Draft:
             proofs = section_mesh(pitch.pair, helical, teeth.frames, tolerance=out.tolerance, play=play)
     pitch_fine = [polyline(g.curve, fine_tol) for g in pitch.gears]
     wall = teeth.plan.module if teeth is not None else 0.0
+    # a twisted solid's caps are its end sections: the chamfer must fit them too (as the loft checks)
+    caps = [tuple(g.rings[[0, -1]]) for g in helical.gears] if helical is not None else [(), ()]
     parts = [
-        PartSpec(g.name, teeth.fine[i], bore=params.bore, wall=wall, marks=(pitch_fine[i],))
+        PartSpec(g.name, teeth.fine[i], bore=params.bore, wall=wall, marks=(pitch_fine[i],), caps=caps[i])
         if teeth is not None
         else PartSpec(g.name, pitch_fine[i], bore=params.bore)
         for i, g in enumerate(pitch.gears)

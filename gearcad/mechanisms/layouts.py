@@ -25,6 +25,7 @@ from ..errors import DesignError
 from ..geometry.arcfit import ArcRing
 from ..geometry.bounds import ring_bounds
 from ..geometry.outline import rotate
+from ..profiles.values import LARGEST_LENGTH
 from .parts import Part, Placement
 
 __all__ = ["Box", "pack", "upright_angle", "part_box", "footprint_box", "lay_out", "sheet_layout", "plate_layout"]
@@ -202,8 +203,7 @@ def lay_out(
         b = alone[0]
         raise DesignError(
             f"{where}: {b.part} ({b.width:.1f} × {b.height:.1f} mm) does not fit on the {what} even alone; "
-            f"give a {what} of at least {math.ceil(max(b.width, b.height) + 2 * gap)} × "
-            f"{math.ceil(min(b.width, b.height) + 2 * gap)} mm"
+            + _advice(what, max(b.width, b.height) + 2 * gap, min(b.width, b.height) + 2 * gap, "at least ")
         )
     lo, hi = 1.0, 2.0
     while _try(order, w * hi, h * hi, gap) is None:
@@ -212,9 +212,16 @@ def lay_out(
         mid = (lo + hi) / 2
         lo, hi = (mid, hi) if _try(order, w * mid, h * mid, gap) is None else (lo, mid)
     raise DesignError(
-        f"{where}: the {len(boxes)} parts ({listed}) do not fit on the {what}; "
-        f"a {what} of {math.ceil(w * hi)} × {math.ceil(h * hi)} mm takes them"
+        f"{where}: the {len(boxes)} parts ({listed}) do not fit on the {what}; " + _advice(what, w * hi, h * hi, "")
     )
+
+
+def _advice(what: str, width: float, height: float, least: str) -> str:
+    """The sheet (or bed) to give, never one over the largest length a profile accepts."""
+    if max(width, height) > LARGEST_LENGTH:
+        allowed = f"at most {LARGEST_LENGTH:g} mm a side"
+        return f"no {what} a profile allows ({allowed}) is large enough: make the parts smaller"
+    return f"give a {what} of {least}{math.ceil(width)} × {math.ceil(height)} mm"
 
 
 def _try(order: Sequence[Box], w: float, h: float, gap: float):

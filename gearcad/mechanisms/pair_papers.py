@@ -4,11 +4,12 @@ statements about elliptic gears, and seed 002's shoe and vehicle speed for the w
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
 from ..bodies import shoe as S
+from ..errors import DesignError
 from ..findings import Finding, finding
 from ..pitch import elliptic_claims as E
 from ..pitch import walker as W
@@ -54,7 +55,7 @@ def paper_extras(params: GearPairParams, pitch: PairDesign) -> PaperExtras:
     if isinstance(g, WalkerParams) and pitch.walker is not None:
         geometry = W.WalkerGeometry(L=params.center_distance, a=g.a, b=g.b, c=g.c)
         law = W.ratio_law(geometry, blend_width=g.blend_width)
-        ring = S.shoe_ring(geometry, tolerance=budget(params.output.tolerance).fine)
+        ring = _shoe(geometry, g.a, budget(params.output.tolerance).fine)
         speed = S.speed_comparison(geometry, i_paper=pitch.walker.i_paper, law=law)
         placed = S.ring_stance_check(geometry, ring)
         placed["holds"] = placed["hub_height_mm"] <= params.output.tolerance and (
@@ -73,3 +74,30 @@ def paper_extras(params: GearPairParams, pitch: PairDesign) -> PaperExtras:
         summary = {k: {f: v[f] for f in v if f != "v"} for k, v in speed.items() if isinstance(v, dict)}
         return PaperExtras({"shoe": shoe, "vehicle_speed": summary}, tuple(found), charts, ring, geometry)
     return PaperExtras({}, (), {})
+
+
+def _shoe(geometry: W.WalkerGeometry, a: float, tolerance: float) -> np.ndarray:
+    """The shoe's ring, or a DesignError naming gear1.a and the largest a whose shoe takes the post."""
+    try:
+        return S.shoe_ring(geometry, tolerance=tolerance)
+    except ValueError as exc:
+        cause = str(exc)
+
+    def fits(x: float) -> bool:
+        try:
+            S.shoe_ring(replace(geometry, a=x), tolerance=max(tolerance, 0.01))
+        except ValueError:
+            return False
+        return True
+
+    good, bad = geometry.b, a  # the shoe shrinks as the crank axes part; a = b is the walker's least
+    if not fits(good):
+        raise DesignError(f"gear1.a = {a:g}: the walker's shoe cannot be made ({cause})")
+    while bad - good > 0.01 * good:
+        mid = 0.5 * (good + bad)
+        good, bad = (mid, bad) if fits(mid) else (good, mid)
+    raise DesignError(
+        f"gear1.a = {a:g}: the walker's shoe is too small for its 20 mm post (the sole's back must pass "
+        f"10 mm below the crank pin B1); with b = {geometry.b:g} and c = {geometry.c:g}, "
+        f"use gear1.a ≤ {math.floor(good):g} mm"
+    )

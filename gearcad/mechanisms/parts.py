@@ -22,8 +22,9 @@ from ..geometry.outline import Outline, ring_area, rotate
 from ..geometry.rings import bore_ring
 from ..geometry.verify import is_simple, max_distance, thin
 from ..tolerances import budget
+from .budget import FINEST_TOLERANCE
 
-__all__ = ["Part", "Placement", "BoreSpec", "CutSpec", "make_part", "cut_paths", "placed_polygon"]
+__all__ = ["Part", "Placement", "BoreSpec", "CutSpec", "check_bore", "make_part", "cut_paths", "placed_polygon"]
 
 
 class BoreSpec(Protocol):
@@ -170,6 +171,13 @@ def _largest_kerf(fine: Outline, kerf: float, fine_tol: float) -> float:
     return lo
 
 
+def check_bore(name: str, fine_outer: np.ndarray, bore: BoreSpec | None, tolerance: float, wall: float) -> None:
+    """Raise :class:`DesignError` if ``bore`` does not fit the part (as :func:`make_part` would):
+    a cheap check a mechanism makes before expensive work (a twisted gear's sections)."""
+    fine_tol = budget(tolerance).fine
+    _with_bore(thin(fine_outer, tolerance - fine_tol), bore, tolerance, part=name, wall=wall)
+
+
 def make_part(
     name: str,
     fine_outer: np.ndarray,
@@ -179,18 +187,26 @@ def make_part(
     wall: float = 0.0,
     marks: tuple[np.ndarray, ...] = (),
     hole: np.ndarray | None = None,
+    caps: tuple[np.ndarray, ...] = (),
 ) -> Part:
     """A part from its outer ring sampled at the fine tolerance (counter-clockwise, mm).
 
     ``bore`` adds the shaft hole (leaving ``wall`` mm to the outline) — or where none is given a
     pilot hole — ``hole`` a given inner ring instead (clockwise, fine), ``marks`` closed rings to
-    engrave (fine).  The pivot is engraved as a cross sized to the part: a fifth of the radius
+    engrave (fine), ``caps`` other outer rings of the solid's end faces that the chamfer must fit
+too (a twisted gear's end sections).  The pivot is engraved as a cross sized to the part: a fifth of the radius
     the outline comes within, between 1 and 5 mm (none on a ring, whose hole is concentric).  The cut paths are made
     for every part of a design together, by :func:`cut_paths`.
     """
     tol = output.tolerance
     fine_tol = budget(tol).fine
     if not is_simple(fine_outer):
+        across = float(np.ptp(fine_outer, axis=0).max()) if len(fine_outer) else 0.0
+        if across < 10 * tol:  # a ring of a few chords folds on itself: the tolerance, not the shape
+            raise DesignError(
+                f"output.tolerance = {tol:g}: {name} is {across:.3g} mm across, too small to draw within it; "
+                f"use output.tolerance ≤ {max(across / 10, FINEST_TOLERANCE):.2g} mm or a larger part"
+            )
         raise DesignError(f"{name}: the outline crosses itself (the design cannot be cut as one piece)")
     pivot, diameter = ("hole", 0.0) if hole is not None else _pivot_hole(bore, fine_outer, wall)
     root = float(np.min(np.hypot(fine_outer[:, 0], fine_outer[:, 1])))
@@ -201,7 +217,7 @@ def make_part(
     else:
         fine = _with_bore(fine_outer, bore, fine_tol, part=name, wall=wall)
         outline = _with_bore(thin(fine_outer, tol - fine_tol), bore, tol, part=name, wall=wall)
-    check_chamfer(outline, output.thickness, output.chamfer, name=name)
+    check_chamfer(outline, output.thickness, output.chamfer, name=name, sections=caps)
     flat = output.dxf == "polyline-flat"
     mark = tuple(_cut_ring(r, tol, fine_tol, flat=flat, part=name) for r in marks)
     return Part(name, outline, fine, (), mark, pivot_mark, pivot, diameter)

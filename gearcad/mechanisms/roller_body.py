@@ -147,6 +147,11 @@ def design(p: RollerBodyParams) -> Draft:
     limits = _limits(p)
     simple, convex = RB.is_simple(osc, r=r), RB.is_convex(osc, r=r)
     if not simple:
+        if p.direction == "series":
+            raise DesignError(
+                "body.f / body.g: the body contour crosses itself or has cusps; use smaller terms "
+                f"or a smaller body.roller_radius (now {r:g})"
+            )
         limit = f" (largest simple amplitude for m = {p.m}: {limits[p.m][1]:.6f})" if limits else ""
         raise DesignError(f"body.amplitude = {p.amplitude:g}: the body contour crosses itself or has cusps{limit}")
     if not convex:

@@ -8,7 +8,18 @@ from typing import Annotated, Literal
 from pydantic import Field, model_validator
 
 from .common import BoreParams, OutputParams, ParamsModel, distinct_names
-from .values import FASTEST, Must, PartName, Problems, StandardRackPressureAngleDeg, Text, choice, integer, number
+from .values import (
+    FASTEST,
+    SMALLEST_LENGTH,
+    Must,
+    PartName,
+    Problems,
+    StandardRackPressureAngleDeg,
+    Text,
+    choice,
+    integer,
+    number,
+)
 
 __all__ = ["CompoundParams", "TrainParams", "CarrierTrainParams", "compound_wall"]
 
@@ -16,15 +27,19 @@ _RING_MARGIN = 12  # teeth: a ring closer in size to its pinion than this interf
 _DEDENDUM = 1.25  # modules: the standard rack's dedendum, which sets every root circle
 _WALL = 2.0  # modules (the larger of the two): material a compound ring keeps between its root circles
 
-TrainModule = number("a module in mm", gt=0, le=50)
+TrainModule = number("a module in mm", ge=SMALLEST_LENGTH, le=50)
 _MOST_TEETH = 2000
+_MOST_GEARS = 24  # each gear is cut, placed and proved against its mate: ~0.1 s each, a train in seconds
 ToothCount = integer(ge=8, le=_MOST_TEETH)
 Teeth = Annotated[
     tuple[ToothCount, ...],
-    Must("a list of at least two tooth counts, each an integer from 8 to 2000", items=(2, None)),
+    Must(f"a list of 2 to {_MOST_GEARS} tooth counts, each an integer from 8 to 2000", items=(2, _MOST_GEARS)),
 ]
-Meshes = Annotated[tuple[choice("external", "internal"), ...], Must("a list of 'external' or 'internal', one per mesh")]
-Names = Annotated[tuple[PartName, ...], Must("a list of names, one for each gear")]
+Meshes = Annotated[
+    tuple[choice("external", "internal"), ...],
+    Must("a list of 'external' or 'internal', one per mesh", items=(0, _MOST_GEARS - 1)),
+]
+Names = Annotated[tuple[PartName, ...], Must("a list of names, one for each gear", items=(0, _MOST_GEARS))]
 Rpm = number("a speed in rev/min", ge=-FASTEST, le=FASTEST)
 Acceleration = number("an angular acceleration in rad/s²", ge=-1e9, le=1e9)
 GearRef = Annotated[

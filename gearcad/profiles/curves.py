@@ -27,7 +27,12 @@ __all__ = [
 CURVES = ("ellipse", "oval", "circle", "ratio", "walker", "samples", "motion")
 
 Lobes = integer(ge=1, le=24)
-Eccentricity = number("an eccentricity", ge=0, lt=1)
+_MOST_ECCENTRICITY = 0.998
+"""Beyond it (b < 0.063·a) the pair's ratio spans over 10⁵ and its synthesis misses its own
+closure and rolling checks (e = 0.999 fails at either pivot, b/a = 0.02 at the centre)."""
+_LEAST_OVAL = 0.005
+"""Smallest b/a of an oval: at 0.001 its pair misses its closure check."""
+Eccentricity = number("an eccentricity", ge=0, le=_MOST_ECCENTRICITY)
 SpeedRatio = number("a speed ratio", gt=0)
 Pivot = choice("focus", "centre")
 Harmonics = terms(max_order=64)
@@ -69,7 +74,7 @@ class EllipseParams(ParamsModel):
         e = self.eccentricity
         from_e = None if e is None else self.a * math.sqrt(1 - e * e)
         if self.b is None and from_e is None:
-            problems.missing("b", "give gear1.b (a length in mm) or gear1.eccentricity (0 ≤ e < 1)")
+            problems.missing("b", f"give gear1.b (a length in mm) or gear1.eccentricity (0 ≤ e ≤ {_MOST_ECCENTRICITY})")
         elif self.b is not None and from_e is not None and not close_enough(self.b, from_e):
             problems.add(
                 "eccentricity",
@@ -78,6 +83,9 @@ class EllipseParams(ParamsModel):
             )
         elif self.b is not None and self.b > self.a:
             problems.add("b", self.b, f"must not exceed gear1.a = {self.a:g} (b is the semi-minor axis)")
+        elif self.b is not None and self.b < (least := self.a * math.sqrt(1 - _MOST_ECCENTRICITY**2)):
+            rule = f"must be at least {least:.4g} mm = 0.0632·a (eccentricity ≤ {_MOST_ECCENTRICITY})"
+            problems.add("b", self.b, rule)
         problems.raise_any()
         if self.b is None:
             # the instance is not yet visible to anyone: filling a derived field is construction
@@ -105,6 +113,8 @@ class OvalParams(ParamsModel):
         problems = Problems()
         if self.b > self.a:
             problems.add("b", self.b, f"must not exceed gear1.a = {self.a:g} (b is the smallest radius)")
+        elif self.b < _LEAST_OVAL * self.a:
+            problems.add("b", self.b, f"must be at least {_LEAST_OVAL * self.a:.4g} mm = {_LEAST_OVAL}·a")
         problems.raise_any()
         return self
 

@@ -122,6 +122,7 @@ def apply_overrides(
     ``teeth.count=39`` works on a profile that gives ``teeth.module``. Setting ``name`` but not
     ``title`` appends `` (name)`` to the title, so that a variant is told apart from its original.
     """
+    _check_nesting(data, "the profile")
     result = copy.deepcopy(dict(data))
     for key in [unset] if isinstance(unset, str) else unset:
         _remove(result, _parts(key, f"--unset {key!r}"))
@@ -150,24 +151,46 @@ def apply_overrides(
 def _items(overrides: Sequence[str] | Mapping[str, Any]) -> Iterable[tuple[str, str, Any]]:
     if isinstance(overrides, Mapping):
         for key, value in overrides.items():
+            _check_nesting(value, f"override {key!r}")
             yield f"override {key!r}", key, copy.deepcopy(value)
         return
     if isinstance(overrides, str):
         overrides = [overrides]
     for item in overrides:
-        label = f"--set {item!r}"
+        label = f"--set {show(item)}"  # kept short: an item may be megabytes
         if not isinstance(item, str) or "=" not in item:
             raise ProfileError(f"{label}: must be KEY=VALUE, e.g. gear1.a=30")
         key, raw = item.split("=", 1)
-        yield label, key, _toml_value(raw)
+        yield label, key, _toml_value(raw, label)
 
 
-def _toml_value(raw: str) -> Any:
+def _toml_value(raw: str, label: str) -> Any:
     try:
         parsed = tomllib.loads(f"v = {raw}")
     except ValueError:  # TOMLDecodeError, or an integer past Python's 4300-digit limit
         return raw
+    except RecursionError:
+        raise ProfileError(f"{label}: nested more than {_MOST_NESTING} lists or tables deep") from None
+    _check_nesting(parsed, label)
     return parsed["v"] if parsed.keys() == {"v"} else raw
+
+
+_MOST_BYTES = 16 << 20
+"""The largest profile file read, bytes (100 000 sampled radii take about 2 MB)."""
+_MOST_NESTING = 32
+"""Tables and lists inside one another a profile may hold (a profile needs 4; Python's own
+recursion gives out near 500)."""
+
+
+def _check_nesting(value: Any, label: str) -> None:
+    """Refuse ``value`` nested deeper than :data:`_MOST_NESTING` (walked without recursion)."""
+    stack = [(value, 0)]
+    while stack:
+        node, depth = stack.pop()
+        if depth > _MOST_NESTING:
+            raise ProfileError(f"{label}: nested more than {_MOST_NESTING} lists or tables deep")
+        children = node.values() if isinstance(node, Mapping) else node if isinstance(node, list | tuple) else ()
+        stack.extend((child, depth + 1) for child in children if isinstance(child, Mapping | list | tuple))
 
 
 def _parts(key: Any, label: str) -> list[str]:
@@ -196,26 +219,32 @@ def load_profile(
     The file must be UTF-8 (a byte-order mark is accepted); ``name`` defaults to its stem.
     """
     path = Path(path)
+    where = str(path) if str(path).isprintable() else str(path).encode("unicode_escape", "backslashreplace").decode()
     try:
-        raw = path.read_bytes()
+        with open(path, "rb") as fh:  # at most the limit and a byte: /dev/zero has no end
+            raw = fh.read(_MOST_BYTES + 1)
     except OSError as exc:
-        raise ProfileError(f"{path}: cannot read the profile ({exc.strerror or exc})") from None
+        raise ProfileError(f"{where}: cannot read the profile ({exc.strerror or exc})") from None
+    if len(raw) > _MOST_BYTES:
+        raise ProfileError(f"{where}: more than {_MOST_BYTES >> 20} MiB, too large for a profile")
     skip = len(codecs.BOM_UTF8) if raw.startswith(codecs.BOM_UTF8) else 0
     try:
         text = raw[skip:].decode("utf-8")
     except UnicodeDecodeError as exc:
         at = skip + exc.start
-        raise ProfileError(f"{path}: not UTF-8 text (byte 0x{raw[at]:02x} at offset {at})") from None
+        raise ProfileError(f"{where}: not UTF-8 text (byte 0x{raw[at]:02x} at offset {at})") from None
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
-        raise ProfileError(f"{path}: not valid TOML ({exc})") from None
+        raise ProfileError(f"{where}: not valid TOML ({exc})") from None
     except ValueError:
-        raise ProfileError(f"{path}: not valid TOML (an integer of more than 4300 digits)") from None
+        raise ProfileError(f"{where}: not valid TOML (an integer of more than 4300 digits)") from None
+    except RecursionError:
+        raise ProfileError(f"{where}: not valid TOML here: lists or tables nested hundreds deep") from None
     try:
         return parse_profile(apply_overrides(data, overrides, unset=unset), default_name=path.stem)
     except ProfileError as exc:
-        raise ProfileError("\n".join(f"{path}: {line}" for line in str(exc).splitlines())) from None
+        raise ProfileError("\n".join(f"{where}: {line}" for line in str(exc).splitlines())) from None
 
 
 class _TomlSchema(GenerateJsonSchema):

@@ -6,13 +6,24 @@ import math
 from typing import Literal
 
 from .common import BoreParams, OutputParams, ParamsModel
-from .values import LARGEST_LENGTH, PartName, Speed, StandardRackPressureAngleDeg, Text, choice, integer, number, terms
+from .values import (
+    LARGEST_LENGTH,
+    SMALLEST_LENGTH,
+    PartName,
+    Speed,
+    StandardRackPressureAngleDeg,
+    Text,
+    choice,
+    integer,
+    number,
+    terms,
+)
 
 __all__ = ["BodyParams", "KinematicsParams", "RollerTeethParams", "RollerBodyParams"]
 
 _EVERY_120 = " (the three rollers touch the body together only if the oscillation repeats every 120°)"
 
-Scale = number("a scale in mm per unit of R", gt=0, le=LARGEST_LENGTH)
+Scale = number("a scale in mm per unit of R", ge=SMALLEST_LENGTH, le=LARGEST_LENGTH)  # R itself: a length
 RollerRadius = number("a radius in units of R", ge=0.005, lt=1)
 Direction = choice("horizontal", "vertical", "series")
 Amplitude = number("an amplitude in units of R", ge=0)

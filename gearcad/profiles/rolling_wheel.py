@@ -7,12 +7,12 @@ from typing import Literal
 from pydantic import model_validator
 
 from .common import OutputParams, ParamsModel
-from .values import PartName, Problems, Speed, Text, number
+from .values import SMALLEST_LENGTH, PartName, Problems, Speed, Text, number
 
 __all__ = ["DriveParams", "RollingWheelParams"]
 
 _LIMIT = 1e5  # mm: 100 m, far beyond any part, still a number the geometry handles exactly
-DriveLength = number("a length in mm", gt=0, le=_LIMIT)
+DriveLength = number("a length in mm", ge=SMALLEST_LENGTH, le=_LIMIT)
 Height = number("a length in mm", ge=0, le=_LIMIT)
 
 

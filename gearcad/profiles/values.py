@@ -9,10 +9,11 @@ bad, its error is that phrase, which :mod:`.messages` puts after the dotted key 
 from __future__ import annotations
 
 import math
+import numbers
 from dataclasses import dataclass
 from typing import Annotated, Any, Literal
 
-from pydantic import AfterValidator, Field, ValidationError
+from pydantic import AfterValidator, BeforeValidator, Field, ValidationError
 from pydantic_core import PydanticCustomError, core_schema
 
 __all__ = [
@@ -130,13 +131,23 @@ def number(what: str, *, gt=None, ge=None, lt=None, le=None, why: str = "") -> A
         float,
         Field(strict=True, allow_inf_nan=False, gt=gt, ge=ge, lt=lt, le=le),
         Must(f"{rule}{why}"),
+        BeforeValidator(_plain_number),
     ]
 
 
 def integer(what: str = "an integer", *, ge=None, le=None, multiple_of=None, why: str = "") -> Any:
     """An int (a bool or a float such as 2.0 is refused)."""
     rule = " ".join(part for part in (what, bounds_text(ge=ge, le=le)) if part)
-    return Annotated[int, Field(strict=True, ge=ge, le=le, multiple_of=multiple_of), Must(f"{rule}{why}")]
+    strict = Field(strict=True, ge=ge, le=le, multiple_of=multiple_of)
+    return Annotated[int, strict, Must(f"{rule}{why}"), BeforeValidator(_plain_number)]
+
+
+def _plain_number(value: Any) -> Any:
+    """A numpy integer or float as the Python number it stands for (an API caller's ``np.int64(39)``);
+    a bool stays a bool, to be refused."""
+    if isinstance(value, bool | int | float) or not isinstance(value, numbers.Real):
+        return value
+    return int(value) if isinstance(value, numbers.Integral) else float(value)
 
 
 def choice(*options: str) -> Any:
@@ -181,10 +192,31 @@ StandardRackPressureAngleDeg = number(
     why=" (the standard rack, tip rounding 0.38·m and dedendum 1.25·m, comes to a point beyond 23.1°)",
 )
 """The pressure angle of a mechanism whose rack has no other keys (carrier trains, roller bodies)."""
-Text = Annotated[str, Field(strict=True), Must("a string")]
+MOST_TEXT = 500
+"""Characters a text value (a title, a source) may hold: a chart's title is one line, and
+matplotlib lays a 300 kB one out in ~40 s."""
+
+
+def _utf8(text: Any) -> Any:
+    try:
+        if isinstance(text, str):
+            text.encode("utf-8")
+    except UnicodeEncodeError as exc:  # a lone surrogate: a byte of a command line that was not UTF-8
+        raise PydanticCustomError(
+            VALUE_ERROR, "must be UTF-8 text: character {at} is an undecodable byte", {"at": exc.start + 1}
+        ) from None
+    return text
+
+
+Text = Annotated[
+    str,
+    Field(strict=True, max_length=MOST_TEXT),
+    Must(f"a string of at most {MOST_TEXT} characters"),
+    BeforeValidator(_utf8),
+]
 Flag = Annotated[bool, Field(strict=True), Must("true or false")]
 
-RESERVED_NAMES = ("assembly", "sheet", "plate", "index", "report", "kinematics", "animation")
+RESERVED_NAMES = ("assembly", "sheet", "plate", "index", "index.html", "report", "kinematics", "animation")
 """Names the build gives its own files; a part or profile may not take them (any case)."""
 NAME_RULE = (
     "a name of 1 to 64 characters: letters A–Z a–z, digits, '-', '_' or '.', "

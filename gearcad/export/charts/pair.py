@@ -41,7 +41,7 @@ def pitch_chart(data, path: Path, rings) -> None:
     ax2.set_title("radius against polar angle")
     ax2.grid(alpha=0.3)
     ax2.legend(fontsize=8)
-    fig.suptitle(data.params.title or data.params.name)
+    fig.suptitle(data.params.title or data.params.name, parse_math=False)  # text, never mathtext
     fig.subplots_adjust(left=0.06, right=0.98, bottom=0.1, top=0.86, wspace=0.22)
     save_png(fig, path)
 
@@ -99,7 +99,7 @@ def mesh_chart(data, teeth, path: Path) -> None:
         f"({'meshes' if mesh.meshes else 'INTERFERES'})",
         fontsize=9,
     )
-    fig.suptitle(data.params.title or data.params.name)
+    fig.suptitle(data.params.title or data.params.name, parse_math=False)  # text, never mathtext
     fig.subplots_adjust(left=0.06, right=0.98, bottom=0.08, top=0.88, wspace=0.15)
     save_png(fig, path)
 

@@ -73,7 +73,7 @@ def draw_solids(
     ax.view_init(elev=elev, azim=azim)
     ax.set_axis_off()
     if title:
-        fig.suptitle(title)
+        fig.suptitle(title, parse_math=False)  # a title is text: a "$" is a dollar, not mathtext
     fig.subplots_adjust(left=-0.1, right=1.1, bottom=-0.15, top=1.05)
     save_png(fig, path)
 
