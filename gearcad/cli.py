@@ -70,7 +70,7 @@ def _parser() -> argparse.ArgumentParser:
         "--skip",
         action="append",
         default=[],
-        choices=["peers", "goals"],
+        choices=["peers", "goals", "stages"],
         help="leave out a section that runs whole processes (repeatable)",
     )
     from .sweeps.command import add_parser as add_sweep

@@ -76,6 +76,10 @@ def test_bench_quick_smoke_run(tmp_path: Path, capsys, monkeypatch, stability):
         if r.get("seconds_median"):  # the fastest round is never slower than the median one
             assert float(r["seconds"]) <= float(r["seconds_median"])
     # the paper's walker method misses the rolling i by its known 0.0247
+    # the stage figures (quick: pitch and teeth): the closed-form focus pair's pitch stage is the fastest
+    stages = {r["method"]: float(r["per_second"]) for r in rows if r["study"] == "stages"}
+    assert len(stages) == 6 and max(stages, key=stages.get) == "elliptic_focus pitch"
+    assert "## Stages" in (out / "results.md").read_text(encoding="utf-8")
     walker = next(r for r in rows if r["method"].startswith("paper: trapezoid"))
     assert float(walker["error"]) == pytest.approx(3.207678 - 3.182936, abs=1e-5)
     # the envelope keeps its promise: within each tolerance of the converged cut

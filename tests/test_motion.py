@@ -67,3 +67,19 @@ def test_motion_profile_errors():
         gearcad.parse_profile(_profile())
     with pytest.raises(gearcad.ProfileError, match="center_distance"):
         gearcad.parse_profile({**_profile(ratio=[1.0] * 8), "pair": {"center_distance": "solve"}})
+
+
+def test_measured_radii_smoothing():
+    from gearcad.pitch.shapes import ellipse_focus, from_samples
+
+    phi = 2 * np.pi * np.arange(720) / 720
+    true = ellipse_focus(25.0, 20.0).r(phi)
+    noisy = true + np.random.default_rng(1).uniform(-0.04, 0.04, len(phi))  # a scanner's ±0.04 mm
+    profile = {"name": "scan", "gear1": {"curve": "samples", "radii": noisy.tolist(), "smoothing": 0.1}}
+    report = gearcad.design(profile, stage="pitch").report()
+    smoothing = report["gears"][0]["smoothing"]
+    assert smoothing["allowed"] == 0.1 and 0.04 <= smoothing["deviation"] <= 0.1
+    assert not [w for w in report["warnings"] if w["code"] == "concave"]
+    # nearer the true curve than the samples are: the noise is gone, not copied
+    smoothed = from_samples("scan", noisy, smoothing=0.1).r(phi)
+    assert np.max(np.abs(smoothed - true)) < 0.8 * np.max(np.abs(noisy - true))

@@ -119,7 +119,9 @@ def test_cli_sweep_and_its_refusals(tmp_path, capsys):
         (["--vary", "gear1.a=1:2:x"], "must be a number"),
         (["--vary", "gear1.a=20:30"], "give --samples"),
         (["--vary", "gear1.a=20,30", "--minimise", "size"], "objective 'size'"),
+        (["--vary", "gear1.a=20,30", "--samples", "-1"], "--samples -1: must be a whole number ≥ 0"),
+        (["--vary", "gear1.a=20,30", "--out", str(sweep_file)], "exists and is not a folder"),
     ):
-        assert main(["sweep", str(FOCUS), "--workers", "1", "--out", str(bad), *args]) == 2
+        assert main(["sweep", str(FOCUS), "--workers", "1", "--out", str(bad), *args]) == 2, args
         assert says in capsys.readouterr().err
     assert not bad.exists()

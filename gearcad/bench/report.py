@@ -10,7 +10,7 @@ from .goals import goals_table
 
 __all__ = ["write_csv", "markdown", "peers_table", "peer_ratios"]
 
-_OWN_TABLES = ("peers", "goals")
+_OWN_TABLES = ("peers", "goals", "stages")
 
 
 def write_csv(rows: list[dict], path: Path) -> None:
@@ -19,6 +19,10 @@ def write_csv(rows: list[dict], path: Path) -> None:
         w = csv.DictWriter(fh, fieldnames=keys, lineterminator="\n")
         w.writeheader()
         w.writerows(rows)
+
+
+def rows_of(rows: list[dict], study: str) -> list[dict]:
+    return [r for r in rows if r["study"] == study]
 
 
 def _mm(value) -> str:
@@ -91,6 +95,10 @@ def markdown(rows: list[dict], stability: list[dict]) -> str:
             "",
             *goals_table([r for r in rows if r["study"] == "goals"]),
         ]
+    if any(r["study"] == "stages" for r in rows):
+        from .stages import stages_table
+
+        out += ["", "## Stages (warm, CPU time per design in process)", "", *stages_table(rows_of(rows, "stages"))]
     out += ["", "## Stability map", "", "| case | value | outcome | time (ms) |", "|---|---|---|---|"]
     out += [f"| {s['case']} | {s['value']:g} | {s['outcome']} | {1000 * s['seconds']:.0f} |" for s in stability]
     return "\n".join(out) + "\n"

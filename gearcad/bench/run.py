@@ -21,7 +21,7 @@ from .timing import Progress
 
 __all__ = ["run_bench", "SECTIONS"]
 
-SECTIONS = ("peers", "goals")
+SECTIONS = ("peers", "goals", "stages")
 """Sections that can be skipped (they run whole processes: minutes, not seconds)."""
 
 
@@ -52,7 +52,8 @@ def run_bench(
         builds = 1 if quick else len(list(PROFILES.glob("*.toml")))
         peer = None if "peers" in skip else peer_version()
         timed = (3 * runs + 3 if peer else 0) + (0 if "goals" in skip else 6 * runs)
-        progress = Progress(8 + builds + timed)
+        staged = 0 if "stages" in skip else (6 if quick else 9)
+        progress = Progress(8 + builds + timed + staged)
         rows = bench_quadrature(quick)
         progress.step("quadrature")
         rows += bench_envelope(quick)
@@ -86,6 +87,12 @@ def run_bench(
             goals = goal_rows(measured, labels)
             rows += goals
             lines += ["", "goals (medians of whole-process runs):", "", *goals_table(goals)]
+        if "stages" not in skip:
+            from .stages import bench_stages, stages_table
+
+            stage_rows = bench_stages(quick, progress.step)
+            rows += stage_rows
+            lines += ["", "stages (warm, CPU time per design in process):", "", *stages_table(stage_rows)]
         write_csv(rows, out / "results.csv")
         write_csv(hard, out / "stability.csv")
         (out / "results.md").write_text(markdown(rows, hard), encoding="utf-8")

@@ -205,10 +205,10 @@ def _report_data(
         }
     if pitch.walker is not None:
         data["walker"] = dict(vars(pitch.walker))
-    if pitch.motion is not None:
-        from .pair_motion import motion_block
+    if pitch.motion is not None or getattr(params.gear1, "smoothing", 0) > 0:
+        from .pair_motion import fitted_blocks
 
-        data["motion"] = motion_block(pitch.motion, params)
+        fitted_blocks(data, params, pitch.gears[0].curve, pitch.motion)
     return data
 
 

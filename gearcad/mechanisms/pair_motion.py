@@ -1,4 +1,5 @@
-"""A gear pair's driver from a required motion: the limits teeth set, the fit, its report block."""
+"""A gear pair's driver fitted to what the user gives: a required motion (the limits teeth set,
+the fit, its report block), or measured radii smoothed (the deviation that made)."""
 
 from __future__ import annotations
 
@@ -6,10 +7,11 @@ import math
 
 import numpy as np
 
+from ..pitch.curve import PitchCurve
 from ..pitch.motion import MotionFit, MotionLimits, fit_motion, follower_from_ratio
 from ..profiles import GearPairParams, MotionParams
 
-__all__ = ["motion_limits", "motion_law", "motion_block"]
+__all__ = ["motion_limits", "motion_law", "motion_block", "fitted_blocks"]
 
 
 def motion_limits(params: GearPairParams) -> MotionLimits:
@@ -67,4 +69,18 @@ def motion_block(fit: MotionFit, params: GearPairParams) -> dict:
         "ratio_min": fit.ratio_range[0],
         "ratio_max": fit.ratio_range[1],
         "min_curvature_radius": fit.min_curvature_radius,
+    }
+
+
+def fitted_blocks(data: dict, params: GearPairParams, driver: PitchCurve, fit: MotionFit | None) -> None:
+    """Add to a report's ``data`` the ``motion`` block, or gear 1's ``smoothing`` block: the
+    largest distance of the smoothed curve from the given radii, mm."""
+    if fit is not None:
+        data["motion"] = motion_block(fit, params)
+        return
+    given = np.asarray(params.gear1.radii, dtype=float)
+    at = driver.r(np.arange(len(given)) * (2 * np.pi / len(given)))
+    data["gears"][0]["smoothing"] = {
+        "allowed": params.gear1.smoothing,
+        "deviation": float(np.max(np.abs(at - given))),
     }

@@ -109,6 +109,7 @@ def driver_curve(params: GearPairParams) -> tuple[PitchCurve, W.RatioLaw | Motio
                 negligible=params.output.tolerance * SAMPLE_NOISE,
                 max_order=MAX_SAMPLE_ORDER,
                 key="gear1.radii",
+                smoothing=g.smoothing,
             ),
             None,
         )

@@ -169,11 +169,12 @@ def _synthesised_pitch(params: GearPairParams, tol, likeness: bool) -> _Pitch:
     if likeness:
         refuse_corners(gears)  # a rack cannot roll round a corner: the cut's refusal
     findings = tuple(f for g in gears for f in _shape_findings(g))
-    extra = {}
-    if isinstance(law, MotionFit):
-        from .pair_motion import motion_block
+    extra = {"gears": blocks}
+    if isinstance(law, MotionFit) or getattr(params.gear1, "smoothing", 0) > 0:
+        from .pair_motion import fitted_blocks
 
-        extra["motion"] = motion_block(law, params)
+        fitted_blocks(extra, params, curve, law)
+    del extra["gears"]  # filled in place
     return _Pitch(blocks, block, (pair.gear1, pair.gear2), pair.lobes, rotation, findings, extra)
 
 

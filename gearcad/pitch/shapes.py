@@ -171,6 +171,22 @@ def _noise(coefficients: np.ndarray, amplitude: np.ndarray, negligible: float) -
     return mask
 
 
+def _smooth_order(spectrum: np.ndarray, radii: np.ndarray, smoothing: float) -> int:
+    """The lowest K whose series (orders ≤ K of the samples' rfft/n) is within ``smoothing`` of
+    every sample: a bisection (the largest residual shrinks, if not strictly, as K grows)."""
+    n = len(radii)
+
+    def misses(k: int) -> bool:
+        cut = np.where(np.arange(len(spectrum)) <= k, spectrum, 0.0)
+        return float(np.max(np.abs(np.fft.irfft(cut * n, n) - radii))) > smoothing
+
+    lo, hi = 0, len(spectrum) - 1
+    while lo < hi:
+        mid = (lo + hi) // 2
+        lo, hi = (mid + 1, hi) if misses(mid) else (lo, mid)
+    return lo
+
+
 def from_samples(
     name: str,
     radii,
@@ -179,6 +195,7 @@ def from_samples(
     negligible: float = 0.0,
     max_order: int | None = None,
     key: str = "radii",
+    smoothing: float = 0.0,
 ) -> PitchCurve:
     """A smooth curve through radii sampled at equal steps over one turn (trigonometric
     interpolation: spectrally accurate for smooth periodic data).
@@ -188,6 +205,9 @@ def from_samples(
     (rounding, a scanner's grain) does not cost an evaluation of every order.  An order above
     ``max_order`` left after that is refused (:class:`DesignError` naming ``key``): the time to
     cut teeth grows with it, and no tooth follows a wiggle that fine.
+
+    ``smoothing`` (mm, for measured radii with noise): first cut the series at the lowest order
+    that passes within this of every sample.
     """
     radii = np.asarray(radii, dtype=float)
     n = len(radii)
@@ -206,6 +226,8 @@ def from_samples(
     if negligible > 0:
         small |= _noise(cos_c - 1j * sin_c, amplitude, negligible)
     small[0] = False
+    if smoothing > 0:  # the lowest order whose series passes within ``smoothing`` of every sample
+        small |= orders > _smooth_order(np.where(small, 0.0, spectrum), radii, smoothing)
     top = int(np.flatnonzero(~small)[-1])
     if max_order is not None and top > max_order:
         raise DesignError(

@@ -9,7 +9,7 @@ from pydantic import Field, model_validator
 
 from .common import ParamsModel
 from .motion import MotionParams
-from .values import Length, Must, PartName, Problems, choice, close_enough, integer, number, terms
+from .values import Length, LengthOrZero, Must, PartName, Problems, choice, close_enough, integer, number, terms
 
 __all__ = [
     "EllipseParams",
@@ -220,6 +220,10 @@ class SamplesParams(ParamsModel):
     """Radii in mm at φ = 2πk/n, k = 0 … n − 1 (at least 8)."""
     lobes: Lobes = 1
     """Lobes of the curve (the samples should repeat that many times)."""
+    smoothing: LengthOrZero = 0.0
+    """For measured radii with noise: the largest change smoothing may make to any radius, mm
+    (0: none). The curve keeps the fewest waves per turn that pass within this of every sample;
+    the report gives the deviation it made."""
 
 
 CurveParams = EllipseParams | OvalParams | CircleParams | RatioParams | WalkerParams | SamplesParams | MotionParams

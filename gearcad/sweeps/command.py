@@ -53,8 +53,16 @@ def run(args: argparse.Namespace) -> int:
     profile = args.profile or spec.profile
     if profile is None:
         raise ProfileError('gearcad sweep: give a profile (or profile = "…" in --file)')
-    if args.workers is not None and args.workers < 1:
-        raise ProfileError(f"--workers {args.workers}: must be a whole number ≥ 1")
+    for flag, value, least in (
+        ("--workers", args.workers, 1),
+        ("--samples", args.samples, 0),
+        ("--seed", args.seed, 0),
+    ):
+        if value is not None and value < least:
+            raise ProfileError(f"{flag} {value}: must be a whole number ≥ {least}")
+    from ..publish import check_out
+
+    check_out(args.out)  # before any work: a bad --out is found in a moment
     vary = [*spec.vary, *(parse_vary(v) for v in args.vary)]
     client = None
     if args.scheduler:
