@@ -152,6 +152,10 @@ def _write(design: Design, folder: Path, drawing: dict) -> dict[str, dict]:
 
             path = folder / "plate.3mf"
             files[path.name] = _entry(path, kind="3mf", part="plate", triangles=write_plate(path, design, solids))
+    if "step" in formats:  # exact solids for CAD (OpenCASCADE, imported only here)
+        from .step import write_step_files
+
+        files.update(write_step_files(design, folder))
     for table in design.tables:
         path = folder / table.file
         _write_table(path, table)

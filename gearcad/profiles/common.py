@@ -11,7 +11,10 @@ from .values import LARGEST_LENGTH, Flag, LayerName, LengthOrZero, Must, Problem
 __all__ = ["ParamsModel", "OutputParams", "BoreParams", "DXF_FLAVOURS", "FORMATS", "distinct_names"]
 
 DXF_FLAVOURS = ("polyline", "lines-arcs", "polyline-flat")
-FORMATS = ("dxf", "svg", "stl", "3mf")
+FORMATS = ("dxf", "svg", "stl", "3mf", "step")
+"""Every format a profile may ask for."""
+DEFAULT_FORMATS = ("dxf", "svg", "stl", "3mf")
+"""What a profile gets without asking: STEP is asked for (OpenCASCADE takes a second to load)."""
 
 
 Tolerance = number(
@@ -72,8 +75,8 @@ class OutputParams(ParamsModel):
     """Draw charts (pitch curves, kinematics, mesh)."""
     animation: Flag = True
     """Write an animated GIF of the mechanism."""
-    formats: Formats = FORMATS
-    """Files to write for each part, drawn from "dxf", "svg", "stl", "3mf"."""
+    formats: Formats = DEFAULT_FORMATS
+    """Files to write for each part, drawn from "dxf", "svg", "stl", "3mf", "step" (default: all but "step")."""
     dxf: DxfFlavour = "polyline"
     """How outlines are written to DXF: one polyline with bulges, lines and arcs, or flat polyline."""
     thickness: Thickness = 5.0
