@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-__all__ = ["Format", "TABLE", "FORMATS", "DXF_FLAVOURS", "by_name"]
+__all__ = ["Format", "TABLE", "FORMATS", "DEFAULT_FORMATS", "DXF_FLAVOURS", "by_name"]
 
 
 @dataclass(frozen=True)
@@ -20,7 +20,9 @@ class Format:
     ``takes`` is what its writer is handed: ``"drawing"`` (the cut and mark paths of the parts as
     placed, ``export.drawing.Drawing``) or ``"solid"`` (the parts as solids, a list of
     ``export.mesh.SolidItem``); the writer is called ``writer(path, what, design=, whole=)`` and
-    returns the file's entry in the report (counts: vertices, triangles, …).  Every part is written
+    returns the file's entry in the report (counts: vertices, triangles, …).  ``"design"``: the
+    writer makes its solids itself from the design (STEP: exact B-rep from the arc-fitted rings)
+    and is called once, ``writer(design, folder)``, returning the report's entries by file name.  Every part is written
     to ``<part>.<extension>``; ``wholes`` are the files over all parts it also writes
     ("assembly": as assembled, "sheet": laid flat on output.sheet, "plate": on output.bed).
     """
@@ -32,6 +34,8 @@ class Format:
     wholes: tuple[str, ...] = ()
     flavours: tuple[str, ...] = ()
     """The ways it may be written (``output.dxf`` for DXF), the default first."""
+    default: bool = True
+    """Written when a profile names no formats."""
 
 
 TABLE: tuple[Format, ...] = (
@@ -41,10 +45,14 @@ TABLE: tuple[Format, ...] = (
     Format("svg", "svg", "drawing", "files:write_svg", ("assembly", "sheet")),
     Format("stl", "stl", "solid", "files:write_stl"),
     Format("3mf", "3mf", "solid", "files:write_3mf", ("assembly", "plate")),
+    # asked for, not by default: OpenCASCADE takes about a second to load
+    Format("step", "step", "design", "step:write_step_files", ("assembly",), default=False),
 )
 
 FORMATS: tuple[str, ...] = tuple(f.name for f in TABLE)
-"""The formats ``output.formats`` may name (and writes by default)."""
+"""The formats ``output.formats`` may name."""
+DEFAULT_FORMATS: tuple[str, ...] = tuple(f.name for f in TABLE if f.default)
+"""What a profile gets without asking."""
 DXF_FLAVOURS: tuple[str, ...] = next(f.flavours for f in TABLE if f.name == "dxf")
 
 

@@ -126,6 +126,8 @@ def _write_format(fmt: Format, design: Design, folder: Path, solids: dict) -> di
     """Every file of one format, through the writer the format table names."""
     module, function = fmt.writer.split(":")
     writer = getattr(import_module(f".{module}", __package__), function)
+    if fmt.takes == "design":  # the writer makes its own solids from the design
+        return writer(design, folder)
     files = {}
     for stem, whole, what in _pieces(fmt, design, solids):
         path = folder / f"{stem}.{fmt.extension}"

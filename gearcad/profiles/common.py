@@ -6,7 +6,7 @@ from typing import Annotated, Any
 
 from pydantic import BaseModel, ConfigDict, model_validator
 
-from ..formats import DXF_FLAVOURS, FORMATS
+from ..formats import DEFAULT_FORMATS, DXF_FLAVOURS, FORMATS
 from .values import LARGEST_LENGTH, Flag, LayerName, LengthOrZero, Must, Problems, Size, choice, number
 
 __all__ = ["ParamsModel", "OutputParams", "BoreParams", "DXF_FLAVOURS", "FORMATS", "distinct_names"]
@@ -70,8 +70,8 @@ class OutputParams(ParamsModel):
     """Draw charts (pitch curves, kinematics, mesh)."""
     animation: Flag = True
     """Write an animated GIF of the mechanism."""
-    formats: Formats = FORMATS
-    """Files to write for each part, drawn from "dxf", "svg", "stl", "3mf"."""
+    formats: Formats = DEFAULT_FORMATS
+    """Files to write for each part, drawn from "dxf", "svg", "stl", "3mf", "step" (default: all but "step")."""
     dxf: DxfFlavour = "polyline"
     """How outlines are written to DXF: one polyline with bulges, lines and arcs, or flat polyline."""
     thickness: Thickness = 5.0

@@ -1,0 +1,153 @@
+"""STEP files: every part as one exact named solid in mm, and the assembly of them.
+
+The solids are built in ``export/step_brep.py``: a straight part's arc-fitted cut rings extruded
+(planes and cylinders, cones at a chamfer), a twisted part ruled through the 3MF's sections.
+OpenCASCADE (OCP) is imported only when STEP is asked for.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from pathlib import Path
+
+from ..mechanisms import Design
+from .step_brep import StepSolid, straight_solid, twisted_solid
+
+__all__ = ["write_step_files", "write_step", "write_step_assembly", "face_counts", "volume"]
+
+
+def face_counts(shape) -> dict[str, int]:
+    """The shape's faces by surface type: {"plane": …, "cylinder": …, "cone": …, "bspline": …}."""
+    from OCP.BRepAdaptor import BRepAdaptor_Surface
+    from OCP.GeomAbs import GeomAbs_BSplineSurface, GeomAbs_Cone, GeomAbs_Cylinder, GeomAbs_Plane
+    from OCP.TopAbs import TopAbs_FACE
+    from OCP.TopExp import TopExp_Explorer
+    from OCP.TopoDS import TopoDS
+
+    names = {
+        GeomAbs_Plane: "plane",
+        GeomAbs_Cylinder: "cylinder",
+        GeomAbs_Cone: "cone",
+        GeomAbs_BSplineSurface: "bspline",
+    }
+    counts: dict[str, int] = {}
+    explorer = TopExp_Explorer(shape, TopAbs_FACE)
+    while explorer.More():
+        kind = names.get(BRepAdaptor_Surface(TopoDS.Face(explorer.Current())).GetType(), "other")
+        counts[kind] = counts.get(kind, 0) + 1
+        explorer.Next()
+    return counts
+
+
+def volume(shape, *, relative_error: float = 1e-7) -> float:
+    """The shape's volume, mm³, integrated over its faces by OpenCASCADE to ``relative_error``
+    (adaptive: a ruled face of thousands of spans defeats a fixed Gauss rule)."""
+    from OCP.BRepGProp import BRepGProp
+    from OCP.GProp import GProp_GProps
+
+    props = GProp_GProps()
+    BRepGProp.VolumeProperties_s(shape, props, relative_error)
+    return float(props.Mass())
+
+
+def _document():
+    from OCP.TCollection import TCollection_ExtendedString
+    from OCP.TDocStd import TDocStd_Document
+    from OCP.XCAFDoc import XCAFDoc_DocumentTool
+
+    doc = TDocStd_Document(TCollection_ExtendedString("gearcad"))
+    return doc, XCAFDoc_DocumentTool.ShapeTool_s(doc.Main())
+
+
+def _named(label, name: str) -> None:
+    from OCP.TCollection import TCollection_ExtendedString
+    from OCP.TDataStd import TDataStd_Name
+
+    TDataStd_Name.Set_s(label, TCollection_ExtendedString(name))
+
+
+def _write(path: Path, doc) -> None:
+    from OCP.IFSelect import IFSelect_RetDone
+    from OCP.Interface import Interface_Static
+    from OCP.Message import Message, Message_Gravity
+    from OCP.STEPCAFControl import STEPCAFControl_Writer
+    from OCP.STEPControl import STEPControl_AsIs, STEPControl_Controller
+
+    STEPControl_Controller.Init_s()  # its defaults first, then ours
+    for printer in Message.DefaultMessenger_s().Printers():  # its transfer statistics, on stdout
+        printer.SetTraceLevel(Message_Gravity.Message_Fail)
+    Interface_Static.SetCVal_s("write.step.unit", "MM")
+    Interface_Static.SetCVal_s("write.step.schema", "AP214IS")
+    Interface_Static.SetIVal_s("write.surfacecurve.mode", 0)  # no 2-D curves on faces: a third of the size
+    writer = STEPCAFControl_Writer()
+    writer.SetNameMode(True)
+    if not writer.Transfer(doc, STEPControl_AsIs) or writer.Write(str(path)) != IFSelect_RetDone:
+        raise RuntimeError(f"STEP: OpenCASCADE could not write {path.name}")
+
+
+def write_step(path: Path, solid: StepSolid, *, relative_error: float = 1e-7) -> dict:
+    """One part as one named solid in mm; returns its faces by type and its volume (mm³)."""
+    doc, tool = _document()
+    _named(tool.AddShape(solid.shape, False), solid.name)
+    _write(path, doc)
+    return {"faces": face_counts(solid.shape), "volume": volume(solid.shape, relative_error=relative_error)}
+
+
+def write_step_assembly(path: Path, solids: dict[str, StepSolid], placements: Sequence) -> int:
+    """Every placed part (turned by ``angle`` rad about z, then moved by ``offset`` mm) as a named
+    component of one assembly; returns the number of components."""
+    from OCP.gp import gp_Ax1, gp_Dir, gp_Pnt, gp_Trsf, gp_Vec
+    from OCP.TopLoc import TopLoc_Location
+
+    doc, tool = _document()
+    assembly = tool.NewShape()
+    _named(assembly, "assembly")
+    labels = {}
+    for name, solid in solids.items():
+        labels[name] = tool.AddShape(solid.shape, False)
+        _named(labels[name], name)
+    for placement in placements:
+        turn, move = gp_Trsf(), gp_Trsf()
+        turn.SetRotation(gp_Ax1(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1)), float(placement.angle))
+        move.SetTranslation(gp_Vec(float(placement.offset[0]), float(placement.offset[1]), 0.0))
+        component = tool.AddComponent(assembly, labels[placement.part], TopLoc_Location(move.Multiplied(turn)))
+        _named(component, placement.part)
+    tool.UpdateAssemblies()
+    _write(path, doc)
+    return len(placements)
+
+
+def _solid(design: Design, part, rings) -> tuple[StepSolid, dict]:
+    """The part's solid and what its files entry adds (the twisted parts' section deviation)."""
+    out = design.params.output
+    twisted = design.sections.get(part.name)
+    if twisted is None:
+        return straight_solid(rings, out.thickness, name=part.name, chamfer=out.chamfer), {}
+    breaks = (out.thickness / 2,) if twisted.hand.startswith("herringbone") else ()
+    solid = twisted_solid(twisted.heights, twisted.rings, rings[1:], name=part.name, chamfer=out.chamfer, breaks=breaks)
+    # the faces run through the resampled sections, ruled between them as the 3MF is: the
+    # design's loft_deviation (mid-interval, measured) holds for them too
+    return solid, {"sections": len(twisted.heights), "section_deviation": twisted.deviation}
+
+
+def write_step_files(design: Design, folder: Path) -> dict[str, dict]:
+    """Every part's ``<name>.step`` and ``assembly.step`` (parts placed as in assembly.3mf) into
+    ``folder``; returns their files entries (faces by type, volume in mm³)."""
+    from ..mechanisms.parts import cut_paths
+
+    out = design.params.output
+    parts = design.parts()
+    if out.kerf > 0:  # a solid is the part itself: its paths fitted without the laser's offset
+        parts = cut_paths(parts, out.model_copy(update={"kerf": 0.0}))
+    files: dict[str, dict] = {}
+    solids: dict[str, StepSolid] = {}
+    for part in parts:
+        solid, extra = _solid(design, part, part.cut)
+        path = folder / f"{part.name}.step"
+        counts = write_step(path, solid, relative_error=1e-7 if not extra else 1e-5)
+        files[path.name] = {"bytes": path.stat().st_size, "kind": "step", "part": part.name, **counts, **extra}
+        solids[part.name] = solid
+    path = folder / "assembly.step"
+    count = write_step_assembly(path, solids, design.placements)
+    files[path.name] = {"bytes": path.stat().st_size, "kind": "step", "part": "assembly", "components": count}
+    return files
