@@ -121,7 +121,8 @@ def _write(design: Design, folder: Path, drawing: dict) -> dict[str, dict]:
             files[path.name] = _entry(path, kind="dxf", part="sheet", vertices=n, flavour=out.dxf)
         if "svg" in formats:
             path = folder / "sheet.svg"
-            n = write_svg(path, sheet, title=f"{design.name}: cutting sheet", **layers)
+            page = (0.0, 0.0, *out.sheet)  # the sheet itself, as laid out (lower-left corner at 0)
+            n = write_svg(path, sheet, title=f"{design.name}: cutting sheet", page=page, **layers)
             files[path.name] = _entry(path, kind="svg", part="sheet", segments=n)
     if formats & {"stl", "3mf"}:
         from .loft import loft

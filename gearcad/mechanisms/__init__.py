@@ -35,5 +35,5 @@ def design(params: ProfileParams) -> Design:
     parts = cut_paths(result.part_list, out)
     formats = set(out.formats)
     sheet = layouts.sheet_layout(parts, result.placements, out) if formats & {"dxf", "svg"} else ()
-    plate = layouts.plate_layout(parts, result.placements, out) if "3mf" in formats else ()
+    plate = layouts.plate_layout(parts, result.placements, out, result.sections) if "3mf" in formats else ()
     return replace(result, part_list=parts, sheet=sheet, plate=plate, seconds=time.perf_counter() - start)

@@ -215,16 +215,18 @@ def design(p: RollerBodyParams) -> Design:
     fine = out.tolerance * DEFAULT.fine_fraction
     body, path = _body_ring(osc, p, r)
     roller_circle = circle_ring(r * p.scale, fine)
+    # [bore] is the body's shaft; each roller turns on an axle of its own: a pilot hole marks it
+    axle = p.bore.model_copy(update={"diameter": 0.0, "keyway_width": 0.0, "keyway_depth": 0.0, "flat": 0.0})
     if teeth is None:
         parts = (
             make_part("body", body, output=out, bore=p.bore),
-            make_part("roller", roller_circle, output=out),
+            make_part("roller", roller_circle, output=out, bore=axle),
         )
         turns = [0.0, 0.0, 0.0]
     else:
         parts = (
             make_part("body", teeth["_body_ring"], output=out, bore=p.bore, wall=teeth["module"], marks=(body,)),
-            make_part("roller", teeth["_roller_ring"], output=out, marks=(roller_circle,)),
+            make_part("roller", teeth["_roller_ring"], output=out, bore=axle, marks=(roller_circle,)),
         )
         turns = teeth["_roller_turns"]
     centres = [(p.scale * math.sin(a), p.scale * math.cos(a)) for a in (0.0, TWO_PI / 3, 2 * TWO_PI / 3)]
