@@ -74,7 +74,10 @@ def test_the_sheet_names_each_part_inside_it(built):
     parts = [shapely.Polygon(c) for c in cut if shapely.Polygon(c).area > 100]
     assert len(parts) == 2
     glyphs = [e for e in doc.modelspace().query('POLYLINE[layer=="MARK"]') if e.is_closed or len(e) > 8]
-    inside = [sum(p.contains(shapely.Point(g.vertices[0].dxf.location.x, g.vertices[0].dxf.location.y)) for g in glyphs) for p in parts]
+    inside = [
+        sum(p.contains(shapely.Point(g.vertices[0].dxf.location.x, g.vertices[0].dxf.location.y)) for g in glyphs)
+        for p in parts
+    ]
     assert all(n >= 6 for n in inside)  # "driver" and "follower": at least one outline per letter
 
 
