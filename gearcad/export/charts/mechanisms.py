@@ -6,6 +6,7 @@ import math
 from pathlib import Path
 
 import numpy as np
+from matplotlib.ticker import NullFormatter
 
 from ...bodies import rollers as RB
 from ...geometry.outline import rotate
@@ -35,6 +36,7 @@ def limits_chart(limits: dict, params, path: Path) -> None:
     ax.set_xlabel("oscillation frequency m")
     ax.set_ylabel("largest amplitude a / R")
     ax.set_xticks(m, [str(int(v)) for v in m])
+    ax.xaxis.set_minor_formatter(NullFormatter())  # only the m ticks are labelled (no stray "4×10⁰")
     ax.set_title(f"{params.direction} oscillation, roller radius r = {params.roller_radius:g} R")
     ax.grid(alpha=0.3, which="both")
     ax.legend(fontsize=8)
