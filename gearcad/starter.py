@@ -17,7 +17,7 @@ from .profiles import parse_profile, profile_schema
 __all__ = ["SCHEMA_LINE", "example_folders", "new_profile"]
 
 SCHEMA_LINE = "#:schema ./profile.schema.json"
-_TOP_KEY = re.compile(r'^(name|title)\s*=.*$', re.M)
+_TOP_KEY = re.compile(r"^(name|title)\s*=.*$", re.M)
 
 
 def example_folders() -> list[Path]:

@@ -1,6 +1,7 @@
 import fcntl
 import json
 import logging
+import os
 from pathlib import Path
 
 import pytest
@@ -23,9 +24,16 @@ def built(tmp_path_factory, worker_id) -> Path:
     first to arrive builds under a lock, the others wait and read)."""
     from gearcad.cli import main
 
+    def build_all(out: Path) -> None:  # every chart audited as it is drawn (tests/test_pictures.py)
+        os.environ["GEARCAD_CHART_AUDIT"] = str(out.parent / "chart_audit.jsonl")
+        try:
+            assert main(["build", *map(str, PROFILES), "--out", str(out)]) == 0
+        finally:
+            del os.environ["GEARCAD_CHART_AUDIT"]
+
     if worker_id == "master":  # one process
         out = tmp_path_factory.mktemp("build") / "out"
-        assert main(["build", *map(str, PROFILES), "--out", str(out)]) == 0
+        build_all(out)
         return out
     shared = tmp_path_factory.getbasetemp().parent / "built"
     shared.mkdir(exist_ok=True)
@@ -33,7 +41,7 @@ def built(tmp_path_factory, worker_id) -> Path:
     with open(shared / "lock", "w") as lock:
         fcntl.flock(lock, fcntl.LOCK_EX)
         if not done.exists():
-            assert main(["build", *map(str, PROFILES), "--out", str(out)]) == 0
+            build_all(out)
             done.write_text("ok")
     return out
 

@@ -275,14 +275,14 @@ def test_inkscape_imports_the_dxf_at_the_designed_area(built):
 # ------------------------------------------------------------------------------------ LibreCAD
 
 
-def _librecad_pdf(librecad: str, dxf: Path, tmp_path: Path) -> Path:
+def _librecad_pdf(librecad: str, dxf: Path, tmp_path: Path, options=("-c", "-s", "1")) -> Path:
     """``librecad dxf2pdf`` writes <name>.pdf beside its input: run it on a copy."""
-    work = tmp_path / f"{dxf.parent.name}-{dxf.stem}"
+    work = tmp_path / f"{dxf.parent.name}-{dxf.stem}{'-plain' if not options else ''}"
     work.mkdir()
     shutil.copy(dxf, work / dxf.name)
     env = dict(os.environ, QT_QPA_PLATFORM="offscreen", HOME=str(tmp_path), XDG_RUNTIME_DIR=str(tmp_path))
     run = subprocess.run(
-        [librecad, "dxf2pdf", "-c", "-s", "1", dxf.name], capture_output=True, text=True, timeout=120, cwd=work, env=env
+        [librecad, "dxf2pdf", *options, dxf.name], capture_output=True, text=True, timeout=120, cwd=work, env=env
     )
     pdf = work / f"{dxf.stem}.pdf"
     assert run.returncode == 0 and pdf.exists() and pdf.stat().st_size > 0, run.stdout + run.stderr
@@ -325,6 +325,19 @@ def test_librecad_prints_every_part_at_its_area(built, tmp_path):
         assert _dark_pixels(pdf.with_suffix(".pgm")) > 0, (profile, name)
         region = _pdf_stroke_region(pdf, "rgb(100%,0%,0%)")
         _record("librecad", profile, name, region.area, area)
+        assert region.area == pytest.approx(area, rel=SHARE), (profile, name)
+        assert _region_shape(region) == (1, holes), (profile, name)
+
+
+def test_librecad_prints_a_part_with_no_options(built, tmp_path):
+    """``librecad dxf2pdf`` with no options (as a maker first tries it) prints the whole part at
+    1:1 from the DXF's paper settings ($PSVPSCALE, $PINSBASE), not a blank page."""
+    import shapely.affinity  # noqa: F401 - used by _pdf_stroke_region
+
+    librecad = _program("librecad", "librecad")
+    for profile, name, area, holes, folder in _parts(built, subset=True)[:3]:
+        pdf = _librecad_pdf(librecad, folder / f"{name}.dxf", tmp_path, options=())
+        region = _pdf_stroke_region(pdf, "rgb(100%,0%,0%)")
         assert region.area == pytest.approx(area, rel=SHARE), (profile, name)
         assert _region_shape(region) == (1, holes), (profile, name)
 

@@ -69,7 +69,6 @@ def test_every_golden_number_is_stated_in_the_readme_or_docs(golden):
     assert not unstated
 
 
-
 def test_the_readme_is_a_quick_start_that_links_its_docs():
     start = README.split("## Quick start", 1)[1].split("\n## ", 1)[0]
     first_block = start.split("```")[1]

@@ -148,7 +148,8 @@ def _reference_parts():
 def test_dxf_needs_far_fewer_vertices_than_chords(tmp_path):
     folder, report = build(tmp_path)
     for gear in report["gears"]:
-        dxf = report["files"][f"{gear['name']}.dxf"]["vertices"]
+        doc = ezdxf.readfile(folder / f"{gear['name']}.dxf")  # the cut layer: the outline as written
+        dxf = sum(len(e) for e in doc.modelspace().query('LWPOLYLINE[layer=="CUT"]'))
         assert dxf * 4 < gear["part"]["vertices"]
 
 
@@ -445,7 +446,8 @@ def test_dxf_header_extents_and_no_point_display(tmp_path):
 
 def test_engraving_is_polyline_and_the_cut_layer_takes_the_flavour(tmp_path):
     """Marks (pitch curve, pivot cross) are POLYLINE entities in every flavour — OpenSCAD reads
-    no POLYLINE, so they never mix into the part — and keep their arcs as bulges."""
+    no POLYLINE, so they never mix into the part — and every one is open: the pitch curve is
+    dashed, so a program filling closed shapes cannot engrave its region (issue 24)."""
     for flavour, cut_kinds in (("polyline", {"LWPOLYLINE"}), ("lines-arcs", {"LINE", "ARC"})):
         folder, _ = build(tmp_path, dxf=flavour, name=flavour.replace("-", "_"))
         doc = ezdxf.readfile(folder / "a.dxf")
@@ -454,9 +456,13 @@ def test_engraving_is_polyline_and_the_cut_layer_takes_the_flavour(tmp_path):
         assert {k for layer, k in kinds if layer == "CUT"} == cut_kinds
         assert {k for layer, k in kinds if layer == "MARK"} == {"POLYLINE"}
         marks = doc.modelspace().query("POLYLINE")
-        assert sum(e.is_closed for e in marks) == 1 and sum(not e.is_closed for e in marks) == 2  # pitch, cross
-        pitch = next(e for e in marks if e.is_closed)
-        assert any(v.dxf.bulge for v in pitch.vertices)
+        assert not any(e.is_closed for e in marks) and len(marks) > 2 + 5  # the cross, and dashes
+        dashes = [np.array([(v.dxf.location.x, v.dxf.location.y) for v in e.vertices]) for e in marks]
+        dashes = [d for d in dashes if len(d) > 2 or np.hypot(*(d[1] - d[0])) > 2.5]  # not the cross
+        drawn = sum(np.hypot(*np.diff(d, axis=0).T).sum() for d in dashes)
+        perimeter = json.loads((folder / "report.json").read_text())["gears"][0]["perimeter"]
+        assert drawn == pytest.approx(0.75 * perimeter, rel=1e-3)  # three quarters drawn, in dashes
+        assert all(2.0 < np.hypot(*np.diff(d, axis=0).T).sum() < 3.5 for d in dashes)
 
 
 _WRITE_TWICE = """

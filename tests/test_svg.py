@@ -112,6 +112,9 @@ def check_document(path, drawing: Drawing) -> tuple[SVG, dict]:
             segs = list(p.segments(transformed=False))
             assert not any(isinstance(s, Close) for s in segs)
             xy = np.array([(s.end.x, -s.end.y) for s in segs])
+            if isinstance(stroke, ArcRing):  # a dash with arcs: from its first vertex to its last
+                assert np.allclose(xy[[0, -1]], stroke.vertices[[0, -1]], atol=1e-6)
+                continue
             assert np.allclose(xy, stroke, atol=1e-6)
     again = path.with_name("again.svg")
     count = write_svg(again, drawing, cut_layer=CUT, mark_layer=MARK, title="gear")

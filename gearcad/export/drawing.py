@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -10,13 +11,14 @@ from ..geometry.arcfit import ArcRing
 from ..geometry.outline import rotate
 from ..mechanisms import Design, Part, Placement
 
-__all__ = ["Drawing", "cross", "part_drawing", "assembly_drawing"]
+__all__ = ["DASH_MM", "Drawing", "cross", "dashes", "part_drawing", "assembly_drawing"]
 
 
 @dataclass(frozen=True)
 class Drawing:
     """What goes into one DXF: per layer, closed rings (ArcRing, or plain (n, 2) arrays for the
-    flat encoding) and open strokes; and a description per layer (e.g. kerf compensation)."""
+    flat encoding) and open strokes ((n, 2) arrays, or ArcRing whose last bulge is unused: dashes
+    with arcs); and a description per layer (e.g. kerf compensation)."""
 
     closed: dict[str, list]
     strokes: dict[str, list[np.ndarray]]
@@ -27,6 +29,52 @@ def cross(center, size: float) -> list[np.ndarray]:
     """Two short open strokes marking a pivot: list of (2, 2) float, mm."""
     x, y = center
     return [np.array([[x - size, y], [x + size, y]]), np.array([[x, y - size], [x, y + size]])]
+
+
+DASH_MM = 3.0
+"""Pitch curves are engraved dashed: about 3 mm of line, then a third of that left out.  A dashed
+line is open, so a program that fills closed shapes (an engrave-fill pass) cannot fill the pitch
+curve's region — which crosses the toothed outline — and engrave a wrong area."""
+
+
+def _point_on(a: np.ndarray, b: np.ndarray, bulge: float, t: float) -> np.ndarray:
+    """The point a fraction ``t`` of the way along the segment a → b of ``bulge`` (by arc length)."""
+    if bulge == 0.0:
+        return a + t * (b - a)
+    theta = 4 * math.atan(bulge)  # turn a → b about the arc's centre, by t·θ
+    chord = b - a
+    centre = (a + b) / 2 + np.array([-chord[1], chord[0]]) * (1 - bulge * bulge) / (4 * bulge)
+    c, s = math.cos(t * theta), math.sin(t * theta)
+    r = a - centre
+    return centre + np.array([c * r[0] - s * r[1], s * r[0] + c * r[1]])
+
+
+def dashes(ring: ArcRing) -> list[ArcRing]:
+    """The closed ``ring`` as open dashes along it, each an :class:`ArcRing` whose last bulge is 0
+    and means nothing (the dash does not close): its arcs stay arcs (bulges), so dashes add few
+    vertices.  A whole number of dash-and-gap periods over the ring, so it looks the same all round."""
+    v, bulges = np.asarray(ring.vertices, dtype=float), np.asarray(ring.bulges, dtype=float)
+    ends = np.roll(v, -1, axis=0)
+    chord = np.hypot(*(ends - v).T)
+    theta = 4 * np.arctan(bulges)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        length = np.where(bulges != 0, chord * (theta / 2) / np.sin(theta / 2), chord)
+    s = np.concatenate([[0.0], np.cumsum(length)])
+    period = s[-1] / max(1, round(s[-1] / (DASH_MM * 4 / 3)))
+    out = []
+    for start in np.arange(0.0, s[-1] - 1e-9, period):
+        stop = start + period * 3 / 4
+        points, arcs = [], []
+        for k in np.flatnonzero((s[1:] > start) & (s[:-1] < stop)):
+            if min(stop, s[k + 1]) - max(start, s[k]) < 1e-9:  # touches the dash's end only
+                continue
+            t0, t1 = (max(start, s[k]) - s[k]) / length[k], (min(stop, s[k + 1]) - s[k]) / length[k]
+            if not points:
+                points.append(_point_on(v[k], ends[k], float(bulges[k]), t0))
+            points.append(_point_on(v[k], ends[k], float(bulges[k]), t1))
+            arcs.append(math.tan((t1 - t0) * theta[k] / 4))
+        out.append(ArcRing(np.array(points), np.array([*arcs, 0.0])))
+    return out
 
 
 def _placed(ring: ArcRing, placement: Placement) -> ArcRing:
@@ -40,7 +88,7 @@ def _drawing(items: list[tuple[Part, Placement]], design: Design) -> Drawing:
     strokes: dict[str, list] = {mark: []}
     for part, placement in items:
         closed[cut] += [_placed(r, placement) for r in part.cut]
-        closed[mark] += [_placed(r, placement) for r in part.mark]
+        strokes[mark] += [d for r in part.mark for d in dashes(_placed(r, placement))]
         if part.pivot_mark > 0:
             strokes[mark] += cross(tuple(placement.offset), part.pivot_mark)
     descriptions = {}

@@ -28,7 +28,10 @@ What every encoding shares, so that each program reads the part right with its d
   ARC entities (``lines-arcs``) are split alike, so OpenSCAD's own coarse tessellation of an
   ARC (never fewer than one chord) stays within the same bound.
 * **Header:** R2010, ``$INSUNITS`` = mm, ``$MEASUREMENT`` = metric, ``$EXTMIN``/``$EXTMAX`` the
-  exact extents (:func:`gearcad.export.bounds.drawing_bounds`); no ``$PDMODE``/``$PDSIZE``
+  exact extents (:func:`gearcad.export.bounds.drawing_bounds`), the ``*Active`` viewport centred on
+  them (a reader opens on the part, not on the origin), paper scale 1:1 with the drawing inset
+  by :data:`PAPER_MARGIN_MM` (``$PSVPSCALE``, ``$PINSBASE``: LibreCAD's ``dxf2pdf`` with no
+  options prints the part, not a blank page); no ``$PDMODE``/``$PDSIZE``
   (point display, which Inkscape warns about on every import; the files hold no points).
 * **Reproducible bytes:** ezdxf's fixed dates and ids, and the CLASSES section registered in
   sorted order (ezdxf adds the classes of the entity types in use in set order, which follows
@@ -61,6 +64,8 @@ MARK_CHORD_AREA = 0.004
 """The same for engraved rings (pitch curves): no part's size depends on them, so only their
 shape is kept — a pitch circle stays round, not a pentagon — within 0.4 % of their area."""
 
+PAPER_MARGIN_MM = 10.0
+"""Where a printed drawing starts on the paper (``$PINSBASE``), mm from its lower-left corner."""
 _MIN_SWEEP = math.radians(1.0)
 """No arc is split into pieces under 1° (their chords cut off under 5e-5 of their sector)."""
 _LAYER_COLOURS = {"CUT": 1, "MARK": 5}
@@ -302,6 +307,11 @@ def write_dxf(path: Path, drawing: Drawing, *, flavour: str = "polyline", cut_la
                 count += _ring(msp, ring, layer, flavour if cut else "engrave")
         for layer, strokes in drawing.strokes.items():
             for stroke in strokes:
+                if isinstance(stroke, ArcRing):  # an open path with arcs (dashes)
+                    rows = np.column_stack([stroke.vertices, stroke.bulges]).tolist()
+                    msp.add_polyline2d(rows, format="xyb", dxfattribs={"layer": layer})
+                    count += len(stroke.vertices)
+                    continue
                 msp.add_polyline2d(np.asarray(stroke, dtype=float).tolist(), format="xy", dxfattribs={"layer": layer})
                 count += len(stroke)
         if any(drawing.closed.values()) or any(drawing.strokes.values()):
@@ -310,6 +320,16 @@ def write_dxf(path: Path, drawing: Drawing, *, flavour: str = "polyline", cut_la
             msp.dxf.extmax = (xmax, ymax, 0.0)
             doc.header["$EXTMIN"] = (xmin, ymin, 0.0)
             doc.header["$EXTMAX"] = (xmax, ymax, 0.0)
+            # the view a reader opens with (LibreCAD, its dxf2pdf): the extents with a margin; as
+            # high as the drawing is wide too, so any window of aspect >= 1 shows all of it
+            view = 1.1 * max(xmax - xmin, ymax - ymin)
+            doc.set_modelspace_vport(view, ((xmin + xmax) / 2, (ymin + ymax) / 2))
+            # printing with no options (LibreCAD's dxf2pdf): at 1:1, the drawing's lower-left corner
+            # PAPER_MARGIN_MM in from the paper's (without these the page came out blank)
+            doc.header["$PSVPSCALE"] = 1.0
+            doc.header["$PINSBASE"] = (PAPER_MARGIN_MM - xmin, PAPER_MARGIN_MM - ymin, 0.0)
+            doc.header["$PLIMMIN"] = (0.0, 0.0)
+            doc.header["$PLIMMAX"] = (xmax - xmin + 2 * PAPER_MARGIN_MM, ymax - ymin + 2 * PAPER_MARGIN_MM)
         for name in sorted(doc.entitydb.dxf_types_in_use()):  # before ezdxf adds them in set order
             doc.classes.add_class(name)
         doc.saveas(path)

@@ -26,7 +26,9 @@ def write_svg(path: Path, drawing: Drawing, *, design: Design, whole: str | None
 
     out = design.params.output
     title = f"{design.name}: {_TITLES.get(whole, path.stem)}"
-    return {"segments": write(path, drawing, title=title, cut_layer=out.cut_layer, mark_layer=out.mark_layer)}
+    page = (0.0, 0.0, *out.sheet) if whole == "sheet" else None  # the sheet itself, as laid out
+    layers = {"cut_layer": out.cut_layer, "mark_layer": out.mark_layer}
+    return {"segments": write(path, drawing, title=title, page=page, **layers)}
 
 
 def write_stl(path: Path, items: list, *, design: Design, whole: str | None = None) -> dict:

@@ -2,11 +2,9 @@
 
 Self-contained: one file with its own CSS and no script, no web fonts, no network reference; it
 opens from the file system.  The parts are drawn as inline SVG from the same cut and mark paths
-the DXF and SVG files hold (each part's path defined once and placed with ``<use>`` in the part
-views, the assembly, the cutting sheet and the print plate).  Charts and the animation are not
-copied in: they are linked relatively (``<img src="mesh.png">``), files of the same folder, which
-keeps the page small; every file of the folder is linked from the table at the end.
-"""
+the DXF and SVG files hold (each part's path defined once, placed with ``<use>``).  Charts and the
+animation are linked relatively (``<img src="mesh.png">``), which keeps the page small; every
+file of the folder is linked from the table at the end."""
 
 from __future__ import annotations
 
@@ -88,7 +86,9 @@ def pivot_marking(design: Design, part: Part, report_part: Mapping | None = None
             text += f" with a D-flat {bore.flat:g} mm from the centre"
         marks.append(text)
     elif part.pivot == "pilot":
-        marks.append(f"Ø{part.pivot_diameter:g} mm pilot hole (no bore given: drill or ream it to the shaft)")
+        bored = [p.name for p in design.parts() if p.pivot == "bore"]
+        why = f"bore.diameter is {', '.join(bored)}'s shaft" if bored else "no bore given"
+        marks.append(f"Ø{part.pivot_diameter:g} mm pilot hole ({why}: drill or ream it to this part's axle)")
     elif part.pivot == "hole":
         marks.append("its inner teeth, concentric with the pivot")
     if part.pivot_mark > 0:
@@ -109,7 +109,7 @@ def _what(name: str, entry: Mapping) -> str:
     elif name == "plate.3mf":
         bits.append("print plate: every part on the bed")
     elif part == "assembly":
-        bits.append("assembly: parts in place, touching (checks the fit; not for cutting or printing)")
+        bits.append("assembly: parts in place (checks the fit; not for cutting or printing)")
     elif part:
         bits.append(f"part {part}")
     for key, unit in (("vertices", "vertices"), ("segments", "segments"), ("triangles", "triangles")):
@@ -175,14 +175,25 @@ def _section_assembly(design: Design, figures: Figures, report: dict, files: Map
         f'<figure><img src="{escape(quote(gif))}" alt="the mechanism in motion">'
         f"<figcaption>{_link(gif)}: one cycle of motion</figcaption></figure>"
         if gif
-        else '<p class="note">No animation was written (output.animation is off or the mechanism does not move).</p>'
+        else '<p class="note">No animation was written ('
+        + ("output.animation is off" if not design.params.output.animation else "none is drawn for it")
+        + ").</p>"
     )
     return (
         '<h2 id="assembly">Assembly</h2>'
-        f'<div class="pair"><figure class="wide">{svg}<figcaption>The parts as assembled: they touch, to check '
-        "the fit; cut from the sheet and print from the plate.</figcaption></figure>"
+        f'<div class="pair"><figure class="wide">{svg}<figcaption>The parts as assembled: {_how_placed(design)}, '
+        "to check the fit; cut from the sheet and print from the plate.</figcaption></figure>"
         f"<div>{right}{facts}</div></div>"
     )
+
+
+def _how_placed(design) -> str:
+    """What the assembly shows: meshing parts touch; other parts sit where the mechanism puts them."""
+    if design.params.mechanism == "rolling-wheel":
+        return "the two wheels where the drive holds them, joined by the rack (not drawn), not touching"
+    if any(pl.part == "shoe" for pl in design.placements):
+        return "the gears touch in mesh; the leg (shoe) works in a plane of its own, drawn over the wheel"
+    return "meshing parts touch"
 
 
 def _section_findings(report: dict) -> str:
@@ -289,7 +300,7 @@ def _section_files(files: Mapping, page: str) -> str:
         '<h2 id="files">Files</h2>'
         '<p class="note">To cut: <b>sheet.dxf</b> or <b>sheet.svg</b> (every part, laid out) or one file per part. '
         "To print: <b>plate.3mf</b> (every part on the bed) or one STL or 3MF per part. "
-        "The <b>assembly</b> files place the parts as they mesh, touching: they are for checking the fit.</p>"
+        "The <b>assembly</b> files place the parts where they work: they are for checking the fit.</p>"
         f"<table><tr><th>file</th><th>kind</th><th>what</th><th>size</th></tr>{rows}</table>"
     )
 

@@ -18,7 +18,7 @@ from ..geometry.arcfit import ArcRing
 from .bounds import drawing_bounds
 from .drawing import Drawing
 
-__all__ = ["MARGIN_MM", "CUT_COLOUR", "MARK_COLOUR", "STROKE_WIDTH_MM", "write_svg"]
+__all__ = ["MARGIN_MM", "CUT_COLOUR", "MARK_COLOUR", "STROKE_WIDTH_MM", "PREVIEW_STYLE", "write_svg"]
 
 MARGIN_MM = 1.0
 """Empty border around the drawing, so no path lies on the page edge."""
@@ -28,9 +28,14 @@ MARK_COLOUR = "#0000ff"
 STROKE_WIDTH_MM = 0.01
 """A hairline.  LightBurn, Glowforge and xTool sort paths by colour and ignore the width, but the
 Epilog and Universal print drivers cut only strokes at most 0.001 in (0.0254 mm) wide and raster
-anything wider; 0.01 mm is below that everywhere.  ``vector-effect: non-scaling-stroke`` would
-keep a 0.1 mm line visible in Inkscape, but importers that ignore it (an SVG Tiny / SVG 2
-property) would then see 0.1 mm and engrave instead of cut."""
+anything wider; 0.01 mm is below that everywhere.  Previews get a visible line from
+:data:`PREVIEW_STYLE` instead of a wider stroke, which importers would then engrave instead of cut."""
+
+PREVIEW_STYLE = "@media screen { path { vector-effect: non-scaling-stroke; stroke-width: 1px; } }"
+"""How a browser or image viewer shows the file: one screen pixel wide whatever the zoom, so a
+whole sheet's hairlines do not vanish in a preview.  A style rule for screens only: the hairline
+attribute stays what laser software and print drivers read (Inkscape and laser importers do not
+apply ``@media`` rules)."""
 
 _DECIMALS = 6  # 1 nm: far below any laser's resolution, and fixed so the bytes are reproducible
 _MIN_SWEEP = 1e-5
@@ -103,7 +108,13 @@ def _ring_path(ring) -> tuple[str, int]:
 
 
 def _stroke_path(stroke) -> tuple[str, int]:
-    """Path data of one open polyline and its segment count."""
+    """Path data of one open polyline (or an ArcRing left open: dashes with arcs) and its segment count."""
+    if isinstance(stroke, ArcRing):
+        v, bulges = np.asarray(stroke.vertices, dtype=float), np.asarray(stroke.bulges, dtype=float)
+        commands = [f"M {_xy(v[0])}"]
+        for k in range(len(v) - 1):
+            commands += _arcs(v[k], v[k + 1], float(bulges[k])) if bulges[k] != 0 else [f"L {_xy(v[k + 1])}"]
+        return " ".join(commands), len(commands) - 1
     points = np.asarray(stroke, dtype=float)
     data = f"M {_xy(points[0])} " + " ".join(f"L {_xy(p)}" for p in points[1:])
     return data, len(points) - 1
@@ -126,7 +137,15 @@ def _group(drawing: Drawing, layer: str, group_id: str, colour: str) -> tuple[li
     return lines, count
 
 
-def write_svg(path: Path, drawing: Drawing, *, cut_layer: str, mark_layer: str, title: str = "") -> int:
+def write_svg(
+    path: Path,
+    drawing: Drawing,
+    *,
+    cut_layer: str,
+    mark_layer: str,
+    title: str = "",
+    page: tuple[float, float, float, float] | None = None,
+) -> int:
     """Write the drawing as one SVG file in mm; return the number of path segments written.
 
     Parameters
@@ -140,6 +159,8 @@ def write_svg(path: Path, drawing: Drawing, *, cut_layer: str, mark_layer: str, 
         ``mark``); they become the Inkscape layer labels.
     title : str
         The document's ``<title>``.
+    page : (xmin, ymin, xmax, ymax), mm, optional
+        The page (a cutting sheet's size); default: the drawing's extents and :data:`MARGIN_MM`.
 
     Returns
     -------
@@ -155,15 +176,17 @@ def write_svg(path: Path, drawing: Drawing, *, cut_layer: str, mark_layer: str, 
     extra = sorted({*drawing.closed, *drawing.strokes} - {cut_layer, mark_layer})
     if extra:
         raise ValueError(f"layers {extra} are neither cut_layer {cut_layer!r} nor mark_layer {mark_layer!r}")
-    xmin, ymin, xmax, ymax = drawing_bounds(drawing)
-    x0, y0 = _num(xmin - MARGIN_MM), _num(-ymax - MARGIN_MM)  # the top-left corner after the y flip
+    margin = MARGIN_MM if page is None else 0.0
+    xmin, ymin, xmax, ymax = drawing_bounds(drawing) if page is None else page
+    x0, y0 = _num(xmin - margin), _num(-ymax - margin)  # the top-left corner after the y flip
     # sizes from the corner as written, so each edge is off by one rounding at most
-    width, height = _num(xmax + MARGIN_MM - float(x0)), _num(-ymin + MARGIN_MM - float(y0))
+    width, height = _num(xmax + margin - float(x0)), _num(-ymin + margin - float(y0))
     lines = [
         '<?xml version="1.0" encoding="UTF-8" standalone="no"?>',
         f'<svg xmlns="http://www.w3.org/2000/svg" xmlns:inkscape="{_INKSCAPE}" version="1.1"',
         f'     width="{width}mm" height="{height}mm" viewBox="{x0} {y0} {width} {height}">',
         f"  <title>{escape(title)}</title>",
+        f"  <style>{PREVIEW_STYLE}</style>",
     ]
     # marks first: laser software that runs groups in document order scores the part before
     # cutting it free, while it still lies where it was placed

@@ -28,7 +28,17 @@ from ..geometry.outline import rotate
 from ..profiles.values import LARGEST_LENGTH
 from .parts import Part, Placement
 
-__all__ = ["Box", "pack", "upright_angle", "part_box", "footprint_box", "lay_out", "sheet_layout", "plate_layout"]
+__all__ = [
+    "SKIRT_MM",
+    "Box",
+    "pack",
+    "upright_angle",
+    "part_box",
+    "footprint_box",
+    "lay_out",
+    "sheet_layout",
+    "plate_layout",
+]
 
 _TURN_GAIN = 0.05
 """A part is turned to its smallest bounding rectangle only when that saves more than 5 % of its
@@ -166,17 +176,20 @@ def part_box(part: Part) -> Box:
     return Box(part.name, angle, _extents(boxes))
 
 
-def footprint_box(part: Part) -> Box:
-    """The part turned by :func:`upright_angle` and the extents of its outline: the footprint of
-    its solid on a printer's bed."""
+def footprint_box(part: Part, sections=None) -> Box:
+    """The part turned by :func:`upright_angle` and the extents of its solid on a printer's bed:
+    its outline's, or with helical ``sections`` ((n, m, 2) rings, mm) those of every twisted
+    section (they reach past the base outline)."""
     angle = upright_angle(part.outline.outer)
-    return Box(part.name, angle, _extents([ring_bounds(rotate(part.outline.outer, angle))]))
+    rings = [part.outline.outer] if sections is None else [part.outline.outer, np.reshape(sections, (-1, 2))]
+    return Box(part.name, angle, _extents([ring_bounds(rotate(r, angle)) for r in rings]))
 
 
 def lay_out(
-    boxes: Sequence[Box], size: tuple[float, float], gap: float, *, key: str, what: str
+    boxes: Sequence[Box], size: tuple[float, float], gap: float, *, key: str, what: str, edge: float = 0.0
 ) -> tuple[Placement, ...]:
-    """Place every box (one per part laid out) on ``size`` = (w, h) mm, ``gap`` apart and from the edges.
+    """Place every box (one per part laid out) on ``size`` = (w, h) mm, ``gap`` apart and from the
+    edges (``edge`` from the edges where that is more).
 
     Largest boxes go first (ties by name, so the result is reproducible).  ``key`` is the profile
     key named when they do not fit (``output.sheet``, ``output.bed``), ``what`` the noun
@@ -188,22 +201,32 @@ def lay_out(
         One line naming ``key``: which part is too large on its own, or the size that would take
         all of them.
     """
+    extra = max(0.0, edge - gap)  # the margin beyond the gap, on every side
+    size = (size[0] - 2 * extra, size[1] - 2 * extra)
     w, h = size
     order = sorted(boxes, key=lambda b: (-b.width * b.height, b.part))
-    spots = _try(order, w, h, gap)
+    spots = _try(order, w, h, gap) if min(size) > 0 else None
     if spots is not None:
         return tuple(
-            (b.turned() if turned else b).placed_at(gap + x, gap + y) for b, (x, y, turned) in zip(order, spots)
+            (b.turned() if turned else b).placed_at(extra + gap + x, extra + gap + y)
+            for b, (x, y, turned) in zip(order, spots)
         )
     counts = Counter(b.part for b in boxes)
     listed = ", ".join(f"{name} ×{n}" if n > 1 else name for name, n in counts.items())
-    where = f"{key} = [{w:g}, {h:g}] mm with output.gap = {gap:g} mm"
+    where = f"{key} = [{w + 2 * extra:g}, {h + 2 * extra:g}] mm with output.gap = {gap:g} mm" + (
+        f" and {edge:g} mm from the edges" if extra else ""
+    )
     alone = [b for b in order if _try([b], w, h, gap) is None]
     if alone:
         b = alone[0]
         raise DesignError(
             f"{where}: {b.part} ({b.width:.1f} × {b.height:.1f} mm) does not fit on the {what} even alone; "
-            + _advice(what, max(b.width, b.height) + 2 * gap, min(b.width, b.height) + 2 * gap, "at least ")
+            + _advice(
+                what,
+                max(b.width, b.height) + 2 * (gap + extra),
+                min(b.width, b.height) + 2 * (gap + extra),
+                "at least ",
+            )
         )
     lo, hi = 1.0, 2.0
     while _try(order, w * hi, h * hi, gap) is None:
@@ -212,7 +235,8 @@ def lay_out(
         mid = (lo + hi) / 2
         lo, hi = (mid, hi) if _try(order, w * mid, h * mid, gap) is None else (lo, mid)
     raise DesignError(
-        f"{where}: the {len(boxes)} parts ({listed}) do not fit on the {what}; " + _advice(what, w * hi, h * hi, "")
+        f"{where}: the {len(boxes)} parts ({listed}) do not fit on the {what}; "
+        + _advice(what, w * hi + 2 * extra, h * hi + 2 * extra, "")
     )
 
 
@@ -243,15 +267,24 @@ def sheet_layout(parts: Sequence[Part], placements: Sequence[Placement], output)
     return lay_out(laid, tuple(output.sheet), output.gap, key="output.sheet", what="sheet")
 
 
-def plate_layout(parts: Sequence[Part], placements: Sequence[Placement], output) -> tuple[Placement, ...]:
+SKIRT_MM = 7.0
+"""Solids keep at least this far from the bed's edges, mm: a slicer's skirt goes around them
+(PrusaSlicer's default skirt_distance is 6 mm, plus its line), and must stay on the bed."""
+
+
+def plate_layout(
+    parts: Sequence[Part], placements: Sequence[Placement], output, sections=None
+) -> tuple[Placement, ...]:
     """Every placed part laid out on ``output.bed`` (front-left corner at the origin), footprints at
-    least ``output.gap`` apart and from the bed's edges.
+    least ``output.gap`` apart and :data:`SKIRT_MM` (or the gap, if more) from the bed's edges;
+    a helical part's footprint is that of its twisted sections (``sections``: name → GearSections).
 
     Raises
     ------
     DesignError
         When they do not fit (one line naming ``output.bed``).
     """
-    boxes = {p.name: footprint_box(p) for p in parts}
+    twisted = {name: g.rings for name, g in (sections or {}).items()}
+    boxes = {p.name: footprint_box(p, twisted.get(p.name)) for p in parts}
     laid = [boxes[pl.part] for pl in placements]
-    return lay_out(laid, tuple(output.bed), output.gap, key="output.bed", what="bed")
+    return lay_out(laid, tuple(output.bed), output.gap, key="output.bed", what="bed", edge=SKIRT_MM)

@@ -220,15 +220,17 @@ def design(p: RollerBodyParams) -> Draft:
     fine = budget(p.output.tolerance).fine
     body, path = _body_ring(osc, p, r)
     roller_circle = circle_ring(r * p.scale, fine)
+    # [bore] is the body's shaft; each roller turns on an axle of its own: a pilot hole marks it
+    axle = p.bore.model_copy(update={"diameter": 0.0, "keyway_width": 0.0, "keyway_depth": 0.0, "flat": 0.0})
     if teeth is None:
-        parts = (PartSpec("body", body, bore=p.bore), PartSpec("roller", roller_circle))
+        parts = (PartSpec("body", body, bore=p.bore), PartSpec("roller", roller_circle, bore=axle))
         turns = [0.0, 0.0, 0.0]
         # plain rollers touch the body along their whole rim at most
         contacts = tuple(Contact(0, k, length=TWO_PI * r * p.scale) for k in (1, 2, 3))
     else:
         parts = (
             PartSpec("body", teeth["_body_ring"], bore=p.bore, wall=teeth["module"], marks=(body,)),
-            PartSpec("roller", teeth["_roller_ring"], marks=(roller_circle,)),
+            PartSpec("roller", teeth["_roller_ring"], bore=axle, marks=(roller_circle,)),
         )
         turns = teeth["_roller_turns"]
         contacts = tuple(Contact(0, k, module=teeth["module"], radius=r * p.scale) for k in (1, 2, 3))

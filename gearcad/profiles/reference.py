@@ -144,7 +144,7 @@ def reference_markdown(schema: dict | None = None) -> str:
         lines += ["", "| key | allowed | default | meaning |", "|---|---|---|---|"]
         for key, field in _rows(schema, root, ""):
             allowed = "table" if field.get("_table") else _cell(_allowed(field))
-            when = f"(`curve = \"{field['_when']}\"`) " if field.get("_when") else ""
+            when = f'(`curve = "{field["_when"]}"`) ' if field.get("_when") else ""
             meaning = _cell(when + field.get("description", ""))
             lines.append(f"| `{key}` | {allowed} | {_default(field)} | {meaning} |")
     return "\n".join(lines) + "\n"

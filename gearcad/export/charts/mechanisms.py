@@ -5,6 +5,7 @@ from __future__ import annotations
 from pathlib import Path
 
 import numpy as np
+from matplotlib.ticker import NullFormatter
 
 from ...geometry.outline import rotate
 from .png import plt, save_png
@@ -33,6 +34,7 @@ def limits_chart(limits: dict, direction: str, roller_radius: float, path: Path)
     ax.set_xlabel("oscillation frequency m")
     ax.set_ylabel("largest amplitude a / R")
     ax.set_xticks(m, [str(int(v)) for v in m])
+    ax.xaxis.set_minor_formatter(NullFormatter())  # only the m ticks are labelled (no stray "4×10⁰")
     ax.set_title(f"{direction} oscillation, roller radius r = {roller_radius:g} R")
     ax.grid(alpha=0.3, which="both")
     ax.legend(fontsize=8)

@@ -16,10 +16,10 @@ def pitch_chart(data, path: Path, rings) -> None:
     """The pair in place at driver angle 0, and r(φ) of both gears."""
     fig, (ax, ax2) = plt.subplots(1, 2, figsize=(12, 5.2), gridspec_kw={"width_ratios": [1.25, 1]})
     e = data.pair.center_distance
-    colours = ("tab:blue", "tab:orange")
-    for gear, ring, colour in zip(data.gears, rings, colours):
+    colours, dashes = ("tab:blue", "tab:orange"), ("-", "--")  # dashed: an identical mate stays visible
+    for gear, ring, colour, ls in zip(data.gears, rings, colours, dashes):
         closed = np.vstack([ring, ring[:1]]) + np.asarray(gear.pivot)
-        ax.plot(closed[:, 0], closed[:, 1], color=colour, lw=1.4, label=gear.name)
+        ax.plot(closed[:, 0], closed[:, 1], color=colour, lw=1.4, ls=ls, label=gear.name)
         ax.plot(*gear.pivot, "+", color=colour, ms=10)
         for c in gear.shape.corners:
             p = points(gear.curve, np.array([c.phi]))[0] + np.asarray(gear.pivot)
@@ -29,20 +29,20 @@ def pitch_chart(data, path: Path, rings) -> None:
     ax.plot(contact, 0, "k.", ms=6)
     ax.set_aspect("equal")
     ax.set_title(f"pitch curves in mesh, E = {e:.4f} mm")
-    ax.set_xlabel("mm")
-    ax.legend(loc="upper right", fontsize=8)
+    ax.set_xlabel("x, mm")
+    ax.set_ylabel("y, mm")
     ax.grid(alpha=0.3)
     phi = np.linspace(0.0, TWO_PI, 1441)
-    for gear, colour in zip(data.gears, colours):
-        ax2.plot(np.degrees(phi), gear.curve.r(phi), color=colour, label=gear.name)
+    for gear, colour, ls in zip(data.gears, colours, dashes):
+        ax2.plot(np.degrees(phi), gear.curve.r(phi), color=colour, ls=ls, label=gear.name)
     ax2.set_xlabel("polar angle φ, degrees")
     ax2.set_ylabel("r, mm")
     ax2.set_xticks(range(0, 361, 45))
     ax2.set_title("radius against polar angle")
     ax2.grid(alpha=0.3)
-    ax2.legend(fontsize=8)
+    fig.legend(*ax.get_legend_handles_labels(), loc="lower center", ncol=2, fontsize=8)  # below the data
     fig.suptitle(data.params.title or data.params.name, parse_math=False)  # text, never mathtext
-    fig.subplots_adjust(left=0.06, right=0.98, bottom=0.1, top=0.86, wspace=0.22)
+    fig.subplots_adjust(left=0.07, right=0.98, bottom=0.17, top=0.86, wspace=0.22)
     save_png(fig, path)
 
 
@@ -91,16 +91,18 @@ def mesh_chart(data, teeth, path: Path) -> None:
     for a in (ax, zoom):
         a.set_aspect("equal")
         a.grid(alpha=0.3)
+        a.set_xlabel("x, mm")
+    ax.set_ylabel("y, mm")
     mesh = teeth.mesh
     ax.set_title(f"module {m:.4f} mm, E = {data.pair.center_distance:.4f} mm")
-    ax.legend(loc="upper right", fontsize=8)
+    fig.legend(*ax.get_legend_handles_labels(), loc="lower center", ncol=2, fontsize=8)  # below the data
     zoom.set_title(
         f"mesh zone: max overlap {mesh.max_overlap:.2g} mm² over {mesh.positions} positions "
         f"({'meshes' if mesh.meshes else 'INTERFERES'})",
         fontsize=9,
     )
     fig.suptitle(data.params.title or data.params.name, parse_math=False)  # text, never mathtext
-    fig.subplots_adjust(left=0.06, right=0.98, bottom=0.08, top=0.88, wspace=0.15)
+    fig.subplots_adjust(left=0.07, right=0.98, bottom=0.15, top=0.88, wspace=0.15)
     save_png(fig, path)
 
 

@@ -41,9 +41,11 @@ def limits_vs_r_chart(table: dict, path: Path, *, paper_by_eye: dict | None = No
         ax.set_ylabel("largest amplitude a / R")
         ax.set_title(f"{d} oscillation" + ("  (◁ paper, by eye)" if paper_by_eye else ""))
         ax.grid(alpha=0.3, which="both")
-        ax.legend(fontsize=7, ncol=2)
-    fig.suptitle("amplitude limits against the roller radius: the convex limit does not move, the loops do")
-    fig.tight_layout()
+    handles, labels = axes[0][0].get_legend_handles_labels()
+    fig.set_size_inches(6.5 * len(directions) + 2.4, 5)
+    fig.legend(handles, labels, loc="center right", fontsize=7)  # beside the data
+    fig.suptitle("amplitude limits against the roller radius:\nthe convex limit does not move, the loops do")
+    fig.tight_layout(rect=(0, 0, 1 - 2.4 / (6.5 * len(directions) + 2.4), 1))
     save_png(fig, path)
 
 
@@ -90,12 +92,12 @@ def elliptic_type2_chart(data: dict, path: Path) -> None:
     top.set_ylabel("ω2 / π, rad/s")
     bottom.set_ylabel("ε2 / π², rad/s²")
     bottom.set_xlabel("φ (driver), degrees")
-    top.legend(fontsize=8)
     for ax in (top, bottom):
         ax.grid(alpha=0.3)
         ax.set_xticks(np.arange(0, 361, 45))
-    fig.suptitle("elliptic gears pivoted at their centres (type 2): the paper's Table 2 against pairs that roll")
-    fig.tight_layout()
+    fig.legend(*top.get_legend_handles_labels(), loc="lower center", ncol=1, fontsize=8)  # below the data
+    fig.suptitle("elliptic gears pivoted at their centres (type 2):\nthe paper's Table 2 against pairs that roll")
+    fig.tight_layout(rect=(0, 0.13, 1, 1))
     save_png(fig, path)
 
 
@@ -167,7 +169,11 @@ def shoe_chart(ring, poses, hub_height: float, path: Path) -> None:
     ax.plot([0], [0], "k+", ms=12)
     ax.set_aspect("equal")
     ax.grid(alpha=0.3)
-    ax.legend(fontsize=7)
+    ax.set_xlabel("x from the hub, mm")
+    ax.set_ylabel("y from the hub, mm")
+    (x0, x1), (y0, y1) = ax.get_xlim(), ax.get_ylim()
+    fig.set_size_inches(9, min(9.0, max(3.5, 6.9 * (y1 - y0) / (x1 - x0) + 1.2)))  # as high as the drawing needs
+    ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))  # beside the data
     ax.set_title(f"wheel-walker leg over a stance: hub {hub_height:g} mm above the ground at every angle")
     fig.tight_layout()
     save_png(fig, path)

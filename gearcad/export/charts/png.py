@@ -1,21 +1,80 @@
-"""The one PNG writer of the charts: matplotlib without a display, no creation time."""
+"""The one PNG writer of the charts: matplotlib without a display, no creation time.
+
+Every chart is audited as it is written: titles inside the canvas, legends clear of the data
+(:func:`layout_problems`).  With ``GEARCAD_CHART_AUDIT`` naming a file, the problems found are
+appended to it as JSON lines (the test suite reads them after building every profile).
+"""
 
 from __future__ import annotations
 
+import json
+import os
 from pathlib import Path
 
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
 from matplotlib.collections import PolyCollection  # noqa: E402
 
-__all__ = ["plt", "save_png", "PolyCollection"]
+__all__ = ["plt", "save_png", "layout_problems", "PolyCollection"]
 
 _META = {"Software": "gearcad"}  # no creation time: the same design gives the same bytes
+_AUDIT = "GEARCAD_CHART_AUDIT"
+
+
+def _titles(fig) -> list:
+    texts = [fig._suptitle] if fig._suptitle is not None else []
+    for ax in fig.axes:
+        texts += [ax.title, ax._left_title, ax._right_title]
+    return [t for t in texts if t.get_visible() and t.get_text().strip()]
+
+
+def layout_problems(fig) -> list[str]:
+    """What a reader would trip on in a drawn figure: a title cut by the canvas's edge, a legend
+    drawn over data points of its own axes (lines and scatter points), a figure legend off the
+    canvas or over a plot."""
+    renderer = fig.canvas.get_renderer()
+    width, height = fig.bbox.width, fig.bbox.height
+    problems = []
+    for text in _titles(fig):
+        box = text.get_window_extent(renderer)
+        if box.x0 < -0.5 or box.y0 < -0.5 or box.x1 > width + 0.5 or box.y1 > height + 0.5:
+            problems.append(f"title {text.get_text()[:40]!r} runs off the canvas")
+    for legend in fig.legends:
+        box = legend.get_window_extent(renderer)
+        if box.x0 < -0.5 or box.y0 < -0.5 or box.x1 > width + 0.5 or box.y1 > height + 0.5:
+            problems.append("the figure's legend runs off the canvas")
+        if any(box.overlaps(ax.get_window_extent(renderer)) for ax in fig.axes):
+            problems.append("the figure's legend lies over a plot")
+    for ax in fig.axes:
+        legend = ax.get_legend()
+        if legend is None or not legend.get_visible():
+            continue
+        box = legend.get_window_extent(renderer)
+        points = [
+            line.get_xydata() for line in ax.get_lines() if line.get_visible() and line.get_label() != "_nolegend_"
+        ]
+        points += [c.get_offsets() for c in ax.collections if c.get_visible() and len(c.get_offsets()) > 1]
+        points = [np.asarray(p, dtype=float) for p in points if len(p)]
+        if not points:
+            continue
+        xy = ax.transData.transform(np.vstack(points))
+        inside = (xy[:, 0] > box.x0) & (xy[:, 0] < box.x1) & (xy[:, 1] > box.y0) & (xy[:, 1] < box.y1)
+        if np.count_nonzero(inside):
+            problems.append(f"legend of {ax.get_title()[:40]!r} covers {np.count_nonzero(inside)} data points")
+    return problems
 
 
 def save_png(fig, path: Path) -> None:
     """Write a figure without a creation time (the same chart gives the same bytes) and free it."""
     fig.savefig(path, dpi=110, metadata=_META)
+    audit = os.environ.get(_AUDIT)
+    if audit:
+        with open(audit, "a", encoding="utf-8") as f:
+            f.write(
+                json.dumps({"file": f"{Path(path).parent.name}/{Path(path).name}", "problems": layout_problems(fig)})
+                + "\n"
+            )
     plt.close(fig)

@@ -15,7 +15,8 @@ from .png import plt, save_png
 
 __all__ = ["draw_solids", "draw_design", "picture_solid", "PICTURE_PIXELS"]
 
-_COLOURS = ((0.85, 0.45, 0.15), (0.2, 0.45, 0.75), (0.35, 0.6, 0.3), (0.6, 0.35, 0.6))
+_COLOURS = ((0.2, 0.45, 0.75), (0.85, 0.45, 0.15), (0.35, 0.6, 0.3), (0.6, 0.35, 0.6))
+"""The driver blue, its mate orange: as in every other picture of the pair."""
 PICTURE_PIXELS = 1100
 """Pixels across the picture's wider side (10 in at 110 dpi)."""
 _LIGHT = np.array([0.35, -0.55, 0.75]) / np.linalg.norm([0.35, -0.55, 0.75])
