@@ -116,13 +116,13 @@ def _concurrent_build(job) -> str:
 
 def test_concurrent_builds_into_one_out_all_publish_and_the_index_names_every_one(tmp_path, monkeypatch):
     """Item 5: four builds of different profiles into one --out (new, under a new parent, or
-    existing), 40 rounds: every build succeeds, every folder is there and the page names every
+    existing), 25 rounds: every build succeeds, every folder is there and the page names every
     one (before: a staging folder taken by another's cleaner, or a page read before another
     build published written last, ~1 round in 100 here)."""
     monkeypatch.setattr(batch, "_build_one", _stub_build)
     jobs = [["a"], ["b"], ["c", "d"], ["e"]]
     with multiprocessing.get_context("fork").Pool(len(jobs)) as pool:
-        for r in range(40):
+        for r in range(25):
             out = tmp_path / str(r) / ("new/out" if r % 3 == 1 else "out")
             if r % 3 == 2:
                 out.mkdir(parents=True)

@@ -113,7 +113,7 @@ BAD = [
         "color=1",
         "color: unknown key (allowed here: bore, claim, gear1, gear2, mechanism, name, output, pair, teeth, title)",
     ),
-    ("gear1.eccentricity=1.0", "gear1.eccentricity = 1.0: must be an eccentricity ≥ 0 and < 1"),
+    ("gear1.eccentricity=1.0", "gear1.eccentricity = 1.0: must be an eccentricity from 0 to 0.998"),
     ("gear1.curve='spiral'", "gear1.curve = 'spiral': must be one of 'ellipse', 'oval', 'circle', 'ratio', 'walker'"),
     ("gear1=3", "gear1 = 3: must be a table ([gear1])"),
     ("teeth.count=2.5", "teeth.count = 2.5: must be an integer from 6 to 2000"),
