@@ -11,7 +11,7 @@ from dataclasses import replace
 from importlib import import_module
 
 from ..profiles import ProfileParams
-from . import layouts
+from . import fit, layouts
 from .base import Design
 from .parts import Part, Placement, cut_paths
 
@@ -30,7 +30,21 @@ load the roller bodies', the rack drive's or the trains' numerics)."""
 def design(params: ProfileParams) -> Design:
     """The checked design of any mechanism's profile parameters."""
     start = time.perf_counter()
-    result = import_module(f".{_MODULES[params.mechanism]}", __name__).design(params)
+    mechanism = import_module(f".{_MODULES[params.mechanism]}", __name__)
+    given, params = params, fit.made(params)  # the process's kerf and the backlash it needs
+    result = mechanism.design(params)
+    bands = fit.pair_bands(result)
+    extra = 0.0
+    for _ in range(2):  # the closed form falls short on a noncircular pair: add what the band lacks
+        if not bands or bands[0].fits or not fit.chose_backlash(given):
+            break
+        extra += 1.25 * bands[0].needed_backlash
+        retry = fit.made(given, extra)
+        if not fit.backlash_takes(retry):  # the tips reach the roots: no backlash frees them
+            break
+        params, result = retry, mechanism.design(retry)
+        bands = fit.pair_bands(result)
+    result = fit.with_bands(result, bands)
     out = params.output
     parts = cut_paths(result.part_list, out)
     formats = set(out.formats)
