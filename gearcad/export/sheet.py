@@ -12,4 +12,4 @@ __all__ = ["sheet_drawing"]
 
 def sheet_drawing(design: Design) -> Drawing:
     """The parts' cut rings (kerf applied) and marks, placed as ``design.sheet`` lays them out."""
-    return assembly_drawing(replace(design, placements=design.sheet))
+    return assembly_drawing(replace(design, placements=design.sheet), cut=True)

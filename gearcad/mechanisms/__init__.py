@@ -46,7 +46,7 @@ def design(params: ProfileParams) -> Design:
         bands = fit.pair_bands(result)
     result = fit.with_bands(result, bands)
     out = params.output
-    parts = cut_paths(result.part_list, out)
+    parts = fit.assembly_marks(result, cut_paths(result.part_list, out))
     formats = set(out.formats)
     sheet = layouts.sheet_layout(parts, result.placements, out) if formats & {"dxf", "svg"} else ()
     plate = layouts.plate_layout(parts, result.placements, out) if "3mf" in formats else ()
