@@ -454,8 +454,9 @@ def test_engraving_is_polyline_and_the_cut_layer_takes_the_flavour(tmp_path):
         assert {k for layer, k in kinds if layer == "CUT"} == cut_kinds
         assert {k for layer, k in kinds if layer == "MARK"} == {"POLYLINE"}
         marks = doc.modelspace().query("POLYLINE")
-        assert sum(e.is_closed for e in marks) == 1 and sum(not e.is_closed for e in marks) == 2  # pitch, cross
-        pitch = next(e for e in marks if e.is_closed)
+        # pitch curve and assembly dot closed, the cross's two strokes open
+        assert sum(e.is_closed for e in marks) == 2 and sum(not e.is_closed for e in marks) == 2
+        pitch = max((e for e in marks if e.is_closed), key=lambda e: len(e.vertices))
         assert any(v.dxf.bulge for v in pitch.vertices)
 
 

@@ -49,7 +49,7 @@ def test_each_gear_carries_the_assembly_dot_facing_its_mate():
     dots = []
     for part, placement in zip(d.parts(), d.placements):
         rings = part_drawing(d, part).closed[mark]
-        dot = [r for r in rings if len(r.vertices) == 2 and np.all(r.bulges == 1)]
+        dot = [r for r in rings if len(r.vertices) == 4 and np.all(r.bulges == 0)]
         assert len(dot) == 1, part.name  # one dot per gear, besides the pitch curve
         dots.append(dot[0].vertices.mean(axis=0) + np.asarray(placement.offset))
     # on the line of centres, two modules either side of the pitch point (20·2/2 = 20 mm)

@@ -158,13 +158,14 @@ def _process_block(process) -> dict:
 
 
 def _dot(centre: np.ndarray, radius: float) -> ArcRing:
-    """A small engraved circle: two half arcs, counter-clockwise."""
+    """A small engraved diamond, counter-clockwise: four straight edges, exact in every DXF
+    encoding and never split (arcs as small as this would be, for bulge-ignoring readers)."""
     x, y = centre
-    return ArcRing(np.array([[x + radius, y], [x - radius, y]]), np.ones(2))
+    return ArcRing(np.array([[x + radius, y], [x, y + radius], [x - radius, y], [x, y - radius]]), np.zeros(4))
 
 
 def assembly_marks(design: Design, parts: tuple[Part, ...]) -> tuple[Part, ...]:
-    """The parts with an engraved dot (MARK layer) on each gear of a toothed pair where the two
+    """The parts with an engraved dot (a diamond, MARK layer) on each gear of a toothed pair where the two
     meet in the assembly's phase: on the line of centres at driver angle 0, two modules inside
     the pitch curve.  Turn the gears so the dots face each other and they mesh as designed."""
     teeth = getattr(design.detail, "teeth", None)
