@@ -111,7 +111,8 @@ BAD = [
     ("output.mark_layer='cut'", "output.mark_layer = 'cut': must differ from output.cut_layer = 'CUT'"),
     (
         "color=1",
-        "color: unknown key (allowed here: bore, claim, gear1, gear2, mechanism, name, output, pair, teeth, title)",
+        "color: unknown key (allowed here: bore, claim, gear1, gear2, mechanism, name, output, pair, process, teeth, "
+        "title)",
     ),
     ("gear1.eccentricity=1.0", "gear1.eccentricity = 1.0: must be an eccentricity from 0 to 0.998"),
     ("gear1.curve='spiral'", "gear1.curve = 'spiral': must be one of 'ellipse', 'oval', 'circle', 'ratio', 'walker'"),

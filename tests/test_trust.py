@@ -65,7 +65,7 @@ def test_accepted_or_refused_within_budget(profile, overrides):
         timeout=60,
     )
     assert time.perf_counter() - start < 30
-    assert run.returncode in (0, 2), run.stderr
+    assert run.returncode in (0, 2, 3), run.stderr  # 3: made, but a check fails (e.g. it interferes)
     if run.returncode == 2:
         lines = run.stderr.strip().splitlines()
         assert 1 <= len(lines) <= len(overrides), lines  # one line per bad value

@@ -49,6 +49,12 @@ def _point_on(a: np.ndarray, b: np.ndarray, bulge: float, t: float) -> np.ndarra
     return centre + np.array([c * r[0] - s * r[1], s * r[0] + c * r[1]])
 
 
+def _perimeter(ring: ArcRing) -> float:
+    """The ring's length along its chords (mm): enough to tell a dot from a curve."""
+    v = np.asarray(ring.vertices, dtype=float)
+    return float(np.hypot(*(np.roll(v, -1, axis=0) - v).T).sum())
+
+
 def dashes(ring: ArcRing) -> list[ArcRing]:
     """The closed ``ring`` as open dashes along it, each an :class:`ArcRing` whose last bulge is 0
     and means nothing (the dash does not close): its arcs stay arcs (bulges), so dashes add few
@@ -81,18 +87,31 @@ def _placed(ring: ArcRing, placement: Placement) -> ArcRing:
     return ArcRing(rotate(ring.vertices, placement.angle) + np.asarray(placement.offset), ring.bulges)
 
 
-def _drawing(items: list[tuple[Part, Placement]], design: Design) -> Drawing:
+def _nominal(part: Part) -> tuple[ArcRing, ...]:
+    """The part's outline as drawn (no kerf): its rings at the tolerance, as chords."""
+    return tuple(ArcRing(r, np.zeros(len(r))) for r in part.outline.rings)
+
+
+def _drawing(items: list[tuple[Part, Placement]], design: Design, *, nominal: bool = False) -> Drawing:
     out = design.params.output
     cut, mark = out.cut_layer, out.mark_layer
     closed: dict[str, list] = {cut: [], mark: []}
     strokes: dict[str, list] = {mark: []}
+    nominal = nominal and out.kerf > 0
     for part, placement in items:
-        closed[cut] += [_placed(r, placement) for r in part.cut]
-        strokes[mark] += [d for r in part.mark for d in dashes(_placed(r, placement))]
+        closed[cut] += [_placed(r, placement) for r in (_nominal(part) if nominal else part.cut)]
+        for r in part.mark:  # a long mark (a pitch curve) as dashes, a small one (a dot) closed
+            placed = _placed(r, placement)
+            if _perimeter(placed) < 3 * DASH_MM:
+                closed[mark].append(placed)
+            else:
+                strokes[mark] += dashes(placed)
         if part.pivot_mark > 0:
             strokes[mark] += cross(tuple(placement.offset), part.pivot_mark)
     descriptions = {}
-    if out.kerf > 0:
+    if nominal:
+        descriptions[cut] = f"the parts as drawn, to check the fit: no kerf (cut files: offset {out.kerf / 2:g} mm)"
+    elif out.kerf > 0:
         descriptions[cut] = (
             f"kerf compensation: cut paths offset {out.kerf / 2:g} mm into the waste (kerf {out.kerf:g} mm)"
         )
@@ -104,7 +123,8 @@ def part_drawing(design: Design, part: Part) -> Drawing:
     return _drawing([(part, Placement(part.name))], design)
 
 
-def assembly_drawing(design: Design) -> Drawing:
-    """Every part where the assembly places it (touching: a fit check, not a cutting layout)."""
+def assembly_drawing(design: Design, *, cut: bool = False) -> Drawing:
+    """Every part where the assembly places it (touching: a fit check, not a cutting layout),
+    as drawn — or with ``cut`` its cut paths (the kerf applied: for a sheet to cut)."""
     parts = {p.name: p for p in design.parts()}
-    return _drawing([(parts[pl.part], pl) for pl in design.placements], design)
+    return _drawing([(parts[pl.part], pl) for pl in design.placements], design, nominal=not cut)

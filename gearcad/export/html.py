@@ -19,6 +19,7 @@ from ..findings import CODES
 from ..mechanisms import Design, Part, Placement
 from .bounds import drawing_bounds
 from .drawing import assembly_drawing, part_drawing
+from .html_band import section_bands
 from .html_figures import Figures
 from .html_style import page
 
@@ -338,6 +339,7 @@ def write_profile_page(
         ("parts", "Parts", _section_parts(design, figures, report, counts)),
         ("assembly", "Assembly", _section_assembly(design, figures, report, files)),
         ("findings", "Findings", _section_findings(report)),
+        ("fit", "Fit when made", section_bands(report)),
         ("numbers", "Key numbers", _section_numbers(design, report, counts)),
         ("layouts", "Sheet and plate", _section_layouts(design, figures, files)),
         ("charts", "Charts", _section_charts(files)),

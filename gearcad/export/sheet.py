@@ -46,7 +46,7 @@ def name_strokes(name: str, region: shapely.Polygon) -> list[np.ndarray]:
 def sheet_drawing(design: Design) -> Drawing:
     """The parts' cut rings (kerf applied) and marks, placed as ``design.sheet`` lays them out,
     and each part's name engraved (mark layer) in its free middle."""
-    drawing = assembly_drawing(replace(design, placements=design.sheet))
+    drawing = assembly_drawing(replace(design, placements=design.sheet), cut=True)
     parts = {p.name: p for p in design.parts()}
     mark = design.params.output.mark_layer
     names = []

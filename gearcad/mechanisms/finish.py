@@ -19,6 +19,7 @@ from ..findings import Finding, finding
 from ..tolerances import budget
 from . import layouts
 from .base import Assembly, Design, Motion, Table, assembly_depth, assembly_overlap
+from .fit import assembly_marks
 from .parts import BoreSpec, Part, Placement, cut_paths, make_part
 
 __all__ = ["Contact", "Draft", "PartSpec", "Proof", "finish", "prove"]
@@ -141,7 +142,7 @@ def finish(draft: Draft, *, start: float | None = None) -> Design:
         make_part(s.name, s.outer, output=out, bore=s.bore, wall=s.wall, marks=s.marks, hole=s.hole, caps=s.caps)
         for s in draft.parts
     )
-    parts = cut_paths(made, out)
+    parts = assembly_marks(draft, cut_paths(made, out))  # a gear pair's dots where its teeth meet
     assembly = prove({p.name: p for p in parts}, draft)
     findings = draft.findings
     if not assembly.fits and not any(f.code == "interference" for f in findings):

@@ -8,6 +8,7 @@ from typing import Annotated, Literal
 from pydantic import Field, model_validator
 
 from .common import BoreParams, OutputParams, ParamsModel, distinct_names
+from .process import ProcessParams
 from .values import (
     FASTEST,
     SMALLEST_LENGTH,
@@ -212,6 +213,8 @@ class CarrierTrainParams(ParamsModel):
     mechanism: Literal["carrier-train"] = "carrier-train"
     train: TrainParams
     bore: BoreParams = BoreParams()
+    process: ProcessParams = ProcessParams()
+    """How the parts are made and assembled, with its tolerances (the mesh's band)."""
     output: OutputParams = OutputParams()
 
     @property

@@ -9,6 +9,7 @@ from pydantic import model_validator
 
 from .common import BoreParams, OutputParams, ParamsModel, distinct_names
 from .curves import Curve, Lobes, MotionParams, RatioParams, WalkerParams
+from .process import ProcessParams
 from .values import (
     LARGEST_LENGTH,
     SMALLEST_LENGTH,
@@ -139,6 +140,8 @@ class GearPairParams(ParamsModel):
     teeth: TeethParams | None = None
     """Teeth cut by a rack; without [teeth] the parts are the pitch curves."""
     bore: BoreParams = BoreParams()
+    process: ProcessParams = ProcessParams()
+    """How the parts are made and assembled, with its tolerances (the mesh's band)."""
     output: OutputParams = OutputParams()
 
     @property

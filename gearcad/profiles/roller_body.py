@@ -6,6 +6,7 @@ import math
 from typing import Literal
 
 from .common import BoreParams, OutputParams, ParamsModel
+from .process import ProcessParams
 from .values import (
     LARGEST_LENGTH,
     SMALLEST_LENGTH,
@@ -79,6 +80,8 @@ class RollerBodyParams(ParamsModel):
     kinematics: KinematicsParams = KinematicsParams()
     teeth: RollerTeethParams | None = None
     bore: BoreParams = BoreParams()
+    process: ProcessParams = ProcessParams()
+    """How the parts are made and assembled, with its tolerances (the mesh's band)."""
     output: OutputParams = OutputParams()
 
     @property

@@ -1,0 +1,206 @@
+"""The backlash band of a mesh: its play as drawn and over the process's tolerance stack.
+
+The made parts differ from the drawn ones by an edge offset δ (the kerf's variation, a printer's
+XY error and elephant foot) and sit at a centre distance off by ±Δa (with the bores' play).  The
+play is measured from the geometry: both outlines offset by δ (shapely's buffer), gear 2 placed
+at E + Δa, and at each driver position gear 2 turned each way until it touches gear 1 (stepped
+by the gap, which never passes through); the two free turns times the contact radius add up to the play, mm on the pitch
+curve.  The smallest play comes with both parts large and the centres close, the largest with
+both small and the centres apart.  Where the worst case overlaps already (it jams), the play is
+negative: the parts are shrunk until they come free, and the shrink ε counts −4ε/cos α (a
+rack-cut flank moved ε along its normal moves 1/cos α along the pitch curve; four flanks).
+Only a window of each gear around the contact (three modules) is offset and intersected.
+"""
+
+from __future__ import annotations
+
+import math
+from concurrent.futures import ThreadPoolExecutor
+from dataclasses import dataclass
+
+import numpy as np
+import shapely
+
+__all__ = ["Band", "PairGeometry", "pair_band"]
+
+_WINDOW = 3.0
+"""Radius of the window about the contact, modules: contact stays within about one pitch."""
+
+
+@dataclass(frozen=True)
+class PairGeometry:
+    """A gear pair as the band needs it: the made outlines' drawn outer rings (mm, pivot at the
+    origin), the centre distance E, and per driver angle φ1 (rad) the mate's angle φ2 and the
+    contact radius on gear 1; gear 1 turns by −φ1 about the origin, gear 2 by +φ2 about (E, 0)."""
+
+    rings: tuple[np.ndarray, np.ndarray]
+    center_distance: float
+    phi1: np.ndarray
+    phi2: np.ndarray
+    r1: np.ndarray
+    module: float
+    pressure_angle: float
+    teeth: np.ndarray
+    """Gear 1's tooth at the contact at each φ1 (index from its first)."""
+
+
+@dataclass(frozen=True)
+class Band:
+    """Play of a mesh (mm on the pitch curve): as drawn over one cycle, and over the tolerance
+    stack, with where the smallest falls and what change would free it."""
+
+    mesh: str
+    nominal: tuple[float, float]
+    band: tuple[float, float]
+    worst_tooth: int
+    worst_phi: float
+    edge: tuple[float, float, float]
+    center_spread: float
+    needed_backlash: float
+    """Backlash to add so that the worst case keeps the margin free (0 when it does)."""
+    margin: float
+    pressure_angle: float
+
+    @property
+    def fits(self) -> bool:
+        return self.band[0] >= self.margin
+
+    def as_dict(self) -> dict:
+        return {
+            "mesh": self.mesh,
+            "nominal_min": self.nominal[0],
+            "nominal_max": self.nominal[1],
+            "min": self.band[0],
+            "max": self.band[1],
+            "worst_tooth": self.worst_tooth,
+            "worst_phi": self.worst_phi,
+            "edge": {"nominal": self.edge[0], "min": self.edge[1], "max": self.edge[2]},
+            "center_distance_spread": self.center_spread,
+            "verdict": "fits" if self.fits else "jams",
+            "needed_backlash": self.needed_backlash,
+            "center_distance_change": self.needed_backlash / (2 * math.tan(self.pressure_angle)),
+        }
+
+
+def _windows(ring: np.ndarray, centres: np.ndarray, radius: float, offset, tol: float) -> np.ndarray:
+    """The gear's shape near each centre, grown by ``offset`` (mm, scalar or per centre), clipped
+    to ``radius``."""
+    gear = shapely.Polygon(ring)
+    largest = float(np.max(np.abs(offset)))
+    discs = shapely.buffer(shapely.points(centres), radius + largest + radius / 6, quad_segs=16)
+    pieces = shapely.intersection(gear, discs)
+    if largest:
+        steps = max(2, int(math.ceil(math.pi / 4 / math.acos(max(1 - tol / largest, -1.0)))))
+        pieces = shapely.buffer(pieces, offset, quad_segs=steps)
+    return shapely.intersection(pieces, shapely.buffer(shapely.points(centres), radius, quad_segs=16))
+
+
+def _placer(g: PairGeometry, offsets, spread: float, tol: float):
+    """(w1, place, reach): gear 1's windows, place(turn) -> gear 2's windows turned ``turn``
+    (rad, per position) beyond the assembled angle in gear 1's frame, and the farthest any
+    point of them lies from gear 2's pivot (mm); the parts grown by ``offsets``, E by ``spread``."""
+    e = g.center_distance + spread
+    c1 = g.r1[:, None] * np.column_stack([np.cos(g.phi1), np.sin(g.phi1)])
+    back = g.r1 - g.center_distance  # the contact in gear 2's frame, before its turn
+    c2 = back[:, None] * np.column_stack([np.cos(-g.phi2), np.sin(-g.phi2)])
+    radius = _WINDOW * g.module
+    w1 = _windows(g.rings[0], c1, radius, offsets[0], tol)
+    w2 = _windows(g.rings[1], c2, radius, offsets[1], tol)
+    shapely.prepare(w1)
+    coords, which = shapely.get_coordinates(w2, return_index=True)
+    far = np.zeros(len(g.phi1))
+    np.maximum.at(far, which, np.hypot(coords[:, 0], coords[:, 1]))
+
+    def place(turn: np.ndarray) -> np.ndarray:
+        a2, a1 = (g.phi2 + turn)[which], g.phi1[which]
+        x = np.cos(a2) * coords[:, 0] - np.sin(a2) * coords[:, 1] + e
+        y = np.sin(a2) * coords[:, 0] + np.cos(a2) * coords[:, 1]
+        xy = np.column_stack([np.cos(a1) * x - np.sin(a1) * y, np.sin(a1) * x + np.cos(a1) * y])
+        return shapely.set_coordinates(w2.copy(), xy)
+
+    return w1, place, far
+
+
+def _play(g: PairGeometry, offsets, spread: float, tol: float, *, reach: float, steps: int = 8) -> np.ndarray:
+    """Free play at each position (mm on gear 2's pitch curve, at its nominal contact radius);
+    NaN where the parts overlap as placed.
+
+    Each way, gear 2 is turned by the gap left over the farthest reach of its window (no point
+    of it moves farther than the gap, so it never passes through gear 1); the gap shrinks by
+    about cos α times that each step, so ``steps`` bring it under a millionth of a module.
+    ``reach`` (mm) bounds the play sought."""
+    w1, place, far = _placer(g, offsets, spread, tol)
+    arm = g.center_distance - g.r1
+    limit = min(reach, 1.2 * math.pi * g.module) / arm  # more than a pitch never frees a tooth
+    zero = np.zeros_like(g.phi1)
+    touching = 1e-9 * g.module**2
+    free = shapely.area(shapely.intersection(w1, place(zero))) <= touching
+    total = np.zeros_like(g.phi1)
+    for sign in (1.0, -1.0):
+        turn = zero.copy()
+        for _ in range(steps):
+            gap = shapely.distance(w1, place(sign * turn))
+            turn = np.minimum(turn + gap / far, limit)
+        total += turn
+    return np.where(free, total * arm, np.nan)
+
+
+def _signed_play(g: PairGeometry, offsets, spread: float, tol: float, *, reach: float) -> np.ndarray:
+    """:func:`_play`, negative where jammed: the shrink ε that frees it counts −4ε/cos α."""
+    play = _play(g, offsets, spread, tol, reach=reach)
+    jammed = np.isnan(play)
+    if not jammed.any():
+        return play
+    sub = PairGeometry(
+        g.rings, g.center_distance, g.phi1[jammed], g.phi2[jammed], g.r1[jammed], g.module, g.pressure_angle, g.teeth
+    )
+    lo, hi = np.zeros(int(jammed.sum())), np.full(int(jammed.sum()), 0.5 * g.module)
+    for _ in range(14):
+        mid = 0.5 * (lo + hi)
+        free = ~np.isnan(_play(sub, (offsets[0] - mid, offsets[1] - mid), spread, tol, reach=reach, steps=0))
+        hi, lo = np.where(free, mid, hi), np.where(free, lo, mid)
+    play[jammed] = -4 * hi / math.cos(g.pressure_angle)
+    return play
+
+
+def pair_band(
+    g: PairGeometry,
+    *,
+    edge: tuple[float, float, float],
+    spread: float,
+    tol: float,
+    backlash: float,
+    name: str = "pair",
+    internal: bool = False,
+) -> Band:
+    """The band of one pair under an edge offset (nominal, smallest, largest; mm) and ±``spread``
+    of centre distance (closer centres take play from an external mesh, farther from an internal
+    one); ``tol`` the outline tolerance (the worst case must keep twice it free), ``backlash``
+    the designed play (bounds the search with the stack)."""
+    closer = spread if internal else -spread
+    alpha = g.pressure_angle
+    reach = backlash + 4 * max(abs(e) for e in edge) / math.cos(alpha) + 2 * spread * math.tan(alpha) + 0.5 * g.module
+    with ThreadPoolExecutor(max_workers=2) as pool:  # GEOS releases the GIL: the cases side by side
+        jobs = [
+            pool.submit(_play, g, (edge[0], edge[0]), 0.0, tol, reach=reach),
+            pool.submit(_signed_play, g, (edge[2], edge[2]), closer, tol, reach=reach),
+            pool.submit(_play, g, (edge[1], edge[1]), -closer, tol, reach=reach),
+        ]
+        nominal, tight, wide = (job.result() for job in jobs)
+    worst = int(np.nanargmin(tight))
+    # made parts keep twice the writing tolerance free; exact parts (no process) may bite by what
+    # the writing tolerance takes from four flanks, which the mesh proof allows
+    margin = 2 * tol if any(edge) or spread else -4 * tol / math.cos(alpha)
+    low = float(tight[worst])
+    return Band(
+        mesh=name,
+        nominal=(float(np.nanmin(nominal)), float(np.nanmax(nominal))),
+        band=(low, float(np.nanmax(wide))),
+        worst_tooth=int(g.teeth[worst]),
+        worst_phi=float(g.phi1[worst]),
+        edge=edge,
+        center_spread=spread,
+        needed_backlash=max(0.0, margin - low),
+        margin=margin,
+        pressure_angle=alpha,
+    )
