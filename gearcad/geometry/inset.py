@@ -8,44 +8,102 @@ import shapely
 from ..errors import DesignError
 from .outline import Outline
 
-__all__ = ["inset_ring", "check_chamfer"]
+__all__ = ["inset_ring", "inset", "check_chamfer"]
 
 
 def inset_ring(ring: np.ndarray, distance: float) -> np.ndarray:
+    """:func:`inset` without the dropped segments."""
+    return inset(ring, distance)[0]
+
+
+def inset(ring: np.ndarray, distance: float) -> tuple[np.ndarray, np.ndarray]:
     """Each vertex moved ``distance`` into the material along its mitred bisector (material
     lies left of every ring: outer rings run counter-clockwise, holes clockwise).
 
     Where a segment is shorter than the inset eats (beside a sharp corner) its inset copy turns
-    round; such inverted segments are collapsed to their midpoint until none is left, as CAD
-    offsetters do, so the ring keeps one inset vertex per vertex for the loft.
+    round: such a segment is dropped, as CAD offsetters do, and its vertices go where the inset
+    lines of the segments either side of it meet (the exact mitred inset); passes repeat until no
+    segment is inverted.  The ring keeps one inset vertex per vertex for the loft.  Returns the
+    inset ring and which segments (vertex k to k + 1) were dropped, (n,) bool.
     """
-    prev = ring - np.roll(ring, 1, axis=0)
-    nxt = np.roll(ring, -1, axis=0) - ring
-    n1 = np.column_stack([-prev[:, 1], prev[:, 0]]) / np.linalg.norm(prev, axis=1, keepdims=True)
-    n2 = np.column_stack([-nxt[:, 1], nxt[:, 0]]) / np.linalg.norm(nxt, axis=1, keepdims=True)
-    bisector = n1 + n2
+    ring = np.asarray(ring, dtype=float)
+    n = len(ring)
+    step = np.roll(ring, -1, axis=0) - ring  # segment k: vertex k to k + 1
+    unit = step / np.linalg.norm(step, axis=1, keepdims=True)
+    normal = np.column_stack([-unit[:, 1], unit[:, 0]])  # into the material
+    base = ring + distance * normal  # a point of each segment's inset line
+    prev, nxt = np.roll(normal, 1, axis=0), normal
+    bisector = prev + nxt
     # mitre length 1/cos of the half angle, clamped at 2 (as CAD offsetters do)
     scale = np.minimum(2.0 / np.maximum(np.einsum("ij,ij->i", bisector, bisector), 1e-12), 4.0)
-    inset = ring + distance * bisector * scale[:, None]
-    for _ in range(50):
-        seg = np.roll(inset, -1, axis=0) - inset
-        inverted = np.einsum("ij,ij->i", seg, nxt) <= 0
-        if not np.any(inverted):
+    moved = ring + distance * bisector * scale[:, None]
+    live = np.ones(n, dtype=bool)
+    for _ in range(n):
+        seg = np.roll(moved, -1, axis=0) - moved
+        inverted = live & (np.einsum("ij,ij->i", seg, step) <= 0)
+        if not np.any(inverted) or np.count_nonzero(live & ~inverted) < 3:
             break
-        i = np.nonzero(inverted)[0]
-        j = (i + 1) % len(inset)
-        mid = 0.5 * (inset[i] + inset[j])
-        inset[i], inset[j] = mid, mid
-    return inset
+        live &= ~inverted
+        kept = np.nonzero(live)[0]
+        vertices = np.nonzero(~live | ~np.roll(live, 1))[0]  # beside a dropped segment
+        after = kept[np.searchsorted(kept, vertices) % len(kept)]  # the live segment leaving
+        before = kept[np.searchsorted(kept, vertices) - 1]  # and the one arriving
+        moved[vertices] = _meet(base[before], unit[before], base[after], unit[after])
+    return moved, ~live
+
+
+def _meet(p: np.ndarray, d: np.ndarray, q: np.ndarray, e: np.ndarray) -> np.ndarray:
+    """Where the lines p + t·d and q + u·e meet, (n, 2); the midpoint of p and q where parallel."""
+    cross = d[:, 0] * e[:, 1] - d[:, 1] * e[:, 0]
+    w = q - p
+    t = np.divide(w[:, 0] * e[:, 1] - w[:, 1] * e[:, 0], cross, out=np.zeros(len(p)), where=np.abs(cross) > 1e-12)
+    meet = p + t[:, None] * d
+    return np.where((np.abs(cross) > 1e-12)[:, None], meet, 0.5 * (p + q))
 
 
 def check_chamfer(outline: Outline, thickness: float, chamfer: float, *, name: str) -> None:
-    """Refuse a chamfer the part cannot take: half the thickness or more, or an inset that crosses
-    itself (teeth too thin for it)."""
+    """Refuse a chamfer the part cannot take: half the thickness or more, an inset that crosses
+    itself, or one that drops the whole stretch between two corners (a tooth's tip land: the
+    teeth would come to knife edges on the faces)."""
     if chamfer <= 0:
         return
     if 2 * chamfer >= thickness:
         raise DesignError(f"output.chamfer = {chamfer:g}: must be under half the thickness {thickness:g}")
-    insets = [inset_ring(np.asarray(r, dtype=float), chamfer) for r in outline.rings]
+    insets = []
+    for r in outline.rings:
+        ring = np.asarray(r, dtype=float)
+        moved, dropped = inset(ring, chamfer)
+        insets.append(moved)
+        if _corners_eaten(ring, dropped) >= 2:
+            raise DesignError(
+                f"output.chamfer = {chamfer:g}: too large for the teeth of {name} (it would eat their tip lands "
+                "and leave knife edges on the faces)"
+            )
     if not shapely.Polygon(insets[0], insets[1:]).is_valid:
         raise DesignError(f"output.chamfer = {chamfer:g}: too large for the teeth of {name} (the inset crosses itself)")
+
+
+CORNER = np.radians(20)
+"""A vertex turning more than this is a corner (a tooth's tip corner turns ~60°; sampled curves
+turn a few degrees a vertex)."""
+
+
+def _corners_eaten(ring: np.ndarray, dropped: np.ndarray) -> int:
+    """The most corners in one run of consecutive dropped segments (its end vertices included)."""
+    if not np.any(dropped) or np.all(dropped):
+        return int(np.any(dropped)) * len(ring)
+    step = np.roll(ring, -1, axis=0) - ring
+    back = np.roll(step, 1, axis=0)
+    turn = np.abs(np.arctan2(back[:, 0] * step[:, 1] - back[:, 1] * step[:, 0], np.einsum("ij,ij->i", back, step)))
+    corner = turn > CORNER
+    start = int(np.argmin(dropped))  # a kept segment: no run wraps past it
+    dropped, corner = np.roll(dropped, -start), np.roll(corner, -start)
+    most, count = 0, 0
+    for k in range(len(ring)):  # segment k joins vertices k and k + 1
+        if dropped[k]:
+            count += int(corner[k]) if count == 0 or not dropped[k - 1] else 0
+            count += int(corner[(k + 1) % len(ring)])
+            most = max(most, count)
+        else:
+            count = 0
+    return most

@@ -49,6 +49,10 @@ smallest concave radius, as for an internal gear)."""
 REACH = 24
 """Rack teeth either side of the contact that a long rack or hob brings to the gear."""
 
+POSES = 200_000
+"""Most tooth poses searched (bounded time on a curve with many concave stretches and teeth):
+beyond it the hob's reach shrinks, to no less than two generating windows."""
+
 STEPS = 8
 """Poses per pitch of the first search; the deepest are then refined on grids 8 and 64 times finer."""
 
@@ -243,6 +247,8 @@ def rack_overcut(
     spans = [(lo, hi if hi > lo else hi + perimeter) for lo, hi in concave]
     centres = phase + p * np.arange(teeth)
     near = _around(spans, perimeter, centres - reach, centres + reach)
+    if np.count_nonzero(near) * 2 * reach / p * STEPS > POSES:  # many teeth on many concave stretches
+        reach = max(POSES / (np.count_nonzero(near) * 2 * STEPS) * p, 2 * w)
     kinds = {"tooth": coarse_zone >= 0, "flank": coarse_zone == 1, "hob": coarse_zone >= 0}
     found: dict[str, list[tuple[float, int, float]]] = {key: [] for key in kinds}
     for k in np.nonzero(near)[0]:
