@@ -28,6 +28,7 @@ CODES: dict[str, str] = {
     "pointed": "some teeth have pointed or nearly pointed tips (under 0.2 module of tip land)",
     "interference": "the toothed pair overlaps in mesh beyond the tolerance, or loses contact",
     "relief": "a gear's teeth were trimmed by the mate's sweep where the rack's envelope is not conjugate",
+    "rack-overcut": "a generating rack or hob would cut beyond the outline on a concave stretch (cut it as drawn)",
     "jams": "a mesh's play falls below zero somewhere over the process's tolerances: the made pair can bind",
     "loose": "a mesh's worst-case play exceeds what a maker would accept (process.max_play)",
     "backlash-fixed": "the profile fixes teeth.backlash below what the process's worst case needs",

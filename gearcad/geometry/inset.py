@@ -11,41 +11,71 @@ import shapely
 from ..errors import DesignError
 from .outline import Outline
 
-__all__ = ["inset_ring", "chamfer_fits", "check_chamfer"]
+__all__ = ["inset_ring", "inset", "chamfer_fits", "check_chamfer"]
 
 
 def inset_ring(ring: np.ndarray, distance: float) -> np.ndarray:
+    """:func:`inset` without the dropped segments."""
+    return inset(ring, distance)[0]
+
+
+def inset(ring: np.ndarray, distance: float) -> tuple[np.ndarray, np.ndarray]:
     """Each vertex moved ``distance`` into the material along its mitred bisector (material
     lies left of every ring: outer rings run counter-clockwise, holes clockwise).
 
     Where a segment is shorter than the inset eats (beside a sharp corner) its inset copy turns
-    round; such inverted segments are collapsed to their midpoint until none is left, as CAD
-    offsetters do, so the ring keeps one inset vertex per vertex for the loft.
+    round: such a segment is dropped, as CAD offsetters do, and its vertices go where the inset
+    lines of the segments either side of it meet (the exact mitred inset); passes repeat until no
+    segment is inverted.  The ring keeps one inset vertex per vertex for the loft.  Returns the
+    inset ring and which segments (vertex k to k + 1) were dropped, (n,) bool.
     """
-    prev = ring - np.roll(ring, 1, axis=0)
-    nxt = np.roll(ring, -1, axis=0) - ring
-    n1 = np.column_stack([-prev[:, 1], prev[:, 0]]) / np.linalg.norm(prev, axis=1, keepdims=True)
-    n2 = np.column_stack([-nxt[:, 1], nxt[:, 0]]) / np.linalg.norm(nxt, axis=1, keepdims=True)
-    bisector = n1 + n2
+    ring = np.asarray(ring, dtype=float)
+    n = len(ring)
+    step = np.roll(ring, -1, axis=0) - ring  # segment k: vertex k to k + 1
+    unit = step / np.linalg.norm(step, axis=1, keepdims=True)
+    normal = np.column_stack([-unit[:, 1], unit[:, 0]])  # into the material
+    base = ring + distance * normal  # a point of each segment's inset line
+    prev, nxt = np.roll(normal, 1, axis=0), normal
+    bisector = prev + nxt
     # mitre length 1/cos of the half angle, clamped at 2 (as CAD offsetters do)
     scale = np.minimum(2.0 / np.maximum(np.einsum("ij,ij->i", bisector, bisector), 1e-12), 4.0)
-    inset = ring + distance * bisector * scale[:, None]
-    for _ in range(50):
-        seg = np.roll(inset, -1, axis=0) - inset
-        inverted = np.einsum("ij,ij->i", seg, nxt) <= 0
-        if not np.any(inverted):
+    moved = ring + distance * bisector * scale[:, None]
+    live = np.ones(n, dtype=bool)
+    for _ in range(n):
+        seg = np.roll(moved, -1, axis=0) - moved
+        inverted = live & (np.einsum("ij,ij->i", seg, step) <= 0)
+        if not np.any(inverted) or np.count_nonzero(live & ~inverted) < 3:
             break
-        i = np.nonzero(inverted)[0]
-        j = (i + 1) % len(inset)
-        mid = 0.5 * (inset[i] + inset[j])
-        inset[i], inset[j] = mid, mid
-    return inset
+        live &= ~inverted
+        kept = np.nonzero(live)[0]
+        vertices = np.nonzero(~live | ~np.roll(live, 1))[0]  # beside a dropped segment
+        after = kept[np.searchsorted(kept, vertices) % len(kept)]  # the live segment leaving
+        before = kept[np.searchsorted(kept, vertices) - 1]  # and the one arriving
+        moved[vertices] = _meet(base[before], unit[before], base[after], unit[after])
+    return moved, ~live
+
+
+def _meet(p: np.ndarray, d: np.ndarray, q: np.ndarray, e: np.ndarray) -> np.ndarray:
+    """Where the lines p + t·d and q + u·e meet, (n, 2); the midpoint of p and q where parallel."""
+    cross = d[:, 0] * e[:, 1] - d[:, 1] * e[:, 0]
+    w = q - p
+    t = np.divide(w[:, 0] * e[:, 1] - w[:, 1] * e[:, 0], cross, out=np.zeros(len(p)), where=np.abs(cross) > 1e-12)
+    meet = p + t[:, None] * d
+    return np.where((np.abs(cross) > 1e-12)[:, None], meet, 0.5 * (p + q))
 
 
 def chamfer_fits(outer: np.ndarray, holes: Sequence[np.ndarray], chamfer: float) -> bool:
     """Whether a solid's cap takes ``chamfer``: ``outer`` and ``holes`` inset by it still bound
-    a valid polygon (the test :func:`~gearcad.export.loft.loft` makes of its end sections)."""
-    return shapely.Polygon(inset_ring(outer, chamfer), [inset_ring(h, chamfer) for h in holes]).is_valid
+    a valid polygon (the test :func:`~gearcad.export.loft.loft` makes of its end sections), and no
+    inset drops the whole stretch between two corners (a tooth's tip land: knife edges)."""
+    insets = []
+    for ring in (outer, *holes):
+        ring = np.asarray(ring, dtype=float)
+        moved, dropped = inset(ring, chamfer)
+        if _corners_eaten(ring, dropped) >= 2:
+            return False
+        insets.append(moved)
+    return shapely.Polygon(insets[0], insets[1:]).is_valid
 
 
 def check_chamfer(
@@ -74,6 +104,33 @@ def check_chamfer(
         mid = (good + bad) // 2
         good, bad = (mid, bad) if fits(mid * 1e-3) else (good, mid)
     raise DesignError(
-        f"output.chamfer = {chamfer:g}: too large for the teeth of {name} (the inset crosses itself); "
+        f"output.chamfer = {chamfer:g}: too large for the teeth of {name} "
+        "(the inset crosses itself or eats their tip lands); "
         f"use output.chamfer ≤ {math.floor(0.9 * good / 10) / 100:.2f} mm"
     )
+
+
+CORNER = np.radians(20)
+"""A vertex turning more than this is a corner (a tooth's tip corner turns ~60°; sampled curves
+turn a few degrees a vertex)."""
+
+
+def _corners_eaten(ring: np.ndarray, dropped: np.ndarray) -> int:
+    """The most corners in one run of consecutive dropped segments (its end vertices included)."""
+    if not np.any(dropped) or np.all(dropped):
+        return int(np.any(dropped)) * len(ring)
+    step = np.roll(ring, -1, axis=0) - ring
+    back = np.roll(step, 1, axis=0)
+    turn = np.abs(np.arctan2(back[:, 0] * step[:, 1] - back[:, 1] * step[:, 0], np.einsum("ij,ij->i", back, step)))
+    corner = turn > CORNER
+    start = int(np.argmin(dropped))  # a kept segment: no run wraps past it
+    dropped, corner = np.roll(dropped, -start), np.roll(corner, -start)
+    most, count = 0, 0
+    for k in range(len(ring)):  # segment k joins vertices k and k + 1
+        if dropped[k]:
+            count += int(corner[k]) if count == 0 or not dropped[k - 1] else 0
+            count += int(corner[(k + 1) % len(ring)])
+            most = max(most, count)
+        else:
+            count = 0
+    return most

@@ -167,8 +167,9 @@ def _report_data(
         },
     }
     if teeth is not None:
-        for i in range(2):
+        for i, overcut in enumerate(teeth.overcut):
             data["gears"][i]["teeth"] = _teeth_block(teeth, i)
+            data["gears"][i]["rack_overcut"] = None if overcut is None else overcut.as_dict()
         mesh = teeth.mesh
         data["pair"]["teeth"] = {
             "identical_parts": teeth.plan.identical and helical is None,
@@ -249,6 +250,7 @@ def _details(pitch: PairDesign, teeth: ToothedPairData | None) -> list[str]:
                 f"{g.name}: {t.teeth} teeth, thinnest tip land {t.tip_thickness.min():.3f} mm, "
                 f"{'undercut' if t.undercut else 'no undercut'}, {t.outline.vertex_count} vertices"
             )
+        lines += [o.sentence(g.name) for g, o in zip(pitch.gears, teeth.overcut) if o is not None]
         lo, hi = teeth.backlash_range
         lines.append(
             f"mesh: max overlap {teeth.mesh.max_overlap:.3g} mm² (allowed {teeth.mesh.allowed_overlap:.3g}), "

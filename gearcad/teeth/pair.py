@@ -22,6 +22,7 @@ from ..tolerances import DEFAULT, Budget, Tolerances, designed_play
 from .frame import ArcFrame, arc_frame
 from .gear import ToothedGear, cut_teeth
 from .mesh import MeshData, backlash_range, mesh_check, nudge_arc
+from .overcut import RackOvercut, concave_spans, rack_overcut
 from .plan import ToothPlan, plan_teeth, tooth_count
 from .rack import Rack, RackParams
 from .relief import MAX_RELIEF_MODULES, Relief, relieve
@@ -62,6 +63,9 @@ class ToothedPairData:
     findings: tuple[Finding, ...]
     relief: Relief | None = None
     """Gear 1's trim by the mate's sweep (None where the rack's teeth mesh as cut)."""
+    overcut: tuple[RackOvercut | None, RackOvercut | None] = (None, None)
+    """How far a rack or hob would cut beyond each gear's outline (None where its pitch curve is
+    convex: there the outline is what a rack leaves)."""
 
 
 def refuse_corners(gears: Sequence[GearData]) -> None:
@@ -193,6 +197,18 @@ def cut_pair(
     limits = tuple(
         undercut_free_module(g.shape.min_curvature_radius, toothed[i].rack.params) for i, g in enumerate(gears)
     )
+    overcut = tuple(
+        rack_overcut(
+            frames[i],
+            g.rack,
+            g.teeth,
+            g.phase,
+            g.outline.outer,
+            concave_spans(frames[i], gears[i].shape.concave_intervals),
+            tolerance=tol.outline_mm,
+        )
+        for i, g in enumerate(fine)
+    )
     deviation = None
     if plan.identical:
         # both gears are cut by the same code from the same curve, so their vertices coincide
@@ -208,8 +224,13 @@ def cut_pair(
         backlash_range=play_range,
         module_limits=limits,
         identical_deviation=deviation,
-        findings=tuple(_findings(gears, plan, toothed, mesh, limits) + _relief_findings(gears, trim)),
+        findings=tuple(
+            _findings(gears, plan, toothed, mesh, limits)
+            + _relief_findings(gears, trim)
+            + [finding("rack-overcut", o.sentence(g.name), g.name) for g, o in zip(gears, overcut) if o and o.cannot]
+        ),
         relief=trim,
+        overcut=overcut,
     )
 
 
