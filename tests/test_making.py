@@ -121,3 +121,12 @@ def test_assembly_captions_say_what_touches(built):
     wheel = (built / "rolling_wheel" / "index.html").read_text(encoding="utf-8")
     assert "not touching" in wheel and "they touch" not in wheel
     assert "meshing parts touch" in (built / "spur_pair" / "index.html").read_text(encoding="utf-8")
+
+
+def test_a_normal_module_says_why_the_count_differs(built):
+    """β = 25°, module 1: the count follows the transverse module 1/cos β (issue 24, item 15)."""
+    report = _report(built, "herringbone_elliptic")
+    (note,) = [w for w in report["warnings"] if w["code"] == "teeth-fit"]
+    z = report["gears"][0]["teeth"]["count"]
+    assert "normal module" in note["message"] and f"{1 / np.cos(np.radians(25)):.4f}" in note["message"]
+    assert f"has {z} teeth" in note["message"] and "teeth.count" in note["message"]

@@ -213,6 +213,21 @@ def _report_data(
     return data
 
 
+def _normal_module_note(params: GearPairParams, pitch: PairDesign, teeth: ToothedPairData):
+    from ..findings import finding
+
+    m_n, beta, z1 = params.teeth.module, params.teeth.helix_angle, teeth.plan.teeth[0]
+    straight = pitch.gears[0].perimeter / (math.pi * m_n)
+    return finding(
+        "teeth-fit",
+        f"teeth.module = {m_n:g} mm is the normal module (helix_angle_deg = {math.degrees(beta):g}): the "
+        f"transverse module m/cos β = {m_n / math.cos(beta):.4f} mm sets the perimeter, so {pitch.gears[0].name} "
+        f"has {z1} teeth of transverse module {teeth.plan.module:.4f} mm, where straight teeth of module "
+        f"{m_n:g} would fit {straight:.1f}; give teeth.count to choose the count",
+        "teeth",
+    )
+
+
 def _summary(pitch: PairDesign, teeth: ToothedPairData | None, findings: int) -> str:
     pair = pitch.pair
     text = (
@@ -293,6 +308,8 @@ def design(params: GearPairParams) -> Draft:
             )
             play = designed_play(backlash=spec.backlash, clearance=spec.clearance, pressure_angle=spec.pressure_angle)
             proofs = section_mesh(pitch.pair, helical, teeth.frames, tolerance=out.tolerance, play=play)
+            if params.teeth.module is not None:  # say why the count is not what module alone suggests
+                teeth = replace(teeth, findings=(*teeth.findings, _normal_module_note(params, pitch, teeth)))
     pitch_fine = [polyline(g.curve, fine_tol) for g in pitch.gears]
     wall = teeth.plan.module if teeth is not None else 0.0
     # a twisted solid's caps are its end sections: the chamfer must fit them too (as the loft checks)
