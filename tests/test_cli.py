@@ -91,8 +91,11 @@ def test_papers_findings_in_reports(built):
 
 
 def _not_cross(polyline) -> bool:
-    """A dash of a pitch curve (arcs, or more than one segment), not a stroke of the pivot's cross."""
-    return len(polyline) > 2 or any(v.dxf.bulge for v in polyline.vertices)
+    """A dash of a pitch curve (arcs, or more than one segment), not a stroke of the pivot's cross
+    nor the assembly dot (a small diamond drawn round: four straight strokes back to its start)."""
+    points = [tuple(v.dxf.location)[:2] for v in polyline.vertices]
+    dot = len(points) == 5 and points[0] == points[-1] and not any(v.dxf.bulge for v in polyline.vertices)
+    return not dot and (len(polyline) > 2 or any(v.dxf.bulge for v in polyline.vertices))
 
 
 def test_dxf_files_read_back(built):

@@ -456,9 +456,11 @@ def test_engraving_is_polyline_and_the_cut_layer_takes_the_flavour(tmp_path):
         assert {k for layer, k in kinds if layer == "CUT"} == cut_kinds
         assert {k for layer, k in kinds if layer == "MARK"} == {"POLYLINE"}
         marks = doc.modelspace().query("POLYLINE")
-        dots = [e for e in marks if e.is_closed]  # the assembly dot: a closed 4-vertex diamond
-        assert len(dots) <= 1 and all(len(e.vertices) == 4 for e in dots)
-        marks = [e for e in marks if not e.is_closed]
+        assert not any(e.is_closed for e in marks)
+        # the assembly dot: a diamond drawn round (five vertices, back to its start), not a dash
+        marks = [
+            e for e in marks if not (len(e.vertices) == 5 and e.vertices[0].dxf.location == e.vertices[4].dxf.location)
+        ]
         assert len(marks) > 2 + 5  # the cross, and dashes
         dashes = [np.array([(v.dxf.location.x, v.dxf.location.y) for v in e.vertices]) for e in marks]
         dashes = [d for d in dashes if len(d) > 2 or np.hypot(*(d[1] - d[0])) > 2.5]  # not the cross

@@ -48,10 +48,19 @@ def test_each_gear_carries_the_assembly_dot_facing_its_mate():
     mark = d.params.output.mark_layer
     dots = []
     for part, placement in zip(d.parts(), d.placements):
-        rings = part_drawing(d, part).closed[mark]
-        dot = [r for r in rings if len(r.vertices) == 4 and np.all(r.bulges == 0)]
-        assert len(dot) == 1, part.name  # one dot per gear, besides the pitch curve
-        dots.append(dot[0].vertices.mean(axis=0) + np.asarray(placement.offset))
+        drawing = part_drawing(d, part)
+        assert not drawing.closed[mark], part.name  # nothing closed to engrave: a fill has nothing to fill
+        # the dot: a diamond drawn round, four straight strokes back to its start
+        dot = [
+            r
+            for r in drawing.strokes[mark]
+            if hasattr(r, "bulges")
+            and len(r.vertices) == 5
+            and np.allclose(r.vertices[0], r.vertices[-1])
+            and np.all(r.bulges == 0)
+        ]
+        assert len(dot) == 1, part.name  # one dot per gear, besides the pitch curve's dashes
+        dots.append(dot[0].vertices[:4].mean(axis=0) + np.asarray(placement.offset))
     # on the line of centres, two modules either side of the pitch point (20·2/2 = 20 mm)
     assert np.allclose([dots[0][1], dots[1][1]], 0.0, atol=1e-9)
     assert np.allclose([dots[0][0], dots[1][0]], [20 - 2 * m, 20 + 2 * m], atol=1e-9)

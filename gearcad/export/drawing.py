@@ -55,6 +55,13 @@ def _perimeter(ring: ArcRing) -> float:
     return float(np.hypot(*(np.roll(v, -1, axis=0) - v).T).sum())
 
 
+def _round(ring: ArcRing) -> ArcRing:
+    """The closed ``ring`` as one open stroke back to its start (last bulge 0, meaning nothing):
+    it looks the same, but a program that fills closed shapes has nothing to fill."""
+    v, bulges = np.asarray(ring.vertices, dtype=float), np.asarray(ring.bulges, dtype=float)
+    return ArcRing(np.vstack([v, v[:1]]), np.append(bulges, 0.0))
+
+
 def dashes(ring: ArcRing) -> list[ArcRing]:
     """The closed ``ring`` as open dashes along it, each an :class:`ArcRing` whose last bulge is 0
     and means nothing (the dash does not close): its arcs stay arcs (bulges), so dashes add few
@@ -100,12 +107,9 @@ def _drawing(items: list[tuple[Part, Placement]], design: Design, *, nominal: bo
     nominal = nominal and out.kerf > 0
     for part, placement in items:
         closed[cut] += [_placed(r, placement) for r in (_nominal(part) if nominal else part.cut)]
-        for r in part.mark:  # a long mark (a pitch curve) as dashes, a small one (a dot) closed
+        for r in part.mark:  # a long mark (a pitch curve) as dashes, a small one (a dot) drawn round
             placed = _placed(r, placement)
-            if _perimeter(placed) < 3 * DASH_MM:
-                closed[mark].append(placed)
-            else:
-                strokes[mark] += dashes(placed)
+            strokes[mark] += [_round(placed)] if _perimeter(placed) < 3 * DASH_MM else dashes(placed)
         if part.pivot_mark > 0:
             strokes[mark] += cross(tuple(placement.offset), part.pivot_mark)
     descriptions = {}

@@ -161,10 +161,11 @@ def _items(overrides: Sequence[str] | Mapping[str, Any]) -> Iterable[tuple[str, 
         if not isinstance(item, str) or "=" not in item:
             raise ProfileError(f"{label}: must be KEY=VALUE, e.g. gear1.a=30")
         key, raw = item.split("=", 1)
-        yield label, key, _toml_value(raw, label)
+        yield label, key, toml_value(raw, label)
 
 
-def _toml_value(raw: str, label: str) -> Any:
+def toml_value(raw: str, label: str = "value") -> Any:
+    """A command-line value read as TOML (else as the text itself); nesting bounded (``label`` names it)."""
     try:
         parsed = tomllib.loads(f"v = {raw}")
     except ValueError:  # TOMLDecodeError, or an integer past Python's 4300-digit limit

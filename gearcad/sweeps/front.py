@@ -13,7 +13,7 @@ import re
 import numpy as np
 
 from ..errors import ProfileError
-from ..profiles.reading import _toml_value
+from ..profiles.reading import toml_value
 
 __all__ = ["Constraint", "parse_constraint", "feasible", "pareto"]
 
@@ -33,7 +33,7 @@ def parse_constraint(text: str) -> Constraint:
     if not match:
         raise ProfileError(f"--constraint {text!r}: must be KEY OP VALUE with OP one of {' '.join(_OPS)}")
     key, op, raw = match.groups()
-    return Constraint((key, op, _toml_value(raw)))
+    return Constraint((key, op, toml_value(raw, f"--constraint {text!r}")))
 
 
 def check_keys(columns, keys: list[str], what: str) -> None:

@@ -19,7 +19,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import ProfileError
-from ..profiles.reading import _toml_value
+from ..profiles.reading import toml_value
 
 __all__ = ["Vary", "SweepSpec", "parse_vary", "points", "read_sweep_file", "SAMPLINGS", "MAX_POINTS"]
 
@@ -53,7 +53,7 @@ class SweepSpec:
 
 
 def _number(text: str, item: str) -> float | int:
-    value = _toml_value(text.strip())
+    value = toml_value(text.strip(), f"--vary {item!r}")
     if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
         raise ProfileError(f"--vary {item!r}: {text.strip()!r} must be a number")
     return value
@@ -80,7 +80,7 @@ def parse_vary(item: str) -> Vary:
         grid = np.linspace(lo, hi, n)
         whole = all(isinstance(v, int) for v in (lo, hi)) and np.all(grid == np.round(grid))
         return Vary(key, tuple(int(v) for v in grid) if whole else tuple(float(v) for v in grid))
-    values = tuple(_toml_value(v.strip()) for v in rest.split(","))
+    values = tuple(toml_value(v.strip(), f"--vary {item!r}") for v in rest.split(","))
     return Vary(key, values)
 
 
