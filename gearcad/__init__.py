@@ -21,6 +21,7 @@ __all__ = [
     "check",
     "build",
     "sweep",
+    "coupon",
     "profile_schema",
     "Design",
     "Part",
@@ -38,6 +39,7 @@ _WHERE = {
     "check": "api",
     "build": "api",
     "sweep": "api",
+    "coupon": "api",
     "profile_schema": "profiles",
     "Design": "mechanisms",
     "Part": "mechanisms",
@@ -49,7 +51,7 @@ _WHERE = {
 }
 
 if TYPE_CHECKING:
-    from .api import build, check, design, load_profile, parse_profile, sweep
+    from .api import build, check, coupon, design, load_profile, parse_profile, sweep
     from .errors import ChecksFailed, DesignError, GearcadError, ProfileError
     from .findings import Finding
     from .mechanisms import Design, Part

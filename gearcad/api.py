@@ -22,7 +22,7 @@ from .mechanisms import Design
 from .mechanisms import design as _design
 from .profiles import ProfileParams
 
-__all__ = ["load_profile", "parse_profile", "design", "check", "build", "sweep"]
+__all__ = ["load_profile", "parse_profile", "design", "check", "build", "sweep", "coupon"]
 
 
 def load_profile(path: str | Path, overrides: Mapping[str, Any] | Sequence[str] = ()) -> ProfileParams:
@@ -102,3 +102,27 @@ def sweep(profile: str | Path | Mapping[str, Any], vary: Sequence[str] | Mapping
     from .sweeps import sweep as _sweep
 
     return _sweep(profile, vary, **options)
+
+
+def coupon(profile: ProfileParams | Design | str | Path | Mapping[str, Any], out: str | Path) -> Path:
+    """Write a gear pair's calibration coupon into ``out/<name>-coupon/`` (published atomically):
+    ``coupon.dxf``, ``coupon.svg``, ``coupon.3mf`` and ``coupon.txt`` naming the key to set after
+    measuring (see :mod:`gearcad.mechanisms.coupon`); ``profile`` may be its design already.
+    Returns the folder.  Raises
+    :class:`~gearcad.errors.ProfileError` for a profile that is not a gear pair or names no
+    process (``process.kind`` "none")."""
+    from .export.coupon import write_coupon
+    from .mechanisms.coupon import check_coupon, coupon_data
+    from .publish import Publisher, check_out, interrupt_guard
+
+    made = profile if isinstance(profile, Design) else None
+    params = made.params if made is not None else _params(profile)
+    check_coupon(params)
+    check_out(out)
+    data = coupon_data(made if made is not None else _design(params))
+    output = params.output
+    with interrupt_guard(out), Publisher(out) as publisher:
+        folder = publisher.folder(f"{params.name}-coupon")
+        write_coupon(data, folder, cut_layer=output.cut_layer, mark_layer=output.mark_layer, flavour=output.dxf)
+        publisher.commit()
+    return publisher.path / f"{params.name}-coupon"

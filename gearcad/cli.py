@@ -1,4 +1,4 @@
-"""Command line: ``gearcad build``, ``check``, ``new``, ``compare``, ``sweep``, ``schema``, ``bench``.
+"""Command line: ``gearcad build``, ``check``, ``new``, ``compare``, ``coupon``, ``sweep``, ``schema``, ``bench``.
 
 Parses arguments and calls the API; prints what it returns.  Exit status 2 for anything the
 user can mend (a bad value, a design that cannot be made), with one line per problem; 3 when
@@ -61,6 +61,9 @@ def _parser() -> argparse.ArgumentParser:
     n.add_argument("--dir", type=Path, default=Path("."), help="where to write (default: here)")
     cmp = sub.add_parser("compare", parents=[overrides], help="two designs side by side (--set, --unset: the 2nd)")
     cmp.add_argument("profiles", nargs=2, type=Path, metavar="PROFILE")
+    cp = sub.add_parser("coupon", parents=[overrides], help="a gear pair's test piece: its teeth at five kerf steps")
+    cp.add_argument("profile", type=Path, metavar="PROFILE")
+    cp.add_argument("--out", default="out", help="output folder (default: out); writes OUT/NAME-coupon/")
     s = sub.add_parser("schema", help="print the JSON Schema of profiles (for TOML editors)")
     s.add_argument("--out", type=Path, help="write it to this file instead")
     bench = sub.add_parser("bench", help="measure speed against accuracy; charts, CSV and markdown")
@@ -129,6 +132,16 @@ def _check(args) -> int:
     return _failed(failed)
 
 
+def _coupon(args) -> int:
+    from .api import coupon
+    from .profiles import load_profile
+
+    folder = coupon(load_profile(args.profile, args.overrides, unset=args.unset), args.out)
+    print(f"wrote {folder}/ (coupon.dxf, coupon.svg, coupon.3mf, coupon.txt)")
+    print((folder / "coupon.txt").read_text(encoding="utf-8").strip().splitlines()[-2])
+    return 0
+
+
 def _failed(failed: list) -> int:
     """Exit status 3 with one line per failing finding on stderr, else 0."""
     for name, f in failed:
@@ -171,6 +184,8 @@ def _run(args) -> int:
         return run(args)
     if args.command == "check":
         return _check(args)
+    if args.command == "coupon":
+        return _coupon(args)
     from .batch import build
     from .findings import check_codes
 
@@ -205,7 +220,7 @@ def main(argv: list[str] | None = None) -> int:
 
 def _main(args) -> int:
     try:
-        if args.command in ("build", "bench"):
+        if args.command in ("build", "bench", "coupon"):
             from .publish import check_out
 
             check_out(args.out)  # before any work: a bad --out is found in a moment

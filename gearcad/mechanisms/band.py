@@ -21,7 +21,7 @@ from dataclasses import dataclass
 import numpy as np
 import shapely
 
-__all__ = ["Band", "PairGeometry", "pair_band"]
+__all__ = ["Band", "PairGeometry", "pair_band", "play_along"]
 
 _WINDOW = 3.0
 """Radius of the window about the contact, modules: contact stays within about one pitch."""
@@ -143,6 +143,12 @@ def _play(g: PairGeometry, offsets, spread: float, tol: float, *, reach: float, 
             turn = np.minimum(turn + gap / far, limit)
         total += turn
     return np.where(free, total * arm, np.nan)
+
+
+def play_along(g: PairGeometry, *, edge: float, tol: float, reach: float) -> np.ndarray:
+    """The play at each of ``g``'s driver angles (mm on the pitch curve; NaN where the parts
+    overlap), both parts grown by ``edge`` mm at the drawn centre distance."""
+    return _play(g, (edge, edge), 0.0, tol, reach=reach)
 
 
 def _signed_play(g: PairGeometry, offsets, spread: float, tol: float, *, reach: float) -> np.ndarray:

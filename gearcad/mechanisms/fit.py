@@ -23,7 +23,16 @@ from .band import Band, PairGeometry, pair_band
 from .base import Design
 from .parts import Part
 
-__all__ = ["assembly_marks", "backlash_takes", "chose_backlash", "made", "needed_backlash", "pair_bands", "with_bands"]
+__all__ = [
+    "assembly_marks",
+    "backlash_takes",
+    "chose_backlash",
+    "made",
+    "needed_backlash",
+    "pair_bands",
+    "pair_geometry",
+    "with_bands",
+]
 
 
 def _process(params):
@@ -72,27 +81,37 @@ def made(params, extra: float = 0.0):
     return params.model_copy(update=update)
 
 
-def pair_bands(design: Design) -> tuple[Band, ...]:
-    """The band of a toothed gear pair under its profile's process (none: the nominal play only)."""
-    params, detail = design.params, design.detail
+def pair_geometry(design: Design, positions: int | None = None) -> PairGeometry | None:
+    """A toothed gear pair's geometry as the band measures it, at ``positions`` driver angles over
+    one cycle (default: one per driver tooth, 12 to 48); ``None`` for any other design."""
+    detail = design.detail
     teeth = getattr(detail, "teeth", None)
     if design.mechanism != "gear-pair" or teeth is None:
-        return ()
-    pair, process = detail.pitch.pair, params.process
-    positions = min(48, max(12, teeth.plan.teeth[0]))
+        return None
+    pair = detail.pitch.pair
+    positions = positions or min(48, max(12, teeth.plan.teeth[0]))
     phi1 = np.linspace(0.0, pair.cycle, positions, endpoint=False)
     first = teeth.gears[0]
     arc = teeth.frames[0].arc(phi1 % (2 * np.pi))
-    geometry = PairGeometry(
+    return PairGeometry(
         rings=tuple(g.outline.outer for g in teeth.gears),
         center_distance=pair.center_distance,
         phi1=phi1,
         phi2=pair.angle_map(phi1),
         r1=pair.gear1.r(phi1 % (2 * np.pi)),
         module=teeth.plan.module,
-        pressure_angle=params.teeth.pressure_angle,
+        pressure_angle=design.params.teeth.pressure_angle,
         teeth=np.floor((arc - first.phase) / first.rack.pitch).astype(int) % first.teeth,
     )
+
+
+def pair_bands(design: Design) -> tuple[Band, ...]:
+    """The band of a toothed gear pair under its profile's process (none: the nominal play only)."""
+    params, detail = design.params, design.detail
+    geometry = pair_geometry(design)
+    if geometry is None:
+        return ()
+    process = params.process
     names = f"{detail.pitch.gears[0].name}/{detail.pitch.gears[1].name}"
     tol = params.output.tolerance
     return (
