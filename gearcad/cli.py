@@ -18,7 +18,7 @@ import sys
 import time
 from pathlib import Path
 
-from .errors import GearcadError
+from .errors import GearcadError, OutputError
 
 __all__ = ["main"]
 
@@ -88,7 +88,7 @@ def _profile_paths(paths: list[Path]) -> list[Path]:
 
 
 def _load_all(args) -> list:
-    from .profiles import load_profile
+    from .api import load_profile
 
     profiles, errors = [], []
     for path in _profile_paths(args.profiles):
@@ -113,7 +113,7 @@ def _progress(out: Path):
 
 
 def _check(args) -> int:
-    from .batch import design_all
+    from .api import design_all
     from .findings import check_codes
 
     allow = check_codes(args.allow)
@@ -137,11 +137,14 @@ def _failed(failed: list) -> int:
 
 def _run(args) -> int:
     if args.command == "schema":
-        from .profiles import profile_schema
+        from .api import profile_schema
 
         text = json.dumps(profile_schema(), indent=2, ensure_ascii=False) + "\n"
         if args.out:
-            args.out.write_text(text, encoding="utf-8")
+            try:
+                args.out.write_text(text, encoding="utf-8")
+            except OSError as exc:
+                raise OutputError(f"--out {args.out}: cannot write ({exc.strerror or exc})") from None
         else:
             sys.stdout.write(text)
         return 0
@@ -167,7 +170,7 @@ def _run(args) -> int:
         return run(args)
     if args.command == "check":
         return _check(args)
-    from .batch import build
+    from .api import build
     from .findings import check_codes
 
     allow = check_codes(args.allow)
@@ -184,7 +187,7 @@ def main(argv: list[str] | None = None) -> int:
     logging.basicConfig(level=logging.ERROR, format="%(levelname)s: %(message)s")
     try:
         if args.command == "build":
-            from .publish import check_out
+            from .api import check_out
 
             check_out(args.out)  # before any work: a bad --out is found in a moment
         return _run(args)
