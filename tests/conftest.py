@@ -12,6 +12,8 @@ EXAMPLES = ROOT / "profiles"
 PROFILES = sorted(EXAMPLES.glob("*.toml"))
 QUICK = {"output.charts": False, "output.animation": False}
 """Overrides for a design read in memory: no chart data, no animation."""
+COARSE = {**QUICK, "output.tolerance": 0.01}
+"""And at a coarse tolerance: cheap, and exact where the mechanism tests look (closed forms)."""
 
 
 def profile(name: str, overrides=(), **kwargs):
@@ -19,6 +21,13 @@ def profile(name: str, overrides=(), **kwargs):
     from gearcad.profiles import load_profile
 
     return load_profile(EXAMPLES / f"{name}.toml", overrides, **kwargs)
+
+
+def drafted(name: str, design, overrides=()):
+    """The example profile ``name`` at :data:`COARSE` (and ``overrides``) and what a mechanism
+    module's ``design`` draws of it: (params, draft)."""
+    params = profile(name, {**COARSE, **dict(overrides)})
+    return params, design(params)
 
 
 def reach(ring: np.ndarray, placement, toward):

@@ -9,9 +9,8 @@ import pytest
 from gearcad.geometry.outline import ring_area
 from gearcad.mechanisms import carrier_train
 
-from .conftest import QUICK, profile, tooth_angle
+from .conftest import drafted, tooth_angle
 
-TOL = {**QUICK, "output.tolerance": 0.01}
 M = 1.5  # both examples' module
 RPM = 2 * math.pi / 60
 
@@ -19,8 +18,7 @@ RPM = 2 * math.pi / 60
 @pytest.fixture(scope="module")
 def external():
     """Sun 20, idler 14, planet 26 teeth, all external, on a crank (planetary_external.toml)."""
-    params = profile("planetary_external", TOL)
-    return params, carrier_train.design(params)
+    return drafted("planetary_external", carrier_train.design)
 
 
 def _tips(ring: np.ndarray, pitch_radius: float) -> int:
@@ -86,8 +84,7 @@ def test_speeds_follow_willis_along_the_train(external):
 def test_an_internal_mesh_makes_a_ring_with_a_rim():
     """planetary_internal: the ring's teeth are a clockwise hole reaching from r − m to r + 1.25 m,
     inside a rim 3.75 m beyond the pitch circle; its centre lies a difference of radii away."""
-    params = profile("planetary_internal", TOL)
-    draft = carrier_train.design(params)
+    params, draft = drafted("planetary_internal", carrier_train.design)
     rings = [s for s in draft.parts if s.hole is not None]
     assert len(rings) == 1
     (ring,) = rings

@@ -10,7 +10,7 @@ import pytest
 from gearcad.geometry.outline import ring_area
 from gearcad.mechanisms import carrier_train, compound_ring
 
-from .conftest import QUICK, profile, tooth_angle
+from .conftest import drafted, tooth_angle
 
 RPM = 2 * math.pi / 60
 # compound_ring.toml: gear1 20 teeth drives the ring's 40 outer teeth; gear3 (14) turns inside
@@ -20,8 +20,7 @@ R1, R2_OUT, R2_IN, R3, M = 15.0, 30.0, 22.5, 10.5, 1.5
 
 @pytest.fixture(scope="module")
 def train():
-    params = profile("compound_ring", {**QUICK, "output.tolerance": 0.01})
-    return params, carrier_train.design(params)
+    return drafted("compound_ring", carrier_train.design)
 
 
 def test_the_compound_part_has_both_toothings_and_both_pitch_circles(train):

@@ -13,14 +13,14 @@ from gearcad.mechanisms.finish import Contact, Draft, PartSpec, finish
 from gearcad.mechanisms.parts import Placement
 from gearcad.tolerances import budget
 
-from .conftest import QUICK, profile
+from .conftest import COARSE, profile
 
 R = 10.0
 
 
 @pytest.fixture(scope="module")
 def params():
-    return profile("rolling_wheel", {**QUICK, "output.tolerance": 0.01, "output.formats": ["svg"]})
+    return profile("rolling_wheel", {**COARSE, "output.formats": ["svg"]})
 
 
 def _discs(params, distance: float, length: float = 0.0) -> Draft:

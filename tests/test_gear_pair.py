@@ -10,7 +10,7 @@ import pytest
 from gearcad.geometry.outline import ring_area
 from gearcad.mechanisms import gear_pair
 
-from .conftest import QUICK, profile, tooth_angle
+from .conftest import COARSE, drafted, profile, tooth_angle
 
 M, Z1, Z2, RPM = 2.0, 20, 40, 100.0
 R1, R2 = M * Z1 / 2, M * Z2 / 2  # 20 and 40 mm
@@ -18,8 +18,7 @@ R1, R2 = M * Z1 / 2, M * Z2 / 2  # 20 and 40 mm
 
 @pytest.fixture(scope="module")
 def spur():
-    params = profile("spur_pair", {**QUICK, "output.tolerance": 0.01})
-    return params, gear_pair.design(params)
+    return drafted("spur_pair", gear_pair.design)
 
 
 def test_gears_sit_a_sum_of_pitch_radii_apart(spur):
@@ -73,7 +72,7 @@ def test_motion_is_half_the_driver_angle(spur):
 
 
 def test_without_teeth_the_parts_are_the_pitch_circles_rolling_on_each_other():
-    params = profile("spur_pair", {**QUICK, "output.tolerance": 0.01}, unset=["teeth"])
+    params = profile("spur_pair", COARSE, unset=["teeth"])
     draft = gear_pair.design(params)
     for spec, r in zip(draft.parts, (R1, R2)):
         assert np.hypot(*spec.outer.T) == pytest.approx(r, abs=1e-9)

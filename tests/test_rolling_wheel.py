@@ -10,7 +10,7 @@ from gearcad.geometry.outline import ring_area
 from gearcad.mechanisms import rolling_wheel
 from gearcad.tolerances import budget
 
-from .conftest import QUICK, profile
+from .conftest import drafted
 
 # rolling_wheel.toml: driver r = 20, rolling wheel R = 60, centres 300 across and 150 up, 200 mm travel
 r, R, L, H, TRAVEL = 20.0, 60.0, 300.0, 150.0, 200.0
@@ -18,8 +18,7 @@ r, R, L, H, TRAVEL = 20.0, 60.0, 300.0, 150.0, 200.0
 
 @pytest.fixture(scope="module")
 def drive():
-    params = profile("rolling_wheel", {**QUICK, "output.tolerance": 0.01})
-    return params, rolling_wheel.design(params)
+    return drafted("rolling_wheel", rolling_wheel.design)
 
 
 def test_two_round_wheels_where_the_drive_puts_them(drive):
@@ -57,7 +56,6 @@ def test_rack_length_and_ratios_by_closed_form(drive):
 
 def test_a_horizontal_rack_gives_the_linear_law():
     """H = R − r: the rack stays level and φ2 = φ1·r/(2R) exactly, ω3 = 0."""
-    params = profile("rolling_wheel", {**QUICK, "output.tolerance": 0.01, "drive.H": R - r})
-    motion = rolling_wheel.design(params).detail
+    motion = drafted("rolling_wheel", rolling_wheel.design, {"drive.H": R - r})[1].detail
     np.testing.assert_allclose(motion.by_contour, motion.phi1 * r / (2 * R), rtol=1e-12)
     assert not motion.omega3.any()

@@ -7,7 +7,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..geometry.arcfit import ArcRing
-from ..geometry.outline import rotate
+from ..geometry.outline import place
 from ..mechanisms import Design, Part, Placement
 
 __all__ = ["Drawing", "cross", "part_drawing", "assembly_drawing"]
@@ -30,7 +30,7 @@ def cross(center, size: float) -> list[np.ndarray]:
 
 
 def _placed(ring: ArcRing, placement: Placement) -> ArcRing:
-    return ArcRing(rotate(ring.vertices, placement.angle) + np.asarray(placement.offset), ring.bulges)
+    return ArcRing(place(ring.vertices, placement.angle, placement.offset), ring.bulges)
 
 
 def _drawing(items: list[tuple[Part, Placement]], design: Design) -> Drawing:

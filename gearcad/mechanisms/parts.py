@@ -12,18 +12,17 @@ from dataclasses import dataclass, replace
 from typing import Protocol
 
 import numpy as np
-import shapely
 
 from ..errors import DesignError
 from ..geometry.arcfit import ArcRing, arc_points, decimate, fit_arcs
 from ..geometry.inset import check_chamfer
 from ..geometry.kerf import kerf_fault, kerf_path
-from ..geometry.outline import Outline, ring_area, rotate
+from ..geometry.outline import Outline, ring_area
 from ..geometry.rings import bore_ring
 from ..geometry.verify import is_simple, max_distance, thin
 from ..tolerances import budget
 
-__all__ = ["Part", "Placement", "BoreSpec", "CutSpec", "make_part", "cut_paths", "placed_polygon"]
+__all__ = ["Part", "Placement", "BoreSpec", "CutSpec", "make_part", "cut_paths"]
 
 
 class BoreSpec(Protocol):
@@ -77,11 +76,6 @@ class Placement:
     part: str
     angle: float = 0.0
     offset: tuple[float, float] = (0.0, 0.0)
-
-
-def placed_polygon(part: Part, placement: Placement) -> shapely.Polygon:
-    rings = [rotate(r, placement.angle) + np.asarray(placement.offset) for r in part.outline.rings]
-    return shapely.Polygon(rings[0], rings[1:])
 
 
 DEFAULT_PILOT = 1.0
