@@ -12,13 +12,15 @@ from gearcad.tolerances import budget
 
 from .conftest import drafted
 
-# rolling_wheel.toml: driver r = 20, rolling wheel R = 60, centres 300 across and 150 up, 200 mm travel
-r, R, L, H, TRAVEL = 20.0, 60.0, 300.0, 150.0, 200.0
-
 
 @pytest.fixture(scope="module")
 def drive():
+    """rolling_wheel.toml: driver r = 20, rolling wheel R = 60, centres L = 300 across and H = 150
+    up; the wheel rolls 200 mm towards the driver."""
     return drafted("rolling_wheel", rolling_wheel.design)
+
+
+r, R, L, H, TRAVEL = 20.0, 60.0, 300.0, 150.0, 200.0
 
 
 def test_two_round_wheels_where_the_drive_puts_them(drive):
