@@ -18,6 +18,7 @@ __all__ = [
     "load_profile",
     "parse_profile",
     "design",
+    "design_all",
     "check",
     "build",
     "sweep",
@@ -29,6 +30,7 @@ __all__ = [
     "GearcadError",
     "ProfileError",
     "DesignError",
+    "OutputError",
     "ChecksFailed",
 ]
 
@@ -36,26 +38,27 @@ _WHERE = {
     "load_profile": "api",
     "parse_profile": "api",
     "design": "api",
+    "design_all": "api",
     "check": "api",
     "build": "api",
     "sweep": "api",
     "coupon": "api",
-    "profile_schema": "profiles",
+    "profile_schema": "api",
     "Design": "mechanisms",
     "Part": "mechanisms",
     "Finding": "findings",
     "GearcadError": "errors",
     "ProfileError": "errors",
     "DesignError": "errors",
+    "OutputError": "errors",
     "ChecksFailed": "errors",
 }
 
 if TYPE_CHECKING:
-    from .api import build, check, coupon, design, load_profile, parse_profile, sweep
-    from .errors import ChecksFailed, DesignError, GearcadError, ProfileError
+    from .api import build, check, coupon, design, design_all, load_profile, parse_profile, profile_schema, sweep
+    from .errors import ChecksFailed, DesignError, GearcadError, OutputError, ProfileError
     from .findings import Finding
     from .mechanisms import Design, Part
-    from .profiles import profile_schema
 
 
 def __getattr__(name: str):

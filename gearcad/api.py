@@ -14,24 +14,44 @@ from collections.abc import Callable, Iterable, Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
+from . import batch as _batch
 from . import profiles as _profiles
 from .batch import BuildResult
-from .batch import build as _build
 from .errors import ProfileError
 from .mechanisms import Design
 from .mechanisms import design as _design
 from .profiles import ProfileParams
+from .publish import check_out
 
-__all__ = ["load_profile", "parse_profile", "design", "check", "build", "sweep", "coupon"]
+__all__ = [
+    "load_profile",
+    "parse_profile",
+    "profile_schema",
+    "design",
+    "design_all",
+    "check",
+    "build",
+    "check_out",
+    "sweep",
+    "coupon",
+]
 
 
-def load_profile(path: str | Path, overrides: Mapping[str, Any] | Sequence[str] = ()) -> ProfileParams:
+def load_profile(
+    path: str | Path, overrides: Mapping[str, Any] | Sequence[str] = (), *, unset: Sequence[str] = ()
+) -> ProfileParams:
     """Read and validate a TOML profile; ``overrides`` map dotted keys to values (None unsets a
-    key; one of two exclusive keys replaces the other, e.g. teeth.count for teeth.module).
+    key; one of two exclusive keys replaces the other, e.g. teeth.count for teeth.module), or are
+    ``KEY=VALUE`` strings with TOML values; ``unset`` names keys to remove.
     Raises :class:`~gearcad.errors.ProfileError` with one line per bad value."""
     if not isinstance(path, (str, os.PathLike)):
         raise TypeError(f"load_profile: path must be a str or pathlib.Path, got {type(path).__name__}")
-    return _profiles.load_profile(path, () if overrides is None else overrides)
+    return _profiles.load_profile(path, () if overrides is None else overrides, unset=unset)
+
+
+def profile_schema() -> dict:
+    """The JSON Schema of profiles (for TOML editors)."""
+    return _profiles.profile_schema()
 
 
 def parse_profile(data: Mapping[str, Any], *, name: str = "profile") -> ProfileParams:
@@ -67,6 +87,14 @@ def design(profile: ProfileParams | str | Path | Mapping[str, Any], stage: str =
     return _design(_params(profile), stage)
 
 
+def design_all(profiles: Sequence[ProfileParams | str | Path | Mapping[str, Any]], stage: str = "full") -> list[Design]:
+    """:func:`design` of several profiles, an error naming the profile it came from; two profiles
+    of one name are refused (they would build into one folder)."""
+    if stage not in STAGES:
+        raise ProfileError(f"stage = {stage!r}: must be one of {', '.join(STAGES)}")
+    return _batch.design_all([_params(p) for p in profiles], stage)
+
+
 def check(
     profile: ProfileParams | str | Path | Mapping[str, Any],
     stage: str = "full",
@@ -86,13 +114,15 @@ def build(
     out: str | Path,
     progress: Callable[[int, int, BuildResult], None] | None = None,
 ) -> list[BuildResult]:
-    """Build profiles into ``out/<name>/`` (all or nothing); returns each build's result."""
+    """Build profiles into ``out/<name>/`` (all or nothing); returns each build's result.
+    Raises :class:`~gearcad.errors.OutputError` when a file cannot be written or published;
+    :func:`check_out` finds a bad ``out`` before any work."""
     if isinstance(profiles, (str, Path, Mapping, *ProfileParams.__args__)) or not isinstance(profiles, Iterable):
         kind = type(profiles).__name__
         raise TypeError(f"build: profiles must be a list of profiles, got a {kind} (for one: build([p], out))")
     if progress is not None and not callable(progress):
         raise TypeError(f"build: progress must be a function (n, total, result) or None, got {type(progress).__name__}")
-    return _build([_params(p) for p in profiles], out, progress)
+    return _batch.build([_params(p) for p in profiles], out, progress)
 
 
 def sweep(profile: str | Path | Mapping[str, Any], vary: Sequence[str] | Mapping[str, Any] = (), **options):

@@ -21,7 +21,7 @@ from contextlib import contextmanager, suppress
 from dataclasses import dataclass
 from pathlib import Path
 
-from .errors import GearcadError, ProfileError
+from .errors import GearcadError, OutputError, ProfileError
 from .findings import Finding
 from .mechanisms import Design, design
 from .profiles import ProfileParams
@@ -73,12 +73,17 @@ def design_all(profiles: Sequence[ProfileParams], stage: str = "full") -> list[D
 def _build_one(job: tuple[ProfileParams, Path, bool]) -> BuildResult:
     params, folder, beside = job
     start = time.perf_counter()
+    d = _named(params, lambda: design(params))
+    files = _named(params, lambda: _write(d, folder, beside))
+    return BuildResult(d.name, d.summary, d.findings, files, time.perf_counter() - start, d.failures())
+
+
+def _write(d: Design, folder: Path, beside: bool) -> dict[str, dict]:
+    """The design's files in ``folder``; a write the system refuses is an :class:`OutputError`."""
     from .export.write import write_design  # the file libraries only when files are written
 
-    d = _named(params, lambda: design(params))
-    with _writing(f"{params.name}: cannot write its files"):
-        files = _named(params, lambda: write_design(d, folder, beside=beside))
-    return BuildResult(d.name, d.summary, d.findings, files, time.perf_counter() - start, d.failures())
+    with _writing(f"{d.name}: cannot write its files"):
+        return write_design(d, folder, beside=beside)
 
 
 def _worker_init() -> None:
@@ -171,7 +176,7 @@ def _writing(what: str):
     except OSError as exc:
         if isinstance(exc, BrokenPipeError):  # the reader of our output has gone: the CLI's to handle
             raise
-        raise GearcadError(f"{what} ({exc.strerror or exc})") from None
+        raise OutputError(f"{what} ({exc.strerror or exc})") from None
 
 
 def _write_index(out: Path) -> None:
@@ -184,8 +189,12 @@ def _write_index(out: Path) -> None:
     page is written into a new file made exclusively under a random name (a planted link is
     never followed), then renamed over ``index.html``.
     """
-    with out_lock(out):  # a concurrent build's page, read before this one published, is not the last
-        _write_page(out)
+    try:
+        with out_lock(out):  # a concurrent build's page, read before this one published, is not the last
+            _write_page(out)
+    except OSError as exc:
+        reason = exc.strerror or exc
+        raise OutputError(f"{out / 'index.html'}: cannot write ({reason}); the profiles were published") from None
 
 
 def _write_page(out: Path) -> None:

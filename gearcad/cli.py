@@ -19,7 +19,7 @@ import time
 import warnings
 from pathlib import Path
 
-from .errors import GearcadError
+from .errors import GearcadError, OutputError
 
 __all__ = ["main"]
 
@@ -92,7 +92,7 @@ def _profile_paths(paths: list[Path]) -> list[Path]:
 
 
 def _load_all(args) -> list:
-    from .profiles import load_profile
+    from .api import load_profile
 
     profiles, errors = [], []
     for path in _profile_paths(args.profiles):
@@ -117,7 +117,7 @@ def _progress(out: Path):
 
 
 def _check(args) -> int:
-    from .batch import design_all
+    from .api import design_all
     from .findings import check_codes
 
     allow = check_codes(args.allow)
@@ -133,8 +133,7 @@ def _check(args) -> int:
 
 
 def _coupon(args) -> int:
-    from .api import coupon
-    from .profiles import load_profile
+    from .api import coupon, load_profile
 
     folder = coupon(load_profile(args.profile, args.overrides, unset=args.unset), args.out)
     print(f"wrote {folder}/ (coupon.dxf, coupon.svg, coupon.3mf, coupon.txt)")
@@ -151,14 +150,14 @@ def _failed(failed: list) -> int:
 
 def _run(args) -> int:
     if args.command == "schema":
-        from .profiles import profile_schema
+        from .api import profile_schema
 
         text = json.dumps(profile_schema(), indent=2, ensure_ascii=False) + "\n"
         if args.out:
             try:
                 args.out.write_text(text, encoding="utf-8")
             except OSError as exc:  # a folder, a missing folder, a read-only place
-                raise GearcadError(f"--out {args.out}: cannot write the schema there ({exc.strerror or exc})") from None
+                raise OutputError(f"--out {args.out}: cannot write the schema there ({exc.strerror or exc})") from None
         else:
             sys.stdout.write(text)
         return 0
@@ -186,7 +185,7 @@ def _run(args) -> int:
         return _check(args)
     if args.command == "coupon":
         return _coupon(args)
-    from .batch import build
+    from .api import build
     from .findings import check_codes
 
     allow = check_codes(args.allow)
@@ -221,7 +220,7 @@ def main(argv: list[str] | None = None) -> int:
 def _main(args) -> int:
     try:
         if args.command in ("build", "bench", "coupon"):
-            from .publish import check_out
+            from .api import check_out
 
             check_out(args.out)  # before any work: a bad --out is found in a moment
         return _run(args)

@@ -1,6 +1,6 @@
 """Exception hierarchy: every failure a user can cause is a :class:`GearcadError`."""
 
-__all__ = ["GearcadError", "ProfileError", "DesignError", "ChecksFailed"]
+__all__ = ["GearcadError", "ProfileError", "DesignError", "OutputError", "ChecksFailed"]
 
 
 class GearcadError(Exception):
@@ -16,6 +16,11 @@ class ProfileError(GearcadError, ValueError):
 
 class DesignError(GearcadError):
     """The profile is well formed but describes something that cannot be made."""
+
+
+class OutputError(GearcadError):
+    """A file could not be written or published (disk full, no permission, a read-only file
+    system): the message names the path and the system's reason; nothing is published."""
 
 
 class ChecksFailed(GearcadError):

@@ -55,7 +55,7 @@ import threading
 from contextlib import contextmanager, nullcontext, suppress
 from pathlib import Path
 
-from .errors import GearcadError, ProfileError
+from .errors import GearcadError, OutputError, ProfileError
 
 __all__ = ["Publisher", "Interrupted", "interrupt_guard", "check_out", "resolve_out", "out_lock"]
 
@@ -355,7 +355,7 @@ class Publisher:
                 if self._names and (self._root.parent == self._abs or not self._publish_tree()):
                     self._publish_folders()
             except OSError as exc:
-                raise GearcadError(f"--out {self.out}: cannot publish {exc.filename} ({exc.strerror})") from None
+                raise OutputError(f"--out {self.out}: cannot publish {exc.filename} ({exc.strerror})") from None
             self._published = True
             self._close()
 
@@ -390,7 +390,7 @@ class Publisher:
                     _swap(self._root / name, self._abs / name)
                 except OSError as exc:
                     done = f"{i} of {len(self._names)} replaced"
-                    raise GearcadError(f"{self.out / name}: cannot publish ({exc.strerror}); {done}") from None
+                    raise OutputError(f"{self.out / name}: cannot publish ({exc.strerror}); {done}") from None
         finally:
             os.close(lock)
 

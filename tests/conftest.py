@@ -4,11 +4,51 @@ import logging
 import os
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 DATA = Path(__file__).parent / "data"
 ROOT = Path(__file__).parent.parent
-PROFILES = sorted((ROOT / "profiles").glob("*.toml"))
+EXAMPLES = ROOT / "profiles"
+PROFILES = sorted(EXAMPLES.glob("*.toml"))
+QUICK = {"output.charts": False, "output.animation": False}
+"""Overrides for a design read in memory: no chart data, no animation."""
+COARSE = {**QUICK, "output.tolerance": 0.01}
+"""And at a coarse tolerance: cheap, and exact where the mechanism tests look (closed forms)."""
+
+
+def profile(name: str, overrides=(), **kwargs):
+    """The example profile ``name`` (profiles/NAME.toml) loaded with ``overrides``."""
+    from gearcad.profiles import load_profile
+
+    return load_profile(EXAMPLES / f"{name}.toml", overrides, **kwargs)
+
+
+def drafted(name: str, design, overrides=()):
+    """The example profile ``name`` at :data:`COARSE` (and ``overrides``) and what a mechanism
+    module's ``design`` draws of it: (params, draft)."""
+    params = profile(name, {**COARSE, **dict(overrides)})
+    return params, design(params)
+
+
+def reach(ring: np.ndarray, placement, toward):
+    """How far a placed ring reaches from its pivot in the direction ``toward`` (rad, global):
+    its radius there (a float; an array for an array of directions), interpolated between the
+    ring's vertices (mm).  Independent of the code's own placement: the turn is undone on the
+    angle, not applied to the points."""
+    angle, radius = np.arctan2(ring[:, 1], ring[:, 0]), np.hypot(ring[:, 0], ring[:, 1])
+    out = np.interp(np.asarray(toward) - placement.angle, angle, radius, period=2 * np.pi)
+    return float(out) if out.ndim == 0 else out
+
+
+def tooth_angle(ring: np.ndarray, placement, toward: float, pitch: float, *, space: bool = False) -> float:
+    """The global direction (rad) of the middle of the tooth (``space``: of the tooth space) of a
+    placed ring nearest ``toward``, found from the ring's radius alone within half a ``pitch``
+    (rad) either way: the mean direction where it comes within 1 % of its depth of its farthest
+    (nearest) reach."""
+    t = toward + np.linspace(-pitch / 2, pitch / 2, 4001)
+    r = reach(ring, placement, t) * (-1 if space else 1)
+    return float(np.mean(t[r >= r.max() - 0.01 * (r.max() - r.min())]))
 
 
 @pytest.fixture(scope="session")

@@ -3,14 +3,13 @@ refuses exactly what ``build`` refuses."""
 
 import re
 import shutil
-from pathlib import Path
 
 import pytest
 
 import gearcad
 from gearcad.cli import main
 
-ROOT = Path(__file__).parent.parent
+from .conftest import ROOT
 
 
 def _readme_python_blocks() -> list[str]:

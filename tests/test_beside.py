@@ -7,7 +7,6 @@ import subprocess
 import sys
 import textwrap
 import time
-from pathlib import Path
 
 import pytest
 
@@ -17,7 +16,7 @@ from gearcad.export.beside import Beside, can_fork
 from gearcad.export.write import write_design
 from gearcad.mechanisms import design
 
-ROOT = Path(__file__).resolve().parents[1]
+from .conftest import ROOT
 
 
 def _alive(pid: int) -> bool:

@@ -3,7 +3,6 @@
 library quiet on stderr."""
 
 import logging
-from pathlib import Path
 
 import pytest
 
@@ -11,7 +10,8 @@ import gearcad
 from gearcad.cli import main
 from gearcad.errors import ChecksFailed
 
-ROOT = Path(__file__).parent.parent
+from .conftest import ROOT
+
 CENTRE = str(ROOT / "profiles" / "elliptic_centre.toml")
 INTERFERES = ["--set", "gear1.eccentricity=0.95", "--set", "teeth.count=40", "--set", "output.tolerance=0.01"]
 QUICK = ["--set", "output.charts=false", "--set", "output.animation=false", "--set", 'output.formats=["svg"]']

@@ -12,9 +12,7 @@ import pytest
 from gearcad.cli import main
 from gearcad.findings import CODES
 
-from .conftest import PROFILES
-
-ROOT = Path(__file__).parent.parent
+from .conftest import PROFILES, ROOT
 
 
 def _flatten(entity) -> np.ndarray:

@@ -4,7 +4,6 @@ golden ones, the quick start stays two commands, and the commands the README sho
 import json
 import re
 import tomllib
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -13,7 +12,8 @@ from gearcad.cli import main
 from gearcad.profiles import load_profile, profile_schema
 from gearcad.profiles.reference import reference_markdown
 
-ROOT = Path(__file__).parent.parent
+from .conftest import ROOT
+
 DOCS = ROOT / "docs"
 README = (ROOT / "README.md").read_text(encoding="utf-8")
 
@@ -129,3 +129,18 @@ def test_compare_shows_two_designs_side_by_side(capsys):
     (row,) = [ln for ln in out.splitlines() if " pair.center_distance " in ln]
     assert row.startswith("*") and row.split()[-2:] == ["60", "75"]  # E = r1 + r2 = 3·r1 for 1:2
     assert "0 finding(s)" in out
+
+
+def test_the_readme_names_the_test_modules_there_are():
+    """Every test module the README's Development section names exists, and every mechanism of
+    the registry has its own, importing its module directly."""
+    from gearcad.mechanisms import MECHANISMS
+
+    section = README.split("## Development", 1)[1]
+    named = set(re.findall(r"`(test_[a-z0-9_]+)`", section))
+    have = {p.stem for p in (ROOT / "tests").glob("test_*.py")}
+    assert named and named <= have, named - have
+    for m in MECHANISMS.values():
+        assert f"test_{m.module}" in named, m.name
+        text = (ROOT / "tests" / f"test_{m.module}.py").read_text(encoding="utf-8")
+        assert re.search(rf"from gearcad\.mechanisms import [^\n]*\b{m.module}\b", text), m.module

@@ -20,7 +20,7 @@ from gearcad.export.mesh import extrude
 from gearcad.geometry.arcfit import ArcRing
 from gearcad.geometry.outline import Outline
 
-ROOT = Path(__file__).parent.parent
+from .conftest import ROOT
 
 SMALL = """
 name = "small"

@@ -5,7 +5,6 @@ profile with both bores at four kerfs.)"""
 
 import math
 import re
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -20,8 +19,8 @@ from gearcad.geometry.verify import is_simple, max_distance
 from gearcad.mechanisms import design
 from gearcad.profiles import load_profile
 
-ROOT = Path(__file__).parent.parent
-QUICK = {"output.charts": False, "output.animation": False}
+from .conftest import QUICK, ROOT
+
 FINE = 0.00025
 
 

@@ -3,7 +3,6 @@ against the paper's formulas and numbers and against an independent method."""
 
 import json
 import math
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -16,8 +15,7 @@ from gearcad.errors import DesignError
 from gearcad.trains import carrier as CT
 from gearcad.trains import rack_drive as RD
 
-ROOT = Path(__file__).parent.parent
-
+from .conftest import ROOT
 
 # ---------------------------------------------------------------- roller bodies (seed 003)
 

@@ -18,7 +18,8 @@ from gearcad import publish
 from gearcad.errors import GearcadError, ProfileError
 from gearcad.publish import Interrupted, Publisher, check_out
 
-ROOT = Path(__file__).parent.parent
+from .conftest import ROOT
+
 NAMES = ("a", "b", "c")
 FILES = 40
 EXPECTED = sorted(f"f{i:03d}.txt" for i in range(FILES))

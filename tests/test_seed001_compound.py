@@ -12,7 +12,6 @@ import shapely
 
 import gearcad
 from gearcad.errors import DesignError, ProfileError
-from gearcad.mechanisms.parts import Placement, placed_polygon
 from gearcad.trains import compound as CP
 
 from .conftest import ROOT
@@ -117,9 +116,9 @@ def test_the_assembly_fits_and_bites_when_turned(design):
     placed = {pl.part: pl for pl in design.placements}
 
     def overlap(name, other, turn):
-        pl = placed[name]
-        moved = Placement(name, pl.angle + turn, pl.offset)
-        return placed_polygon(parts[other], placed[other]).intersection(placed_polygon(parts[name], moved)).area
+        pl, at = placed[name], placed[other]
+        mate = parts[other].outline.polygon(at.angle, at.offset)
+        return mate.intersection(parts[name].outline.polygon(pl.angle + turn, pl.offset)).area
 
     # gear 3 in the ring's internal teeth and gear 1 on its external ones: ~0 as placed; half a
     # pitch turned, tooth onto tooth, they overlap by a good part of a tooth's area

@@ -7,14 +7,13 @@ import signal
 import subprocess
 import sys
 import time
-from pathlib import Path
 
 import pytest
 
 from gearcad.cli import main
 
-ROOT = Path(__file__).parent.parent
-PROFILES = ROOT / "profiles"
+from .conftest import EXAMPLES, PROFILES, ROOT
+
 QUICK = ["--set", "output.charts=false", "--set", "output.animation=false"]
 
 
@@ -26,7 +25,7 @@ QUICK = ["--set", "output.charts=false", "--set", "output.animation=false"]
 @pytest.mark.parametrize("key", ["name", "gear1.name", "gear2.name"])
 def test_no_name_can_write_outside_out(tmp_path, capsys, key, name):
     out = tmp_path / "deep" / "out"
-    args = ["build", str(PROFILES / "elliptic_focus.toml"), "--out", str(out), "--set", f'{key}="{name}"', *QUICK]
+    args = ["build", str(EXAMPLES / "elliptic_focus.toml"), "--out", str(out), "--set", f'{key}="{name}"', *QUICK]
     assert main(args) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and key in err[0], err
@@ -59,7 +58,7 @@ def test_accepted_or_refused_within_budget(profile, overrides):
     sets = [a for o in overrides for a in (o.split(" ", 1) if o.startswith("--unset ") else ("--set", o))]
     start = time.perf_counter()
     run = subprocess.run(
-        [sys.executable, "-m", "gearcad", "check", str(PROFILES / f"{profile}.toml"), *sets],
+        [sys.executable, "-m", "gearcad", "check", str(EXAMPLES / f"{profile}.toml"), *sets],
         capture_output=True,
         text=True,
         timeout=60,
@@ -76,7 +75,7 @@ def test_accepted_or_refused_within_budget(profile, overrides):
 def test_horizontal_rack_has_exact_values_and_no_nan(tmp_path):
     """H = R − r: β stays 0, so ω3 = 0, ε2 = 0 and ω2/ω1 = r/2R exactly (seed 000)."""
     out = tmp_path / "out"
-    assert main(["build", str(PROFILES / "rolling_wheel.toml"), "--out", str(out), "--set", "drive.H=40", *QUICK]) == 0
+    assert main(["build", str(EXAMPLES / "rolling_wheel.toml"), "--out", str(out), "--set", "drive.H=40", *QUICK]) == 0
     text = (out / "rolling_wheel" / "report.json").read_text()
     report = json.loads(text, parse_constant=lambda c: pytest.fail(f"{c} in report.json"))
     m, d = report["motion"], report["drive"]
@@ -90,7 +89,7 @@ def test_out_that_is_a_file_is_refused_before_building(tmp_path, capsys):
     target = tmp_path / "file"
     target.write_text("x")
     start = time.perf_counter()
-    assert main(["build", str(PROFILES / "walker.toml"), "--out", str(target)]) == 2
+    assert main(["build", str(EXAMPLES / "walker.toml"), "--out", str(target)]) == 2
     assert time.perf_counter() - start < 1.0  # found before any design work
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "not a folder" in err[0]
@@ -120,11 +119,14 @@ def test_sigterm_during_a_build_ends_with_one_line_and_leaves_out_alone(tmp_path
 
 
 def test_closed_stdout_is_not_a_traceback():
-    shell = f"{sys.executable} -m gearcad check {PROFILES / 'walker.toml'} | head -1"
+    shell = f"{sys.executable} -m gearcad check {EXAMPLES / 'walker.toml'} | head -1"
     run = subprocess.run(["bash", "-c", shell], capture_output=True, text=True, timeout=60)
     assert run.stdout.startswith("walker:") and run.stderr == ""
 
 
 def test_report_numbers_are_finite_for_every_profile(built):
-    for path in built.glob("*/report.json"):
+    reports = sorted(built.glob("*/report.json"))
+    # one report per example profile: the loop below cannot pass by finding none
+    assert [p.parent.name for p in reports] == sorted(p.stem for p in PROFILES)
+    for path in reports:
         json.loads(path.read_text(), parse_constant=lambda c: pytest.fail(f"{c} in {path}"))

@@ -8,7 +8,7 @@ import numpy as np
 from PIL import Image, ImageDraw
 
 from ..geometry.arcfit import decimate
-from ..geometry.outline import rotate
+from ..geometry.outline import place
 
 __all__ = ["write_gif"]
 
@@ -35,7 +35,7 @@ def write_gif(
         image.putpalette([255, 255, 255, 0, 0, 0, *sum((list(c) for c in _COLOURS), [])] + [255, 255, 255] * 250)
         draw = ImageDraw.Draw(image)
         for k, (ring, pivot, angle) in enumerate(zip(rings, pivots, row)):
-            pts = rotate(ring, float(angle)) + np.asarray(pivot)
+            pts = place(ring, float(angle), pivot)
             xy = np.column_stack(
                 [(pts[:, 0] - lo[0]) * scale + margin, size[1] - ((pts[:, 1] - lo[1]) * scale + margin)]
             )

@@ -8,7 +8,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..geometry.arcfit import ArcRing
-from ..geometry.outline import rotate
+from ..geometry.outline import place
 from ..mechanisms import Design, Part, Placement
 
 __all__ = ["DASH_MM", "Drawing", "cross", "dashes", "part_drawing", "assembly_drawing"]
@@ -91,7 +91,7 @@ def dashes(ring: ArcRing) -> list[ArcRing]:
 
 
 def _placed(ring: ArcRing, placement: Placement) -> ArcRing:
-    return ArcRing(rotate(ring.vertices, placement.angle) + np.asarray(placement.offset), ring.bulges)
+    return ArcRing(place(ring.vertices, placement.angle, placement.offset), ring.bulges)
 
 
 def _nominal(part: Part) -> tuple[ArcRing, ...]:

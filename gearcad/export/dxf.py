@@ -49,6 +49,7 @@ import ezdxf
 import numpy as np
 from ezdxf import units
 
+from ..geometry import bulge as B
 from ..geometry.arcfit import ArcRing
 from .bounds import drawing_bounds
 from .drawing import Drawing
@@ -83,13 +84,6 @@ def _reproducible():
         ezdxf.options.write_fixed_meta_data_for_testing = before
 
 
-def _arrays(ring) -> tuple[np.ndarray, np.ndarray]:
-    if isinstance(ring, ArcRing):
-        return np.asarray(ring.vertices, dtype=float), np.asarray(ring.bulges, dtype=float)
-    v = np.asarray(ring, dtype=float)
-    return v, np.zeros(len(v))
-
-
 def _x_minus_sin(x: np.ndarray) -> np.ndarray:
     """x − sin x without cancellation for small x (series to x⁷: relative error < 1e-16 below 0.01)."""
     x = np.asarray(x, dtype=float)
@@ -101,16 +95,16 @@ def _x_minus_sin(x: np.ndarray) -> np.ndarray:
 def _arc_shape(v: np.ndarray, bulges: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Radius and signed sweep (rad, positive counter-clockwise) of every segment (0, 0 for lines)."""
     chord = np.hypot(*(np.roll(v, -1, axis=0) - v).T)
-    sweep = 4 * np.arctan(bulges)
+    sweep = B.sweep(bulges)
     with np.errstate(divide="ignore", invalid="ignore"):
-        radius = np.where(bulges != 0, chord / (2 * np.abs(np.sin(sweep / 2))), 0.0)
+        radius = np.where(bulges != 0, B.radius(chord, sweep), 0.0)
     return radius, sweep
 
 
 def ring_area_with_arcs(ring) -> float:
     """Signed area of a closed ring with its arcs (mm², positive counter-clockwise): the
     shoelace area of the vertices plus each arc's circular segment r²(θ − sin θ)/2."""
-    v, bulges = _arrays(ring)
+    v, bulges = B.segments(ring)
     x, y = v[:, 0], v[:, 1]
     polygon = 0.5 * float(np.dot(x, np.roll(y, -1)) - np.dot(y, np.roll(x, -1)))
     radius, sweep = _arc_shape(v, bulges)
@@ -178,12 +172,13 @@ def _split(v: np.ndarray, bulges: np.ndarray, pieces: np.ndarray) -> ArcRing:
     pieces = np.where(bulges != 0, pieces, 1)
     owner = np.repeat(np.arange(len(v)), pieces)  # the segment each new vertex lies on
     step = np.arange(len(owner)) - np.repeat(np.cumsum(pieces) - pieces, pieces)  # 0 … pieces − 1
-    sweep = 4 * np.arctan(bulges)
+    sweep = B.sweep(bulges)
     chord = np.roll(v, -1, axis=0) - v
     left = np.column_stack([-chord[:, 1], chord[:, 0]])
     turn = sweep[owner] * step / pieces[owner]
     c, s = np.cos(turn), np.sin(turn)
     with np.errstate(divide="ignore", invalid="ignore"):  # lines: no centre, and only their start is kept
+        # the centre by cot(θ/2), as written since the first files (B.centres differs in the last bit)
         centre = (v + np.roll(v, -1, axis=0)) / 2 + left / 2 * (np.cos(sweep / 2) / np.sin(sweep / 2))[:, None]
         rel = (v - centre)[owner]
         rotated = centre[owner] + np.column_stack([c * rel[:, 0] - s * rel[:, 1], s * rel[:, 0] + c * rel[:, 1]])
@@ -219,7 +214,7 @@ def limit_sweep(rings: list, *, regions: bool, share: float = CHORD_AREA) -> lis
     >>> len(limit_sweep([circle], regions=False, share=0.005)[0].vertices)
     37
     """
-    arrays = [_arrays(r) for r in rings]
+    arrays = [B.segments(r) for r in rings]
     shapes = [_arc_shape(v, b) for v, b in arrays]
     pieces = [np.ones(len(v), dtype=int) for v, _ in arrays]
     areas = [ring_area_with_arcs(r) for r in rings]
@@ -253,7 +248,9 @@ def limit_sweep(rings: list, *, regions: bool, share: float = CHORD_AREA) -> lis
 
 
 def _arc_entity(msp, a, b, bulge, layer):
-    """An ARC from a to b with the given bulge (ARCs always run counter-clockwise)."""
+    """An ARC from a to b with the given bulge (ARCs always run counter-clockwise).  In scalar
+    floats, as written since the first files (:func:`gearcad.geometry.bulge.centres` agrees to
+    the last bit or two, which would change every ARC's digits)."""
     sweep = 4 * math.atan(bulge)
     chord = b - a
     length = float(np.hypot(*chord))
@@ -299,7 +296,7 @@ def write_dxf(path: Path, drawing: Drawing, *, flavour: str = "polyline", cut_la
         for layer, rings in drawing.closed.items():
             cut = layer == cut_layer
             if flavour == "polyline-flat":
-                if any(np.any(_arrays(r)[1]) for r in rings):
+                if any(np.any(B.segments(r)[1]) for r in rings):
                     raise ValueError("the flat encoding takes plain rings sampled within the tolerance")
             else:
                 rings = limit_sweep(list(rings), regions=cut, share=CHORD_AREA if cut else MARK_CHORD_AREA)
@@ -337,7 +334,7 @@ def write_dxf(path: Path, drawing: Drawing, *, flavour: str = "polyline", cut_la
 
 
 def _ring(msp, ring, layer: str, flavour: str) -> int:
-    v, bulges = _arrays(ring)
+    v, bulges = B.segments(ring)
     if flavour == "lines-arcs":
         n = len(v)
         for k in range(n):

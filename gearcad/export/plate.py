@@ -20,7 +20,7 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import DesignError
-from ..geometry.outline import rotate
+from ..geometry.outline import place
 from ..mechanisms import Design
 from .mesh import _CONTENT_TYPES, _RELS, Solid, _xml_name
 
@@ -72,7 +72,7 @@ def write_plate(path: Path, design: Design, solids: Mapping[str, Solid]) -> int:
     counts = Counter(pl.part for pl in layout)
     for pl in layout:
         solid = solids[pl.part]
-        xy = rotate(solid.vertices[:, :2], pl.angle) + np.asarray(pl.offset)
+        xy = place(solid.vertices[:, :2], pl.angle, pl.offset)
         lo, hi = xy.min(axis=0), xy.max(axis=0)
         if lo.min() < -_ON_BED or hi[0] > bed_w + _ON_BED or hi[1] > bed_h + _ON_BED:
             # the footprint was measured on the part's outline; a solid reaching past it is not that part's

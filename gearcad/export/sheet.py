@@ -11,7 +11,6 @@ import shapely
 from shapely.ops import polylabel
 
 from ..mechanisms import Design
-from ..mechanisms.parts import placed_polygon
 from .drawing import Drawing, assembly_drawing
 
 __all__ = ["NAME_HEIGHT_MM", "sheet_drawing", "name_strokes"]
@@ -52,7 +51,7 @@ def sheet_drawing(design: Design) -> Drawing:
     names = []
     for placement in design.sheet:
         part = parts[placement.part]
-        body = shapely.Polygon(placed_polygon(part, placement).exterior).buffer(-_CLEAR_MM)
+        body = shapely.Polygon(part.outline.polygon(placement.angle, placement.offset).exterior).buffer(-_CLEAR_MM)
         keep_off = max(part.pivot_mark, part.pivot_diameter / 2) + _CLEAR_MM
         names += name_strokes(part.name, body.difference(shapely.Point(placement.offset).buffer(keep_off)))
     return replace(drawing, strokes={**drawing.strokes, mark: [*drawing.strokes.get(mark, []), *names]})

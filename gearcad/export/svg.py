@@ -14,6 +14,7 @@ from xml.sax.saxutils import escape, quoteattr
 
 import numpy as np
 
+from ..geometry import bulge as B
 from ..geometry.arcfit import ArcRing
 from .bounds import drawing_bounds
 from .drawing import Drawing
@@ -60,7 +61,7 @@ def _xy(point) -> str:
 def _arcs(a: np.ndarray, b: np.ndarray, bulge: float) -> list[str]:
     """SVG arc commands for the segment a → b with bulge ``tan(θ/4)``.
 
-    The radius is ``chord (1 + b²) / (4 |b|)``.  A counter-clockwise arc (b > 0) in y-up
+    The radius is ``chord / (2 |sin(θ/2)|)`` (:mod:`gearcad.geometry.bulge`).  A counter-clockwise arc (b > 0) in y-up
     coordinates runs the negative way in SVG's y-down ones: sweep-flag 0.  An SVG arc is fixed
     by its radius, and near a half turn the radius hardly changes while the arc does (a radius
     rounded to the last digit can move the arc's middle by far more than that digit, and
@@ -68,15 +69,13 @@ def _arcs(a: np.ndarray, b: np.ndarray, bulge: float) -> list[str]:
     than a quarter turn are written as equal pieces of at most a quarter turn, through points
     of the same circle.  No piece is then a large arc.
     """
-    theta = 4 * math.atan(bulge)
-    chord = b - a
-    length = math.hypot(*chord)
-    radius = _num(length * (1 + bulge * bulge) / (4 * abs(bulge)))
+    theta = float(B.sweep(bulge))
+    centres, radii = B.centres(a[None], b[None], np.array([theta]))
+    radius = _num(float(radii[0]))
     pieces = max(1, math.ceil(abs(theta) / (math.pi / 2) * (1 - 1e-12)))
     ends = [b]
     if pieces > 1:  # here |bulge| > tan(π/8): the centre is well defined
-        left = np.array([-chord[1], chord[0]]) / length
-        centre = (a + b) / 2 + left * length * (1 - bulge * bulge) / (4 * bulge)
+        centre = centres[0]
         turns = theta * np.arange(1, pieces) / pieces
         c, s = np.cos(turns), np.sin(turns)
         r = a - centre
@@ -86,11 +85,7 @@ def _arcs(a: np.ndarray, b: np.ndarray, bulge: float) -> list[str]:
 
 def _ring_path(ring) -> tuple[str, int]:
     """Path data of one closed ring and its segment count (lines, arc pieces, closing line)."""
-    if isinstance(ring, ArcRing):
-        v, bulges = np.asarray(ring.vertices, dtype=float), np.asarray(ring.bulges, dtype=float)
-    else:
-        v = np.asarray(ring, dtype=float)
-        bulges = np.zeros(len(v))
+    v, bulges = B.segments(ring)
     n = len(v)
     commands = [f"M {_xy(v[0])}"]
     closing_line = 0
@@ -98,7 +93,7 @@ def _ring_path(ring) -> tuple[str, int]:
         a, b, bulge = v[k], v[(k + 1) % n], float(bulges[k])
         sagitta = math.hypot(*(b - a)) * abs(bulge) / 2
         # an arc whose sagitta is below the written resolution is a line at that resolution
-        if sagitta >= 0.5 * 10.0**-_DECIMALS and abs(4 * math.atan(bulge)) >= _MIN_SWEEP:
+        if sagitta >= 0.5 * 10.0**-_DECIMALS and abs(float(B.sweep(bulge))) >= _MIN_SWEEP:
             commands += _arcs(a, b, bulge)
         elif k < n - 1:
             commands.append(f"L {_xy(b)}")

@@ -12,6 +12,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from . import bulge as B
+
 __all__ = ["ArcRing", "fit_arcs", "decimate", "decimate_indices", "arc_points"]
 
 
@@ -186,19 +188,15 @@ def decimate_indices(ring: np.ndarray, tolerance: float) -> np.ndarray:
 
 def arc_points(arcs: ArcRing, tolerance: float) -> np.ndarray:
     """The ring back as points, each arc flattened to within ``tolerance``: (m, 2) open ring."""
-    v = np.asarray(arcs.vertices, dtype=float)
-    bulges = np.asarray(arcs.bulges, dtype=float)
+    v, bulges = B.segments(arcs)
     a, b = v, np.roll(v, -1, axis=0)
-    sweep = 4 * np.arctan(bulges)
-    chord = np.hypot(*(b - a).T)
+    sweep = B.sweep(bulges)
     curved = bulges != 0
     with np.errstate(divide="ignore", invalid="ignore"):
-        radius = np.where(curved, chord / (2 * np.abs(np.sin(sweep / 2))), np.inf)
+        centre, radius = B.centres(a, b, sweep)
+        radius = np.where(curved, radius, np.inf)
         half_step = np.arccos(np.clip(1 - tolerance / radius, -1.0, 1.0))
         steps = np.where(curved, np.maximum(2, np.ceil(np.abs(sweep) / (2 * half_step))), 1).astype(int)
-        # centre: from the chord's midpoint along its left normal (for a counter-clockwise arc)
-        normal = np.column_stack([-(b - a)[:, 1], (b - a)[:, 0]]) / chord[:, None]
-        centre = (a + b) / 2 + normal * (radius * np.cos(sweep / 2) * np.sign(sweep))[:, None]
     start = np.arctan2(a[:, 1] - centre[:, 1], a[:, 0] - centre[:, 0])
     owner = np.repeat(np.arange(len(v)), steps)
     j = np.arange(len(owner)) - np.repeat(np.cumsum(steps) - steps, steps)  # 0 … steps − 1

@@ -4,7 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from .arcfit import ArcRing
+from .arcfit import ArcRing  # noqa: F401 - the doctest's
+from .bulge import segments
 
 __all__ = ["ring_bounds"]
 
@@ -36,11 +37,7 @@ def ring_bounds(ring) -> np.ndarray:
     >>> ring_bounds(half).tolist()
     [-1.0, 0.0, 1.0, 1.0]
     """
-    if isinstance(ring, ArcRing):
-        v, bulge = np.asarray(ring.vertices, dtype=float), np.asarray(ring.bulges, dtype=float)
-    else:
-        v = np.asarray(ring, dtype=float)
-        bulge = np.zeros(len(v))
+    v, bulge = segments(ring)
     reach = v @ _DIRECTIONS.T  # (n, 4): every vertex along every direction
     arcs = np.nonzero(bulge)[0]
     if len(arcs):

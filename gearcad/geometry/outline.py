@@ -1,4 +1,5 @@
-"""The one intermediate representation of a part's shape: closed rings in mm."""
+"""The one intermediate representation of a part's shape: closed rings in mm, placed by one
+function (:func:`place`) and converted to shapely in one place (:meth:`Outline.polygon`)."""
 
 from __future__ import annotations
 
@@ -6,7 +7,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["Outline", "ring_area", "rotate", "arc_steps"]
+__all__ = ["Outline", "ring_area", "rotate", "place", "arc_steps"]
 
 
 def arc_steps(radius: float, tolerance: float, sweep: float = 2 * np.pi) -> int:
@@ -30,12 +31,29 @@ def rotate(points: np.ndarray, angle: float, center=(0.0, 0.0)) -> np.ndarray:
     return np.column_stack([c * p[:, 0] - s * p[:, 1], s * p[:, 0] + c * p[:, 1]]) + center
 
 
+def place(points: np.ndarray, angle: float = 0.0, offset=(0.0, 0.0)) -> np.ndarray:
+    """Points of a part turned by ``angle`` (rad, counter-clockwise) about its pivot at the
+    origin, then moved by ``offset`` (mm): where a placement puts them, (n, 2) float."""
+    return rotate(points, angle) + np.asarray(offset, dtype=float)
+
+
+def _frozen(ring) -> np.ndarray:
+    a = np.array(ring, dtype=np.float64)  # a copy: the caller's array stays the caller's
+    if a.ndim != 2 or a.shape[1] != 2:
+        raise ValueError(f"a ring must be an (n, 2) array, got shape {a.shape}")
+    a.flags.writeable = False
+    return a
+
+
 @dataclass(frozen=True)
 class Outline:
     """A part's cut shape: ``rings[0]`` the outer boundary (counter-clockwise), the rest holes
-    (clockwise); each ring an open (n, 2) float64 array in mm, its pivot at the origin."""
+    (clockwise); each ring an open (n, 2) float64 array in mm, read-only, its pivot at the origin."""
 
     rings: tuple[np.ndarray, ...]
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "rings", tuple(_frozen(r) for r in self.rings))
 
     @property
     def outer(self) -> np.ndarray:
@@ -49,6 +67,10 @@ class Outline:
     def vertex_count(self) -> int:
         return sum(len(r) for r in self.rings)
 
-    def placed(self, angle: float = 0.0, offset=(0.0, 0.0)) -> Outline:
-        """Rotated about the pivot by ``angle`` (rad) and moved by ``offset`` (mm)."""
-        return Outline(tuple(rotate(r, angle) + np.asarray(offset, dtype=float) for r in self.rings))
+    def polygon(self, angle: float = 0.0, offset=(0.0, 0.0)):
+        """The outline as a ``shapely.Polygon``, placed by :func:`place` (outer ring, holes)."""
+        import shapely
+
+        moved = angle != 0 or any(offset)
+        rings = [place(r, angle, offset) if moved else r for r in self.rings]
+        return shapely.Polygon(rings[0], rings[1:])

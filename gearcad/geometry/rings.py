@@ -46,7 +46,7 @@ def offset_outline(outline: Outline, distance: float, tolerance: float, *, what:
     if distance == 0:
         return outline
     steps = max(2, arc_steps(abs(distance), tolerance, np.pi / 2))  # shapely counts segments per quarter
-    shape = shapely.Polygon(outline.rings[0], outline.rings[1:]).buffer(distance, join_style="round", quad_segs=steps)
+    shape = outline.polygon().buffer(distance, join_style="round", quad_segs=steps)
     if shape.geom_type != "Polygon" or shape.is_empty or len(shape.interiors) != len(outline.rings) - 1:
         raise DesignError(f"{what}: the offset outline falls apart or its holes close")
     shape = shapely.geometry.polygon.orient(shape, 1.0)

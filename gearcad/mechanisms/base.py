@@ -14,7 +14,7 @@ import numpy as np
 
 from ..errors import ChecksFailed
 from ..findings import Finding, check_codes, failing
-from .parts import Part, Placement, placed_polygon
+from .parts import Part, Placement
 
 __all__ = ["SCHEMA_VERSION", "Assembly", "Design", "Motion", "Table", "assembly_depth", "assembly_overlap", "finite"]
 
@@ -72,7 +72,7 @@ class Assembly:
 
 def assembly_overlap(parts: dict[str, Part], placements: list[Placement], pairs) -> float:
     """The largest overlap area (mm²) of the placed parts named in ``pairs`` ((i, j) indices)."""
-    polygons = [placed_polygon(parts[p.part], p) for p in placements]
+    polygons = [parts[p.part].outline.polygon(p.angle, p.offset) for p in placements]
     return max((float(polygons[i].intersection(polygons[j]).area) for i, j in pairs), default=0.0)
 
 
@@ -80,7 +80,7 @@ def assembly_depth(parts: dict[str, Part], placements: list[Placement], pairs, *
     """The largest penetration depth (mm) of the placed parts named in ``pairs``."""
     from ..geometry.depth import overlap_depths
 
-    polygons = [placed_polygon(parts[p.part], p) for p in placements]
+    polygons = [parts[p.part].outline.polygon(p.angle, p.offset) for p in placements]
     first, second = zip(*((polygons[i], polygons[j]) for i, j in pairs)) if pairs else ((), ())
     return float(max(overlap_depths(first, second, step=step).depth, default=0.0))
 

@@ -8,23 +8,22 @@ and then verified: every cut ring is simple and within the tolerance of the exac
 from __future__ import annotations
 
 from concurrent.futures import ThreadPoolExecutor
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 from typing import Protocol
 
 import numpy as np
-import shapely
 
 from ..errors import DesignError
 from ..geometry.arcfit import ArcRing, arc_points, decimate, fit_arcs
 from ..geometry.inset import check_chamfer
 from ..geometry.kerf import kerf_fault, kerf_path
-from ..geometry.outline import Outline, ring_area, rotate
+from ..geometry.outline import Outline, ring_area
 from ..geometry.rings import bore_ring
 from ..geometry.verify import is_simple, max_distance, thin
 from ..tolerances import budget
 from .budget import FINEST_TOLERANCE
 
-__all__ = ["Part", "Placement", "BoreSpec", "CutSpec", "check_bore", "make_part", "cut_paths", "placed_polygon"]
+__all__ = ["Part", "Blank", "Placement", "BoreSpec", "CutSpec", "check_bore", "make_part", "cut_paths"]
 
 
 class BoreSpec(Protocol):
@@ -72,17 +71,26 @@ class Part:
 
 
 @dataclass(frozen=True)
+class Blank:
+    """A part before its cut paths (:func:`make_part`): its shapes, marks and pivot, checked;
+    :func:`cut_paths` makes every blank of a design a complete :class:`Part` together."""
+
+    name: str
+    outline: Outline
+    fine: Outline
+    mark: tuple[ArcRing, ...]
+    pivot_mark: float
+    pivot: str
+    pivot_diameter: float
+
+
+@dataclass(frozen=True)
 class Placement:
     """Where a part sits in the assembly: turned by ``angle`` rad about its pivot, then moved."""
 
     part: str
     angle: float = 0.0
     offset: tuple[float, float] = (0.0, 0.0)
-
-
-def placed_polygon(part: Part, placement: Placement) -> shapely.Polygon:
-    rings = [rotate(r, placement.angle) + np.asarray(placement.offset) for r in part.outline.rings]
-    return shapely.Polygon(rings[0], rings[1:])
 
 
 DEFAULT_PILOT = 1.0
@@ -188,15 +196,15 @@ def make_part(
     marks: tuple[np.ndarray, ...] = (),
     hole: np.ndarray | None = None,
     caps: tuple[np.ndarray, ...] = (),
-) -> Part:
-    """A part from its outer ring sampled at the fine tolerance (counter-clockwise, mm).
+) -> Blank:
+    """A part's blank from its outer ring sampled at the fine tolerance (counter-clockwise, mm).
 
     ``bore`` adds the shaft hole (leaving ``wall`` mm to the outline) — or where none is given a
     pilot hole — ``hole`` a given inner ring instead (clockwise, fine), ``marks`` closed rings to
     engrave (fine), ``caps`` other outer rings of the solid's end faces that the chamfer must fit
 too (a twisted gear's end sections).  The pivot is engraved as a cross sized to the part: a fifth of the radius
     the outline comes within, between 1 and 5 mm (none on a ring, whose hole is concentric).  The cut paths are made
-    for every part of a design together, by :func:`cut_paths`.
+    for every part of a design together, by :func:`cut_paths`, which makes the blanks parts.
     """
     tol = output.tolerance
     fine_tol = budget(tol).fine
@@ -220,13 +228,14 @@ too (a twisted gear's end sections).  The pivot is engraved as a cross sized to 
     check_chamfer(outline, output.thickness, output.chamfer, name=name, sections=caps)
     flat = output.dxf == "polyline-flat"
     mark = tuple(_cut_ring(r, tol, fine_tol, flat=flat, part=name) for r in marks)
-    return Part(name, outline, fine, (), mark, pivot_mark, pivot, diameter)
+    return Blank(name, outline, fine, mark, pivot_mark, pivot, diameter)
 
 
-def cut_paths(parts: tuple[Part, ...], output: CutSpec) -> tuple[Part, ...]:
-    """Every part with its cut paths as they will be written: offset half the kerf into the waste,
-    arcs fitted, each checked simple and within the tolerance.  A kerf that would fill a tooth
-    space or close a hole of any part is refused with the largest kerf every part takes."""
+def cut_paths(parts: tuple[Blank, ...], output: CutSpec) -> tuple[Part, ...]:
+    """Every blank made a complete part, its cut paths as they will be written: offset half the
+    kerf into the waste, arcs fitted, each checked simple and within the tolerance.  A kerf that
+    would fill a tooth space or close a hole of any part is refused with the largest kerf every
+    part takes."""
     tol = output.tolerance
     fine_tol = budget(tol).fine
     flat = output.dxf == "polyline-flat"
@@ -249,7 +258,10 @@ def cut_paths(parts: tuple[Part, ...], output: CutSpec) -> tuple[Part, ...]:
             for i, (p, k) in enumerate(zip(parts, kerfed))
             if same[i] == i
         }
-        return tuple(replace(p, cut=cuts[same[i]].result()) for i, p in enumerate(parts))
+        return tuple(
+            Part(p.name, p.outline, p.fine, cuts[same[i]].result(), p.mark, p.pivot_mark, p.pivot, p.pivot_diameter)
+            for i, p in enumerate(parts)
+        )
 
 
 def _alike(a: Outline, b: Outline, within: float) -> bool:

@@ -7,7 +7,7 @@ from pathlib import Path
 import numpy as np
 from matplotlib.ticker import NullFormatter
 
-from ...geometry.outline import rotate
+from ...geometry.outline import place
 from .png import plt, save_png
 
 __all__ = ["draw", "limits_chart", "field_chart", "rolling_chart", "train_chart"]
@@ -97,7 +97,7 @@ def train_chart(report: dict, parts, placements, path: Path) -> None:
     fig, (ax, bar) = plt.subplots(1, 2, figsize=(12, 5), gridspec_kw={"width_ratios": [1.3, 1]})
     for k, (part, pl) in enumerate(zip(parts, placements)):
         for ring in part.outline.rings:
-            pts = rotate(ring, pl.angle) + np.asarray(pl.offset)
+            pts = place(ring, pl.angle, pl.offset)
             pts = np.vstack([pts, pts[:1]])
             ax.plot(pts[:, 0], pts[:, 1], color=f"C{k}", lw=0.7)
         ax.plot(*pl.offset, "+", color=f"C{k}")

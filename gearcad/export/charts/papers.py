@@ -8,6 +8,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ...geometry.outline import place
 from .png import plt, save_png
 
 __all__ = [
@@ -160,8 +161,7 @@ def shoe_chart(ring, poses, hub_height: float, path: Path) -> None:
     ring = np.asarray(ring)
     fig, ax = plt.subplots(figsize=(9, 7))
     for k, (phi, angle, offset) in enumerate(poses):
-        c, s = math.cos(angle), math.sin(angle)
-        pts = np.column_stack([c * ring[:, 0] - s * ring[:, 1], s * ring[:, 0] + c * ring[:, 1]]) + offset
+        pts = place(ring, angle, offset)
         pts = np.vstack([pts, pts[:1]])
         ax.plot(pts[:, 0], pts[:, 1], color=f"C{k % 10}", lw=0.8, label=f"φ = {math.degrees(phi):.0f}°")
         ax.plot([0, offset[0]], [0, offset[1]], color=f"C{k % 10}", lw=0.6, alpha=0.6)

@@ -9,6 +9,7 @@ import numpy as np
 from mpl_toolkits.mplot3d.art3d import Poly3DCollection
 
 from ...geometry.arcfit import decimate, decimate_indices
+from ...geometry.outline import place
 from ..loft import loft
 from ..mesh import Solid, SolidItem, extrude
 from .png import plt, save_png
@@ -24,9 +25,8 @@ _LIGHT = np.array([0.35, -0.55, 0.75]) / np.linalg.norm([0.35, -0.55, 0.75])
 
 def _placed(item: SolidItem) -> np.ndarray:
     """(m, 3, 3) the item's triangles turned about z by its angle and moved by its offset."""
-    c, s = np.cos(item.angle), np.sin(item.angle)
-    v = item.solid.vertices
-    xyz = np.column_stack([c * v[:, 0] - s * v[:, 1], s * v[:, 0] + c * v[:, 1], v[:, 2]]) + np.asarray(item.offset)
+    v, (dx, dy, dz) = item.solid.vertices, item.offset
+    xyz = np.column_stack([place(v[:, :2], item.angle, (dx, dy)), v[:, 2] + dz])
     return xyz[item.solid.triangles]
 
 
