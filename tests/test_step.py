@@ -203,6 +203,12 @@ def test_straight_parts_are_exact_named_extrusions_placed_as_assembled(spur, tmp
         assert f"PRODUCT('{part.name}'" in text and "SI_UNIT(.MILLI.,.METRE.)" in text
         assert f"FILE_NAME('{part.name}','2000-01-01T00:00:00',('gearcad')" in text
     _assembly_places_the_parts(design, folder, volumes)
+    # the profile page lists them as every other file: faces by type, volume
+    page = (folder / "index.html").read_text(encoding="utf-8")
+    for part in design.parts():
+        faces = files[f"{part.name}.step"]["faces"]
+        listed = f"{faces['cylinder']} cylinder + {faces['plane']} plane faces, {volumes[part.name]:.1f} mm³"
+        assert f">{part.name}.step</a>" in page and listed in page, part.name
     # written again (OpenCASCADE's counters now further on): the same bytes
     write_step_files(design, tmp_path)
     for path in sorted(folder.glob("*.step")):
