@@ -1,24 +1,23 @@
 """STEP solids read back with OpenCASCADE (issue 21): valid, one closed shell, the right faces,
-the volume of the arcs' closed-form area and of the 3MF, the DXF outline at half thickness.
+the volume of the arcs' closed form and of the 3MF, the DXF outline at half thickness, the
+twisted flank within the tolerance of the section cut halfway between two sections.
 
-Two builds keep this cheap: the spur pair (straight teeth) and the herringbone pair at a coarse
-tolerance.  The arc-vs-facet volume difference is ``thickness × (area with arcs − area of the
-3MF's polygon)``: the polygon's chords lie up to the tolerance inside convex arcs and outside
-concave ones, so the two solids differ by up to the perimeter × tolerance × thickness (measured
-3.5e-5 relative on the 41-tooth focus pair at 1 µm); the test holds the difference to that
-formula within 1e-9 relative, and each solid to its own closed form.
+Two small builds keep this cheap (each made once and read by one test, so that pytest-xdist
+does not build a module fixture again in every worker): the spur pair at 0.02 mm and the
+herringbone pair at 0.1 mm, 4 mm thick (a few sections).  The arc-vs-facet volume difference is
+``thickness × (area with arcs − area of the 3MF's polygon)``: the polygon's chords lie up to the
+tolerance inside convex arcs and outside concave ones, so the two solids differ by at most
+perimeter × tolerance × thickness; the test holds the difference to that formula within 1e-9
+relative, and each solid to its own closed form.
 """
 
 from __future__ import annotations
 
-import json
 import math
-import re
 import shutil
 import subprocess
 
 import ezdxf
-import ezdxf.path
 import numpy as np
 import pytest
 import shapely
@@ -27,8 +26,11 @@ import trimesh
 import gearcad
 from gearcad.api import load_profile
 from gearcad.export.dxf import ring_area_with_arcs
+from gearcad.export.step import write_step_files
+from gearcad.export.write import write_design
 
 OCP = pytest.importorskip("OCP")
+from OCP.BRep import BRep_Tool  # noqa: E402
 from OCP.BRepAdaptor import BRepAdaptor_Curve, BRepAdaptor_Surface  # noqa: E402
 from OCP.BRepAlgoAPI import BRepAlgoAPI_Section  # noqa: E402
 from OCP.BRepCheck import BRepCheck_Analyzer  # noqa: E402
@@ -42,8 +44,7 @@ from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_SHELL, TopAbs_SOLID  # n
 from OCP.TopExp import TopExp_Explorer  # noqa: E402
 from OCP.TopoDS import TopoDS  # noqa: E402
 
-FORMATS = '["3mf", "dxf", "step"]'
-QUIET = ["output.charts=false", "output.animation=false", f"output.formats={FORMATS}"]
+QUIET = ["output.charts=false", "output.animation=false"]
 SURFACES = {
     GeomAbs_Plane: "plane",
     GeomAbs_Cylinder: "cylinder",
@@ -52,15 +53,25 @@ SURFACES = {
 }
 
 
+def _written(tmp_path_factory, profile: str, overrides: list[str]):
+    params = load_profile(profile, [*overrides, *QUIET])
+    design = gearcad.design(params)
+    folder = tmp_path_factory.mktemp(params.name)
+    files = write_design(design, folder)
+    return design, folder, files
+
+
 @pytest.fixture(scope="module")
-def builds(tmp_path_factory):
-    out = tmp_path_factory.mktemp("step")
-    profiles = [
-        load_profile("profiles/spur_pair.toml", ["output.tolerance=0.01", *QUIET]),
-        load_profile("profiles/herringbone_elliptic.toml", ["output.tolerance=0.05", *QUIET]),
-    ]
-    gearcad.build(profiles, out)
-    return {p.name: (gearcad.design(p), out / p.name) for p in profiles}
+def spur(tmp_path_factory):
+    return _written(
+        tmp_path_factory, "profiles/spur_pair.toml", ["output.tolerance=0.02", 'output.formats=["step","3mf","dxf"]']
+    )
+
+
+@pytest.fixture(scope="module")
+def herringbone(tmp_path_factory):
+    overrides = ["output.tolerance=0.1", "output.thickness=4", 'output.formats=["step","3mf"]']
+    return _written(tmp_path_factory, "profiles/herringbone_elliptic.toml", overrides)
 
 
 def _read(path):
@@ -99,12 +110,16 @@ def _one_closed_solid(shape, where):
     assert len(shells) == 1 and shells[0].Closed(), where
 
 
-def _section_points(shape, z: float, per_edge: int = 24) -> np.ndarray:
-    """Points on the shape's section by the plane at height z: (k, 2) mm."""
+def _section(shape, z: float):
     section = BRepAlgoAPI_Section(shape, gp_Pln(gp_Pnt(0, 0, z), gp_Dir(0, 0, 1)))
     section.Build()
+    return section.Shape()
+
+
+def _points(section, per_edge: int = 9) -> np.ndarray:
+    """Points along a section's edges: (k, 2) mm."""
     points = []
-    for edge in _all(section.Shape(), TopAbs_EDGE):
+    for edge in _all(section, TopAbs_EDGE):
         curve = BRepAdaptor_Curve(TopoDS.Edge(edge))
         for t in np.linspace(curve.FirstParameter(), curve.LastParameter(), per_edge):
             p = curve.Value(float(t))
@@ -112,92 +127,151 @@ def _section_points(shape, z: float, per_edge: int = 24) -> np.ndarray:
     return np.array(points)
 
 
-def _dxf_outline(path) -> shapely.MultiLineString:
-    """The CUT layer's paths, arcs flattened to 0.01 µm."""
-    lines = []
-    for entity in ezdxf.readfile(path).modelspace().query('*[layer=="CUT"]'):
-        lines.append(np.array([(v.x, v.y) for v in ezdxf.path.make_path(entity).flattening(1e-5)]))
-    return shapely.MultiLineString(lines)
+def _length(shape) -> float:
+    props = GProp_GProps()
+    BRepGProp.LinearProperties_s(shape, props)
+    return props.Mass()
 
 
-def test_straight_parts_are_exact_extrusions_of_the_arcs(builds):
-    design, folder = builds["spur_pair"]
+def _dxf_rings(path) -> list[tuple[np.ndarray, np.ndarray]]:
+    """The CUT layer's closed polylines as (vertices (n, 2), bulges (n,)), as written."""
+    rings = []
+    for entity in ezdxf.readfile(path).modelspace().query('LWPOLYLINE[layer=="CUT"]'):
+        assert entity.closed
+        xyb = np.array(entity.get_points("xyb"), dtype=float)
+        rings.append((xyb[:, :2], xyb[:, 2]))
+    return rings
+
+
+def _arcs_exactly(v: np.ndarray, bulges: np.ndarray, step: float = math.radians(0.5)):
+    """The ring's points on its exact lines and circles (each arc sampled every ``step`` rad,
+    from its centre: no Bézier in between, as ezdxf's flattening has) and its length, closed form."""
+    points, length = [], 0.0
+    for a, b, bulge in zip(v, np.roll(v, -1, axis=0), bulges):
+        chord = float(np.hypot(*(b - a)))
+        if bulge == 0:
+            points.append(a[None])
+            length += chord
+            continue
+        sweep = 4 * math.atan(bulge)
+        radius = chord / (2 * abs(math.sin(sweep / 2)))
+        left = np.array([a[1] - b[1], b[0] - a[0]]) / chord
+        centre = (a + b) / 2 + left * radius * math.cos(sweep / 2) * math.copysign(1, sweep)
+        start = math.atan2(*(a - centre)[::-1])
+        t = start + np.linspace(0, sweep, max(2, math.ceil(abs(sweep) / step)), endpoint=False)
+        points.append(centre + radius * np.column_stack([np.cos(t), np.sin(t)]))
+        length += radius * abs(sweep)
+    return np.vstack(points), length
+
+
+def _edges(ring: np.ndarray) -> np.ndarray:
+    return shapely.linestrings(np.stack([ring, np.roll(ring, -1, axis=0)], axis=1))
+
+
+def test_straight_parts_are_exact_named_extrusions_placed_as_assembled(spur, tmp_path):
+    design, folder, files = spur
     out = design.params.output
-    report = json.loads((folder / "report.json").read_text(encoding="utf-8"))["files"]
+    volumes = {}
     for part in design.parts():
-        shape = _read(folder / f"{part.name}.step")
+        path = folder / f"{part.name}.step"
+        shape = _read(path)
         _one_closed_solid(shape, part.name)
         faces = _faces(shape)
         assert set(faces) <= {"plane", "cylinder"} and faces["cylinder"] > 0, (part.name, faces)
-        assert faces == report[f"{part.name}.step"]["faces"]
+        assert faces == files[path.name]["faces"]
         # one face per run: at most one side face per fitted segment, and the caps
         assert sum(faces.values()) <= part.cut_vertices + 2
-        area = sum(ring_area_with_arcs(r) for r in part.cut)  # closed form of lines and arcs
-        step_volume = _volume(shape)
+        # the volume: the arcs' closed-form area extruded; the 3MF's polygon, and their difference
+        area = sum(ring_area_with_arcs(r) for r in part.cut)
+        volumes[part.name] = step_volume = _volume(shape)
         assert step_volume == pytest.approx(area * out.thickness, rel=1e-9)
         mesh = trimesh.load(folder / f"{part.name}.3mf", force="mesh")
         facets = part.outline.area * out.thickness  # the 3MF is the polygon extruded (its text rounds)
         assert mesh.volume == pytest.approx(facets, rel=1e-7)
         assert step_volume - mesh.volume == pytest.approx(area * out.thickness - facets, abs=1e-7 * step_volume)
-        assert abs(step_volume - mesh.volume) <= 2 * out.tolerance * _perimeter(part) * out.thickness
-        # the section at half thickness is the DXF's outline
-        points = _section_points(shape, out.thickness / 2)
-        dxf = _dxf_outline(folder / f"{part.name}.dxf")
-        assert float(np.max(shapely.distance(shapely.points(points), dxf))) <= out.tolerance / 10
-        assert _section_length(shape, out.thickness / 2) == pytest.approx(dxf.length, rel=1e-6)
-
-
-def _perimeter(part) -> float:
-    return sum(shapely.LinearRing(r).length for r in part.outline.rings)
-
-
-def _section_length(shape, z: float) -> float:
-    section = BRepAlgoAPI_Section(shape, gp_Pln(gp_Pnt(0, 0, z), gp_Dir(0, 0, 1)))
-    section.Build()
-    props = GProp_GProps()
-    BRepGProp.LinearProperties_s(section.Shape(), props)
-    return props.Mass()
-
-
-def test_files_name_the_parts_in_mm_and_the_assembly_places_them(builds):
-    design, folder = builds["spur_pair"]
-    volumes = {}
+        perimeter = sum(shapely.LinearRing(r).length for r in part.outline.rings)
+        assert abs(step_volume - mesh.volume) <= out.tolerance * perimeter * out.thickness
+        # the section at half thickness is the DXF's cut outline: on its lines and circles, as long
+        section = _section(shape, out.thickness / 2)
+        exact = [_arcs_exactly(v, b) for v, b in _dxf_rings(folder / f"{part.name}.dxf")]
+        edges = shapely.STRtree(np.concatenate([_edges(p) for p, _ in exact]))
+        _, miss = edges.query_nearest(shapely.points(_points(section)), return_distance=True, all_matches=False)
+        assert float(np.max(miss)) <= out.tolerance / 100
+        assert _length(section) == pytest.approx(sum(length for _, length in exact), rel=1e-9)
+        # named, in mm, with a fixed header (the same design, the same bytes)
+        text = path.read_text()
+        assert f"PRODUCT('{part.name}'" in text and "SI_UNIT(.MILLI.,.METRE.)" in text
+        assert f"FILE_NAME('{part.name}','2000-01-01T00:00:00',('gearcad')" in text
+    _assembly_places_the_parts(design, folder, volumes)
+    # the profile page lists them as every other file: faces by type, volume
+    page = (folder / "index.html").read_text(encoding="utf-8")
     for part in design.parts():
-        text = (folder / f"{part.name}.step").read_text()
-        assert f"PRODUCT('{part.name}'" in text
-        assert re.search(r"SI_UNIT\(\.MILLI\.,\.METRE\.\)", text)
-        volumes[part.name] = _volume(_read(folder / f"{part.name}.step"))
+        faces = files[f"{part.name}.step"]["faces"]
+        listed = f"{faces['cylinder']} cylinder + {faces['plane']} plane faces, {volumes[part.name]:.1f} mm³"
+        assert f">{part.name}.step</a>" in page and listed in page, part.name
+    # written again (OpenCASCADE's counters now further on): the same bytes
+    write_step_files(design, tmp_path)
+    for path in sorted(folder.glob("*.step")):
+        assert (tmp_path / path.name).read_bytes() == path.read_bytes(), path.name
+
+
+def _assembly_places_the_parts(design, folder, volumes):
     text = (folder / "assembly.step").read_text()
     assert "PRODUCT('assembly'" in text and text.count("NEXT_ASSEMBLY_USAGE_OCCURRENCE(") == len(design.placements)
-    shape = _read(folder / "assembly.step")
-    solids = _all(shape, TopAbs_SOLID)
+    solids = _all(_read(folder / "assembly.step"), TopAbs_SOLID)
     assert len(solids) == len(design.placements)
     for solid, placement in zip(solids, design.placements):
         assert BRepCheck_Analyzer(solid).IsValid()
         props = GProp_GProps()
         BRepGProp.VolumeProperties_s(solid, props, 1e-7)
         assert props.Mass() == pytest.approx(volumes[placement.part], rel=1e-9)
-    # placed as in the 3MF: the pair's centre distance between the pivots' bounding centres
-    centres = sorted(_section_points(s, 1.0)[:, 0].mean() for s in solids)
-    offsets = sorted(pl.offset[0] for pl in design.placements)
-    assert np.allclose(centres, offsets, atol=0.5)
+        # placed as in the 3MF: each solid's centre of mass on its pivot's offset (a gear's own
+        # centre of mass is on its pivot within 0.5 mm)
+        centre = props.CentreOfMass()
+        assert np.allclose((centre.X(), centre.Y()), placement.offset, atol=0.5)
 
 
-def test_twisted_parts_are_lofted_through_the_3mf_sections(builds):
-    design, folder = builds["herringbone_elliptic"]
+def test_twisted_parts_are_lofted_through_the_3mf_sections(herringbone):
+    design, folder, files = herringbone
     out = design.params.output
     for part in design.parts():
-        shape = _read(folder / f"{part.name}.step")
+        path = folder / f"{part.name}.step"
+        shape = _read(path)
         _one_closed_solid(shape, part.name)
         faces = _faces(shape)
         # four ruled bands (the chamfers and the two helices), caps, the bore and its chamfers
         assert faces.get("bspline") == 4 and faces.get("cone") == 2, faces
+        assert faces == files[path.name]["faces"]
         mesh = trimesh.load(folder / f"{part.name}.3mf", force="mesh")
-        # the same ruled sections; the bore's chamfer is a cone here and facets there
+        # the same sections, ruled (STEP: bilinear patches; 3MF: two triangles on a diagonal);
+        # the bore's chamfer is a cone here and facets there
         assert _volume(shape, 1e-4) == pytest.approx(mesh.volume, rel=1e-3)
+        # halfway up the widest interval: the flank, read off the file's B-spline faces, within
+        # the tolerance of the section finely cut there (and as the report gives it)
         sections = design.sections[part.name]
-        # the section's own distance from the exact cut, as the report gives it
-        assert sections.deviation <= out.tolerance
+        assert sections.heights[0] < sections.mid_height < sections.heights[-1]
+        assert sections.mid_height not in set(sections.heights.tolist())
+        flank = _flank_at(shape, sections.mid_height)
+        assert len(flank) == sections.rings.shape[1]
+        exact = shapely.LinearRing(sections.mid_ring)
+        deviation = shapely.hausdorff_distance(shapely.LinearRing(flank), exact)  # vertices to edges, both ways
+        assert deviation <= out.tolerance
+        assert files[path.name]["mid_deviation"] == pytest.approx(deviation, rel=1e-9)
+        # and it does move between sections: the lower section itself is farther off there
+        lower = sections.rings[int(np.searchsorted(sections.heights, sections.mid_height)) - 1]
+        assert shapely.hausdorff_distance(shapely.LinearRing(lower), exact) > deviation
+
+
+def _flank_at(shape, z: float) -> np.ndarray:
+    """The B-spline face spanning height z evaluated at its knots u = 0, 1, …: (m, 2) mm."""
+    for face in _all(shape, TopAbs_FACE):
+        surface = BRep_Tool.Surface_s(TopoDS.Face(face))
+        if BRepAdaptor_Surface(TopoDS.Face(face)).GetType() != GeomAbs_BSplineSurface:
+            continue
+        u0, u1, v0, v1 = surface.Bounds()
+        if v0 < z < v1:
+            return np.array([(q.X(), q.Y()) for q in (surface.Value(float(u), z) for u in range(int(u0), int(u1)))])
+    raise AssertionError(f"no B-spline face spans z = {z}")
 
 
 def test_a_chamfer_is_its_own_faces_at_the_closed_form_volume():
@@ -228,10 +302,11 @@ def test_profiles_take_step_and_refuse_what_is_not_a_format():
 FREECAD = shutil.which("freecadcmd") or shutil.which("FreeCADCmd")
 
 
-def test_freecad_imports_every_part_as_one_valid_solid(builds, tmp_path):
+def test_freecad_imports_every_part_as_one_valid_solid(request, tmp_path):
     if FREECAD is None:
         pytest.skip("FreeCAD is not installed: apt-get install -y freecad (or python3 tasks.py consumers)")
-    paths = [p for _, folder in builds.values() for p in sorted(folder.glob("*.step")) if p.stem != "assembly"]
+    spur, herringbone = request.getfixturevalue("spur"), request.getfixturevalue("herringbone")
+    paths = [p for _, folder, _ in (spur, herringbone) for p in sorted(folder.glob("*.step")) if p.stem != "assembly"]
     script = tmp_path / "check.py"
     script.write_text(
         "import Part\n"

@@ -116,6 +116,11 @@ def _what(name: str, entry: Mapping) -> str:
     for key, unit in (("vertices", "vertices"), ("segments", "segments"), ("triangles", "triangles")):
         if key in entry:
             bits.append(f"{entry[key]} {unit}")
+    if "faces" in entry:  # a STEP solid
+        faces = " + ".join(f"{n} {kind}" for kind, n in sorted(entry["faces"].items()))
+        bits += [f"solid: {faces} faces", f"{entry['volume']:.1f} mm³"]
+    if "mid_deviation" in entry:
+        bits.append(f"flank within {entry['mid_deviation']:.4f} mm of the exact section")
     if "rows" in entry:
         bits.append(f"table, {entry['rows']} rows")
     if "frames" in entry:

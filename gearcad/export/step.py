@@ -10,10 +10,16 @@ from __future__ import annotations
 from collections.abc import Sequence
 from pathlib import Path
 
-from ..mechanisms import Design
-from .step_brep import StepSolid, straight_solid, twisted_solid
+import shapely
 
-__all__ = ["write_step_files", "write_step", "write_step_assembly", "face_counts", "volume"]
+from ..mechanisms import Design
+from .step_brep import StepSolid, ruled_section, straight_solid, twisted_solid
+
+__all__ = ["write_step_files", "write_step", "write_step_assembly", "face_counts", "volume", "STEP_TIMESTAMP"]
+
+STEP_TIMESTAMP = "2000-01-01T00:00:00"
+"""The FILE_NAME time stamp of every STEP file: fixed (ISO 8601, as the standard asks), so that
+files are byte-identical from build to build (as ezdxf's fixed dates in the DXF)."""
 
 
 def face_counts(shape) -> dict[str, int]:
@@ -81,8 +87,40 @@ def _write(path: Path, doc) -> None:
     Interface_Static.SetIVal_s("write.surfacecurve.mode", 0)  # no 2-D curves on faces: a third of the size
     writer = STEPCAFControl_Writer()
     writer.SetNameMode(True)
-    if not writer.Transfer(doc, STEPControl_AsIs) or writer.Write(str(path)) != IFSelect_RetDone:
+    if not writer.Transfer(doc, STEPControl_AsIs):
         raise RuntimeError(f"STEP: OpenCASCADE could not write {path.name}")
+    _fixed_header(writer.ChangeWriter().Model(), path.stem)
+    if writer.Write(str(path)) != IFSelect_RetDone:
+        raise RuntimeError(f"STEP: OpenCASCADE could not write {path.name}")
+
+
+def _fixed_header(model, name: str) -> None:
+    """The FILE_NAME entity without the clock (OpenCASCADE stamps the time of writing): the
+    same design gives the same bytes, as every other file gearcad writes."""
+    from OCP.APIHeaderSection import APIHeaderSection_MakeHeader
+    from OCP.TCollection import TCollection_HAsciiString
+
+    header = APIHeaderSection_MakeHeader(model)
+    header.SetName(TCollection_HAsciiString(name))
+    header.SetTimeStamp(TCollection_HAsciiString(STEP_TIMESTAMP))
+    header.SetAuthorValue(1, TCollection_HAsciiString("gearcad"))
+    header.SetOrganizationValue(1, TCollection_HAsciiString(""))
+    header.SetOriginatingSystem(TCollection_HAsciiString("gearcad"))
+    _number_occurrences(model)
+
+
+def _number_occurrences(model) -> None:
+    """The assembly's occurrences numbered 1, 2, … in the file (OpenCASCADE numbers them from a
+    counter that lives as long as the process: the second build's assembly would differ)."""
+    from OCP.StepRepr import StepRepr_NextAssemblyUsageOccurrence
+    from OCP.TCollection import TCollection_HAsciiString
+
+    count = 0
+    for k in range(1, model.NbEntities() + 1):
+        entity = model.Value(k)
+        if isinstance(entity, StepRepr_NextAssemblyUsageOccurrence):
+            count += 1
+            entity.SetId(TCollection_HAsciiString(str(count)))
 
 
 def write_step(path: Path, solid: StepSolid, *, relative_error: float = 1e-7) -> dict:
@@ -125,9 +163,16 @@ def _solid(design: Design, part, rings) -> tuple[StepSolid, dict]:
         return straight_solid(rings, out.thickness, name=part.name, chamfer=out.chamfer), {}
     breaks = (out.thickness / 2,) if twisted.hand.startswith("herringbone") else ()
     solid = twisted_solid(twisted.heights, twisted.rings, rings[1:], name=part.name, chamfer=out.chamfer, breaks=breaks)
-    # the faces run through the resampled sections, ruled between them as the 3MF is: the
-    # design's loft_deviation (mid-interval, measured) holds for them too
-    return solid, {"sections": len(twisted.heights), "section_deviation": twisted.deviation}
+    # halfway up the widest interval the flank is read off its B-spline faces and measured
+    # against the section finely cut there (the twist between sections is largest there)
+    mid = ruled_section(solid.shape, twisted.mid_height)
+    deviation = shapely.hausdorff_distance(shapely.LinearRing(mid), shapely.LinearRing(twisted.mid_ring))
+    return solid, {
+        "sections": len(twisted.heights),
+        "section_deviation": twisted.deviation,
+        "mid_height": twisted.mid_height,
+        "mid_deviation": float(deviation),
+    }
 
 
 def write_step_files(design: Design, folder: Path) -> dict[str, dict]:

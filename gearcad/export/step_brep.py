@@ -22,7 +22,7 @@ import numpy as np
 from ..geometry.arcfit import ArcRing
 from ..geometry.inset import inset_ring
 
-__all__ = ["StepSolid", "straight_solid", "twisted_solid"]
+__all__ = ["StepSolid", "straight_solid", "twisted_solid", "ruled_section"]
 
 _MERGE = 1e-9
 """Two arcs are one circle, two lines one line, where centres, radii and offsets agree this
@@ -261,3 +261,25 @@ def _wire_of(edge):
     from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeWire
 
     return BRepBuilderAPI_MakeWire(edge).Wire()
+
+
+def ruled_section(shape, z: float) -> np.ndarray:
+    """The twisted flank's section at height ``z`` read off its B-spline faces: (m, 2) mm, the
+    surface evaluated at u = j (vertex j of the sections), v = z.  The faces are degree 1 in u,
+    so the polyline through these points is the section itself (bilinear between two sections:
+    halfway up, the midpoints of the vertical edges — not the 3MF's diagonals)."""
+    from OCP.BRep import BRep_Tool
+    from OCP.TopAbs import TopAbs_FACE
+    from OCP.TopExp import TopExp_Explorer
+    from OCP.TopoDS import TopoDS
+
+    explorer = TopExp_Explorer(shape, TopAbs_FACE)
+    while explorer.More():
+        surface = BRep_Tool.Surface_s(TopoDS.Face(explorer.Current()))
+        explorer.Next()
+        if not hasattr(surface, "NbUPoles"):  # a plane, cylinder or cone: not the flank
+            continue
+        u0, u1, v0, v1 = surface.Bounds()
+        if v0 < z < v1:
+            return np.array([(q.X(), q.Y()) for q in (surface.Value(float(u), z) for u in range(int(u0), int(u1)))])
+    raise ValueError(f"no ruled face spans z = {z:g} mm")

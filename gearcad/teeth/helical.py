@@ -199,6 +199,12 @@ class GearSections:
     in the lower half) or "herringbone-left"."""
     deviation: float
     """Largest distance of a resampled ring from its finely cut section, mm."""
+    mid_height: float
+    """z halfway up the widest interval between sections (where the twist between them is
+    largest), mm: where a loft through them is checked."""
+    mid_ring: np.ndarray
+    """(p, 2) the section finely cut at ``mid_height`` (counter-clockwise, mm): what a loft
+    through the sections should pass within the tolerance of there."""
 
     def sections(self) -> list[tuple[float, np.ndarray]]:
         """The (z, ring) pairs."""
@@ -286,6 +292,8 @@ def helical_sections(
             phase = plan.phases[i] + hands[i] * float(c) * tan
             gears.append(replace(g, outline=Outline((ring,)), space_root=roots, phase=phase))
         stack = np.stack([rings[k] for k in back])
+        k = int(np.argmax(np.diff(heights)))
+        mid = section(i, 0.5 * (climbed[k] + climbed[k + 1]))[0].outline.rings[0]
         stack.flags.writeable = False
         hand = ("right", "left")[i]
         out.append(
@@ -296,6 +304,8 @@ def helical_sections(
                 gears=tuple(gears[k] for k in back),
                 hand=f"herringbone-{hand}" if herringbone else hand,
                 deviation=deviation,
+                mid_height=0.5 * float(heights[k] + heights[k + 1]),
+                mid_ring=mid,
             )
         )
     return HelicalSections((out[0], out[1]), chosen, fine)
