@@ -14,13 +14,18 @@ def section_bands(report: dict) -> str:
     if not bands:
         return ""
     kind = (report.get("process") or {}).get("kind", "none")
+
+    def mm(value, digits: int = 4) -> str:  # a value not measured (null in the report) shows as –
+        return "–" if value is None else f"{value:.{digits}f}"
+
     rows = "".join(
-        f"<tr><td>{escape(b['mesh'])}</td>"
-        f"<td class='num'>{b['nominal_min']:.4f} … {b['nominal_max']:.4f}</td>"
-        f"<td class='num'>{b['min']:.4f} … {b['max']:.4f}</td>"
-        f"<td class='num'>{b['worst_tooth']} at {math.degrees(b['worst_phi']):.1f}°</td>"
-        f'<td><span class="{"good" if b["verdict"] == "fits" else "bad"}">{escape(b["verdict"])}</span></td>'
-        f"<td class='num'>{b['needed_backlash']:.3f}</td></tr>"
+        f"<tr><td>{escape(str(b['mesh']))}</td>"
+        f"<td class='num'>{mm(b['nominal_min'])} … {mm(b['nominal_max'])}</td>"
+        f"<td class='num'>{mm(b['min'])} … {mm(b['max'])}</td>"
+        f"<td class='num'>{b['worst_tooth']} at "
+        f"{'–' if b['worst_phi'] is None else format(math.degrees(b['worst_phi']), '.1f')}°</td>"
+        f'<td><span class="{"good" if b["verdict"] == "fits" else "bad"}">{escape(str(b["verdict"]))}</span></td>'
+        f"<td class='num'>{mm(b['needed_backlash'], 3)}</td></tr>"
         for b in bands
     )
     return (
