@@ -82,8 +82,13 @@ def _write(d: Design, folder: Path, beside: bool) -> dict[str, dict]:
     """The design's files in ``folder``; a write the system refuses is an :class:`OutputError`."""
     from .export.write import write_design  # the file libraries only when files are written
 
-    with _writing(f"{d.name}: cannot write its files"):
+    try:
         return write_design(d, folder, beside=beside)
+    except OSError as exc:  # a full disk (ENOSPC, EDQUOT), a read-only or failing filesystem
+        if isinstance(exc, BrokenPipeError):  # the reader of our output has gone: the CLI's to handle
+            raise
+        where = _shown(Path(exc.filename).name) if exc.filename else "its files"
+        raise OutputError(f"{where}: cannot write ({exc.strerror or exc}); nothing was published") from None
 
 
 def _worker_init() -> None:

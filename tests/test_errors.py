@@ -48,7 +48,7 @@ def test_a_schema_that_cannot_be_written_is_one_line(tmp_path, capsys):
     target = tmp_path / "missing" / "schema.json"
     assert main(["schema", "--out", str(target)]) == 2
     (line,) = capsys.readouterr().err.strip().splitlines()
-    assert line == f"gearcad: error: --out {target}: cannot write (No such file or directory)"
+    assert line == f"gearcad: error: --out {target}: cannot write the schema there (No such file or directory)"
 
 
 def test_error_types_are_kept_through_the_api():
