@@ -222,3 +222,32 @@ def test_dropped_noise_never_moves_the_curve_more_than_allowed():
         radii = 20 + 0.02 * np.random.default_rng(seed).uniform(-1, 1, 300)
         full, thinned = shapes.from_samples("a", radii), shapes.from_samples("b", radii, negligible=0.05)
         assert np.max(np.abs(full.r(phi) - thinned.r(phi))) <= 0.05
+
+
+@pytest.mark.parametrize(
+    ("curve", "declared", "found"),
+    [
+        (shapes.ellipse_centre(25.0, 20.0), 1, 2),
+        (shapes.ellipse_focus(25.0, 20.0), 2, 1),
+        (shapes.oval(25.0, 20.0), 4, 2),
+    ],
+)
+def test_radii_with_other_lobes_than_declared_are_refused_naming_the_key(tmp_path, capsys, curve, declared, found):
+    """An ellipse about its centre repeats twice a turn, about a focus once (issue 24, item 16):
+    declared otherwise, the build stops in one line naming gear1.lobes and what the radii hold
+    (was: accepted as another pair, or "perimeter … is not 12 × π·m")."""
+    from gearcad.cli import main
+
+    radii = curve.r(np.linspace(0, TWO_PI, 90, endpoint=False))
+    path = tmp_path / "s.toml"
+    path.write_text(
+        f"[gear1]\ncurve = 'samples'\nlobes = {declared}\nradii = {[round(float(r), 9) for r in radii]}\n"
+        f"[gear2]\nlobes = {declared}\n[teeth]\ncount = 12\n",
+        encoding="utf-8",
+    )
+    out = tmp_path / "out"
+    assert main(["build", str(path), "--out", str(out)]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and not out.exists()
+    assert f"gear1.lobes = {declared}:" in err and f"set gear1.lobes = {found}" in err
+    assert shapes.from_samples("same", radii, lobes=found).lobes == found  # the right count passes

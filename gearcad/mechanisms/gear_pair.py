@@ -1,7 +1,6 @@
 """Gear pairs (seeds 004 and 002): pitch curves that roll and close, teeth, parts and the proof.
 
-profile → :func:`~.pair_pitch.pitch_design` (curves and the papers' checks) → teeth
-(:func:`~gearcad.teeth.pair.cut_pair`) → parts with bores → :class:`~.base.Design`.
+profile → :func:`~.pair_pitch.pitch_design` → teeth (:func:`~gearcad.teeth.pair.cut_pair`) → parts → Design.
 """
 
 from __future__ import annotations
@@ -178,6 +177,7 @@ def _report_data(
             "clearance": params.teeth.clearance,
             "backlash_min": teeth.backlash_range[0],
             "backlash_max": teeth.backlash_range[1],
+            "contact": teeth.contact.as_dict(),
             "mesh": {
                 "meshes": mesh.meshes,
                 "positions": mesh.positions,
@@ -270,7 +270,7 @@ def _details(pitch: PairDesign, teeth: ToothedPairData | None) -> list[str]:
         lines.append(
             f"mesh: max overlap {teeth.mesh.max_overlap:.3g} mm² (allowed {teeth.mesh.allowed_overlap:.3g}), "
             f"depth {teeth.mesh.max_depth * 1e3:.3g} µm (allowed {teeth.mesh.allowed_depth * 1e3:.3g}), "
-            f"backlash {lo:.4f}…{hi:.4f} mm"
+            f"backlash {lo:.4f}…{hi:.4f} mm; {teeth.contact.sentence()}"
         )
     return lines
 

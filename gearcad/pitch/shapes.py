@@ -187,6 +187,21 @@ def _smooth_order(spectrum: np.ndarray, radii: np.ndarray, smoothing: float) -> 
     return lo
 
 
+def _check_lobes(orders: np.ndarray, lobes: int, key: str) -> None:
+    """Refuse radii that repeat another number of times per turn than ``lobes`` says: a curve
+    with n lobes holds only orders that are multiples of n, so the radii's lobes are the greatest
+    common divisor of the orders they hold (a circle holds none and has any number)."""
+    if not len(orders):
+        return
+    found = int(np.gcd.reduce(orders))
+    if found != lobes:
+        name = key.rsplit(".", 1)[0] + ".lobes" if "." in key else "lobes"
+        raise DesignError(
+            f"{name} = {lobes}: the radii repeat {found} time{'s' if found > 1 else ''} per turn (their waves "
+            f"are of orders {', '.join(map(str, orders[:4]))}{', …' if len(orders) > 4 else ''}); set {name} = {found}"
+        )
+
+
 def from_samples(
     name: str,
     radii,
@@ -235,6 +250,7 @@ def from_samples(
             f"noise they hold waves up to order {top} per turn (at most order {max_order}); smooth them or give "
             "fewer samples"
         )
+    _check_lobes(np.flatnonzero(~small[1:]) + 1, lobes, key)
     # r = Re Σ (c_k − i·s_k)·z^k with z = e^{iφ}, by Horner's rule: one complex multiply-add per
     # order on the angles' array (10× faster than a cos and a sin of every angle × order, and
     # memory of one array however many samples the profile gives)

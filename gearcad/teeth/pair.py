@@ -19,6 +19,7 @@ from ..geometry.verify import nearest, thin
 from ..pitch.gear import GearData
 from ..pitch.pair import PairData
 from ..tolerances import DEFAULT, Budget, Tolerances, designed_play
+from .contact import ContactData, contact_along
 from .frame import ArcFrame, arc_frame
 from .gear import ToothedGear, cut_teeth
 from .mesh import MeshData, backlash_range, mesh_check, nudge_arc
@@ -66,6 +67,8 @@ class ToothedPairData:
     overcut: tuple[RackOvercut | None, RackOvercut | None] = (None, None)
     """How far a rack or hob would cut beyond each gear's outline (None where its pitch curve is
     convex: there the outline is what a rack leaves)."""
+    contact: ContactData | None = None  # always set by cut_pair
+    """Contact ratio and working pressure angle along the cycle (:mod:`.contact`)."""
 
 
 def refuse_corners(gears: Sequence[GearData]) -> None:
@@ -231,6 +234,7 @@ def cut_pair(
         ),
         relief=trim,
         overcut=overcut,
+        contact=contact_along(pair, (toothed[0].rack, toothed[1].rack)),
     )
 
 
