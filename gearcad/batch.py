@@ -25,7 +25,7 @@ from .errors import GearcadError, OutputError, ProfileError
 from .findings import Finding
 from .mechanisms import Design, design
 from .profiles import ProfileParams
-from .publish import Interrupted, Publisher, _shown, check_out, interrupt_guard, out_lock
+from .publish import Interrupted, Publisher, _held_signals, _shown, check_out, interrupt_guard, out_lock
 
 __all__ = ["BuildResult", "build", "design_all"]
 
@@ -97,9 +97,8 @@ def _worker_init() -> None:
     signal.signal(signal.SIGTERM, signal.SIG_DFL)
 
 
-def _in_order(pool: ProcessPoolExecutor, jobs: list) -> Iterator[BuildResult]:
+def _in_order(futures: list, jobs: list) -> Iterator[BuildResult]:
     """The pool's results in the jobs' order; a worker that died is one line naming its profiles."""
-    futures = [pool.submit(_build_one, job) for job in jobs]
     for future in futures:
         try:
             yield future.result()
@@ -118,6 +117,8 @@ def _broken(future) -> bool:
 def _stop(pool: ProcessPoolExecutor) -> None:
     """End the pool's workers now (an error or an interrupt in the parent), not after their builds."""
     workers = list((getattr(pool, "_processes", None) or {}).values())  # no public way before 3.14
+    # and any child forked but not yet recorded by the pool: none may outlive the build
+    workers += [w for w in multiprocessing.active_children() if w not in workers]
     pool.shutdown(wait=False, cancel_futures=True)
     for worker in workers:
         worker.terminate()
@@ -153,13 +154,17 @@ def build(
         beside = _workers(len(profiles) + 1) > count
         with _writing(f"--out {_shown(out)}: cannot make a folder to build in"):
             jobs = [(p, publisher.folder(p.name), beside) for p in profiles]
-        if count == 1:
-            built, pool = map(_build_one, jobs), None
-        else:
-            # an executor, not Pool: a worker killed (OOM killer, kill -9) breaks it, never hangs it
-            pool = ProcessPoolExecutor(count, mp_context=multiprocessing.get_context("fork"), initializer=_worker_init)
-            built = _in_order(pool, jobs)
+        pool = None
         try:
+            if count == 1:
+                built = map(_build_one, jobs)
+            else:
+                # an executor, not Pool: a worker killed (OOM killer, kill -9) breaks it, never hangs it
+                context = multiprocessing.get_context("fork")
+                pool = ProcessPoolExecutor(count, mp_context=context, initializer=_worker_init)
+                with _held_signals():  # every worker forked and recorded before an interrupt lands
+                    futures = [pool.submit(_build_one, job) for job in jobs]
+                built = _in_order(futures, jobs)
             for n, result in enumerate(built, 1):
                 results.append(result)
                 if progress:
