@@ -239,8 +239,9 @@ def _walker(
     return data, found
 
 
-def pitch_design(params: GearPairParams, *, tol: Tolerances = DEFAULT) -> PairDesign:
-    """Build and check the pitch curves of the pair a profile describes."""
+def synthesise(params: GearPairParams, tol: Tolerances = DEFAULT):
+    """The driver's curve, its ratio law (or None) and the conjugate pair the profile describes;
+    a given centre distance is checked against the curve first."""
     curve, law = driver_curve(params)
     if params.center_distance is not None:
         _check_center_distance(params, curve, tol)
@@ -251,6 +252,12 @@ def pitch_design(params: GearPairParams, *, tol: Tolerances = DEFAULT) -> PairDe
         mate_name=params.gear2_name,
         tol=tol,
     )
+    return curve, law, pair
+
+
+def pitch_design(params: GearPairParams, *, tol: Tolerances = DEFAULT) -> PairDesign:
+    """Build and check the pitch curves of the pair a profile describes."""
+    curve, law, pair = synthesise(params, tol)
     if pair.closure_error > tol.closure_rad or pair.rolling_residual > tol.rolling_mm:
         raise DesignError(  # never expected: a synthesis that fails its own checks is a bug to report
             f"the synthesised pair fails its checks (closure {pair.closure_error:.3g} rad, rolling "

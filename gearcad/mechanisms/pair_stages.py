@@ -27,7 +27,7 @@ from ..pitch.curve import TWO_PI, PitchCurve
 from ..pitch.focus_pair import FocusPair, focus_pair
 from ..pitch.gear import gear_data
 from ..pitch.motion import MotionFit
-from ..pitch.pair import conjugate_pair, shape_difference
+from ..pitch.pair import shape_difference
 from ..profiles import EllipseParams, GearPairParams
 from ..teeth.pair import refuse_corners, undercut_free_module
 from ..teeth.plan import tooth_count
@@ -35,7 +35,7 @@ from ..teeth.rack import Rack, RackParams
 from ..tolerances import DEFAULT
 from .base import Design
 from .budget import check_teeth_work
-from .pair_pitch import _check_center_distance, _shape_findings, driver_curve
+from .pair_pitch import _shape_findings, synthesise
 
 __all__ = ["STAGES", "staged_design", "tip_land"]
 
@@ -123,16 +123,7 @@ def _focus_pitch(params: GearPairParams) -> _Pitch:
 
 
 def _synthesised_pitch(params: GearPairParams, tol, likeness: bool) -> _Pitch:
-    curve, law = driver_curve(params)
-    if params.center_distance is not None:
-        _check_center_distance(params, curve, tol)
-    pair = conjugate_pair(
-        curve,
-        mate_lobes=params.gear2_lobes,
-        center_distance=params.center_distance,
-        mate_name=params.gear2_name,
-        tol=tol,
-    )
+    curve, law, pair = synthesise(params, tol)
     gears = (
         gear_data(params.gear1_name, pair.gear1, (0.0, 0.0), tol=tol),
         gear_data(params.gear2_name, pair.gear2, (pair.center_distance, 0.0), tol=tol),

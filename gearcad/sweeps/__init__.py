@@ -10,9 +10,6 @@ and CSV with the front and an HTML page.  pandas, pyarrow and dask are imported 
 
 from __future__ import annotations
 
-import math
-import sys
-import time
 import tomllib
 from collections.abc import Callable, Mapping, Sequence
 from pathlib import Path
@@ -20,7 +17,7 @@ from typing import Any
 
 from ..errors import ProfileError
 
-__all__ = ["sweep", "write_sweep", "stderr_progress"]
+__all__ = ["sweep", "write_sweep"]
 
 
 def _profile_data(profile) -> tuple[dict, str, str | None]:
@@ -58,27 +55,6 @@ def _check_keys_exist(data: dict, name: str, first: dict) -> None:
             lines = [ln for ln in str(exc).splitlines() if "unknown key" in ln or "is not a table" in ln]
             if lines:
                 raise ProfileError(f"--vary {key}: {lines[0]}") from None
-
-
-def stderr_progress(every: float = 1.0) -> Callable[[int, int], None]:
-    """A progress line on stderr at most every ``every`` seconds, and at the end."""
-    start, last = time.perf_counter(), [0.0]
-
-    def show(done: int, total: int) -> None:
-        now = time.perf_counter() - start
-        if done == total or now - last[0] >= every:
-            last[0] = now
-            bar = "#" * (30 * done // total)
-            rate = done / now if now > 0 else math.inf
-            end = "\n" if done == total else "\r"
-            print(
-                f"\rsweep [{bar:<30}] {done}/{total} designs, {now:.1f} s, {rate:.0f}/s",
-                end=end,
-                file=sys.stderr,
-                flush=True,
-            )
-
-    return show
 
 
 def sweep(

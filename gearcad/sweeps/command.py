@@ -3,7 +3,10 @@
 from __future__ import annotations
 
 import argparse
+import math
+import sys
 import time
+from collections.abc import Callable
 from pathlib import Path
 
 from ..errors import ProfileError
@@ -46,7 +49,7 @@ def add_parser(sub) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from . import stderr_progress, sweep, write_sweep
+    from . import sweep, write_sweep
     from .space import SweepSpec, parse_vary, read_sweep_file
 
     spec = read_sweep_file(args.file) if args.file else SweepSpec()
@@ -98,3 +101,24 @@ def run(args: argparse.Namespace) -> int:
         f"front) in {time.perf_counter() - start:.2f} s: {', '.join(str(p) for p in files.values())}"
     )
     return 0
+
+
+def stderr_progress(every: float = 1.0) -> Callable[[int, int], None]:
+    """A progress line on stderr at most every ``every`` seconds, and at the end."""
+    start, last = time.perf_counter(), [0.0]
+
+    def show(done: int, total: int) -> None:
+        now = time.perf_counter() - start
+        if done == total or now - last[0] >= every:
+            last[0] = now
+            bar = "#" * (30 * done // total)
+            rate = done / now if now > 0 else math.inf
+            end = "\n" if done == total else "\r"
+            print(
+                f"\rsweep [{bar:<30}] {done}/{total} designs, {now:.1f} s, {rate:.0f}/s",
+                end=end,
+                file=sys.stderr,
+                flush=True,
+            )
+
+    return show
