@@ -203,8 +203,9 @@ def make_part(
     pilot hole — ``hole`` a given inner ring instead (clockwise, fine), ``marks`` closed rings to
     engrave (fine), ``caps`` other outer rings of the solid's end faces that the chamfer must fit
     too (a twisted gear's end sections).  The pivot is engraved as a cross sized to the part: a
-    fifth of the radius the outline comes within, between 1 and 5 mm (none on a ring, whose hole is concentric).  The cut paths are made
-    for every part of a design together, by :func:`cut_paths`, which makes the blanks parts.
+    fifth of the radius the outline comes within, between 1 and 5 mm (none on a ring, whose hole
+    is concentric).  The cut paths are made for every part of a design together, by
+    :func:`cut_paths`, which makes the blanks parts.
     """
     tol = output.tolerance
     fine_tol = budget(tol).fine
