@@ -142,8 +142,9 @@ def coupon(profile: ProfileParams | Design | str | Path | Mapping[str, Any], out
     :class:`~gearcad.errors.ProfileError` for a profile that is not a gear pair or names no
     process (``process.kind`` "none")."""
     from .export.coupon import write_coupon
+    from .interrupts import interrupt_guard
     from .mechanisms.coupon import check_coupon, coupon_data
-    from .publish import Publisher, check_out, interrupt_guard
+    from .publish import Publisher, check_out
 
     made = profile if isinstance(profile, Design) else None
     params = made.params if made is not None else _params(profile)

@@ -23,9 +23,10 @@ from pathlib import Path
 
 from .errors import GearcadError, OutputError, ProfileError
 from .findings import Finding
+from .interrupts import Interrupted, held_signals, interrupt_guard
 from .mechanisms import Design, design
 from .profiles import ProfileParams
-from .publish import Interrupted, Publisher, _held_signals, _shown, check_out, interrupt_guard, out_lock
+from .publish import Publisher, _shown, check_out, out_lock
 
 __all__ = ["BuildResult", "build", "design_all"]
 
@@ -162,7 +163,7 @@ def build(
                 # an executor, not Pool: a worker killed (OOM killer, kill -9) breaks it, never hangs it
                 context = multiprocessing.get_context("fork")
                 pool = ProcessPoolExecutor(count, mp_context=context, initializer=_worker_init)
-                with _held_signals():  # every worker forked and recorded before an interrupt lands
+                with held_signals():  # every worker forked and recorded before an interrupt lands
                     futures = [pool.submit(_build_one, job) for job in jobs]
                 built = _in_order(futures, jobs)
             for n, result in enumerate(built, 1):

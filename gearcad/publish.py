@@ -49,73 +49,19 @@ import fcntl
 import os
 import re
 import shutil
-import signal
 import tempfile
-import threading
-from contextlib import contextmanager, nullcontext, suppress
+from contextlib import contextmanager, suppress
 from pathlib import Path
 
 from .errors import GearcadError, OutputError, ProfileError
+from .interrupts import Interrupted, held_signals, interrupt_guard
 
 __all__ = ["Publisher", "Interrupted", "interrupt_guard", "check_out", "resolve_out", "out_lock"]
 
-_SIGNALS = (signal.SIGINT, signal.SIGTERM)
 _NAME = re.compile(r"[\w-][\w.-]*")
 _PREFIX = ".gearcad-staging-"
 _STAGING = re.compile(re.escape(_PREFIX) + "[a-z0-9_]{8}")  # tempfile.mkdtemp's 8 random characters
 _AT_FDCWD, _RENAME_EXCHANGE = -100, 2
-
-
-class Interrupted(GearcadError):
-    """SIGINT or SIGTERM ended the build; the message is one line, ``exit_code`` 128 + signal."""
-
-    def __init__(self, message: str, signum: int) -> None:
-        super().__init__(message)
-        self.signum = signum
-        self.exit_code = 128 + signum
-
-    def __reduce__(self):  # raised in a process pool's worker, it crosses back by pickle
-        return type(self), (str(self), self.signum)
-
-
-def interrupt_guard(out: Path | str | None = None):
-    """A context manager turning SIGINT and SIGTERM into :class:`Interrupted` (main thread only).
-
-    Parameters
-    ----------
-    out : path, optional
-        The output folder, named in the message ``interrupted; <out> left as it was``.
-    """
-
-    def interrupt(signum, frame):
-        raise Interrupted(f"interrupted; {out} left as it was" if out else "interrupted", signum)
-
-    if threading.current_thread() is not threading.main_thread():  # Python lets only it handle signals
-        return nullcontext()
-    return _handling(interrupt)
-
-
-@contextmanager
-def _handling(handler):
-    previous = {s: signal.signal(s, handler) for s in _SIGNALS}
-    try:
-        yield
-    finally:
-        for s, old in previous.items():
-            signal.signal(s, signal.SIG_DFL if old is None else old)
-
-
-@contextmanager
-def _held_signals(*, deliver: bool = True):
-    """Hold SIGINT and SIGTERM off inside the block; deliver the first one afterwards."""
-    caught: list[int] = []
-    main = threading.current_thread() is threading.main_thread()
-    try:
-        with _handling(lambda signum, frame: caught.append(signum)) if main else nullcontext():
-            yield
-    finally:
-        if caught and deliver:
-            signal.raise_signal(caught[0])
 
 
 def _nearest(path: Path) -> Path:
@@ -302,7 +248,7 @@ class Publisher:
         return self
 
     def __exit__(self, kind, exc, tb) -> None:
-        with _held_signals(deliver=exc is None):
+        with held_signals(deliver=exc is None):
             self._close()
         if isinstance(exc, Interrupted):
             done = "had already been published" if self._published else "left as it was"
@@ -338,7 +284,7 @@ class Publisher:
             finally:
                 os.close(lock)
         parent = _nearest(self._abs)
-        with _held_signals():  # an interrupt must not leave it unrecorded
+        with held_signals():  # an interrupt must not leave it unrecorded
             self._root, fd = _new_staging(parent)
             self._fds.append(fd)
         self._tree = self._root.joinpath(*self._abs.relative_to(parent).parts[1:])
@@ -350,7 +296,7 @@ class Publisher:
         """
         if self._published:
             raise GearcadError(f"{self.out}: already published")
-        with _held_signals():
+        with held_signals():
             try:
                 if self._names and (self._root.parent == self._abs or not self._publish_tree()):
                     self._publish_folders()
