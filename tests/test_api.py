@@ -76,7 +76,7 @@ OVERRIDES = [
 def test_check_and_build_agree(tmp_path, capsys, overrides):
     profile = str(ROOT / "profiles" / "elliptic_focus.toml")
     sets = [arg for o in overrides for arg in ("--set", o)]
-    quick = ["--set", "output.charts=false", "--set", "output.animation=false"]
+    quick = ["--set", "output.charts=false", "--set", "output.animation=false", "--set", 'output.formats=["dxf"]']
     checked = main(["check", profile, *sets, *quick])
     check_err = capsys.readouterr().err
     built = main(["build", profile, "--out", str(tmp_path / "out"), *sets, *quick])
@@ -89,7 +89,9 @@ def test_check_and_build_agree(tmp_path, capsys, overrides):
 
 @pytest.mark.parametrize("profile", sorted((ROOT / "profiles").glob("*.toml")), ids=lambda p: p.stem)
 def test_check_proves_every_assembly(profile, capsys):
-    """``gearcad check`` prints the interference figure of every mechanism."""
-    assert main(["check", str(profile)]) == 0
+    """``gearcad check`` prints the interference figure of every mechanism (at a coarse tolerance:
+    the proof is the same, on fewer vertices; the build at the profile's own is proved by the
+    ``built`` fixture)."""
+    assert main(["check", str(profile), "--set", "output.tolerance=0.01"]) == 0
     out = capsys.readouterr().out
     assert re.search(r"overlap [0-9.e+-]+ mm²", out), out

@@ -20,6 +20,17 @@ def _hausdorff(ring: np.ndarray, polygon) -> float:
     return float(max(there, back.max()))
 
 
+def _within(ring: np.ndarray, polygon, distance: float) -> bool:
+    """Whether the ring and the polygon's boundary are within ``distance`` of each other both
+    ways (each inside a band of that half-width round the other): the Hausdorff test, without
+    measuring every pair of points."""
+    line = shapely.LinearRing(ring)
+    return bool(
+        shapely.buffer(polygon.exterior, distance, quad_segs=32).covers(line)
+        and shapely.buffer(line, distance, quad_segs=32).covers(polygon.exterior)
+    )
+
+
 def test_a_short_tip_land_is_dropped_where_the_flanks_insets_meet():
     """A tooth with a 0.1 mm tip land, inset 0.3 mm: the land's inset is eaten by the flanks', so
     the exact mitred inset (shapely's, mitre joins) ends where the flanks' inset lines meet; a
@@ -74,5 +85,4 @@ def test_herringbone_chamfer_faces_are_the_exact_mitred_inset(built, herringbone
             assert face.geom_type == "Polygon" and len(face.interiors) == 1  # the cap, round its bore
             ring = np.asarray(face.exterior.coords)[:-1]
             assert len(ring) > 1000
-            worst = _hausdorff(ring, reference)
-            assert worst <= tolerance, (name, z, worst)
+            assert _within(ring, reference, tolerance), (name, z, _hausdorff(ring, reference))

@@ -2,7 +2,6 @@
 
 import functools
 import json
-import os
 from pathlib import Path
 
 import ezdxf
@@ -19,8 +18,6 @@ from gearcad.export.dxf import CHORD_AREA, limit_sweep, ring_area_with_arcs
 from gearcad.export.mesh import extrude
 from gearcad.geometry.arcfit import ArcRing
 from gearcad.geometry.outline import Outline
-
-from .conftest import ROOT
 
 SMALL = """
 name = "small"
@@ -468,31 +465,6 @@ def test_engraving_is_polyline_and_the_cut_layer_takes_the_flavour(tmp_path):
         perimeter = json.loads((folder / "report.json").read_text())["gears"][0]["perimeter"]
         assert drawn == pytest.approx(0.75 * perimeter, rel=1e-3)  # three quarters drawn, in dashes
         assert all(2.0 < np.hypot(*np.diff(d, axis=0).T).sum() < 3.5 for d in dashes)
-
-
-_WRITE_TWICE = """
-import sys
-import numpy as np
-from pathlib import Path
-from gearcad.export.drawing import Drawing
-from gearcad.export.dxf import write_dxf
-from gearcad.geometry.arcfit import ArcRing
-ring = ArcRing(np.array([[5.0, 0.0], [-5.0, 0.0]]), np.array([1.0, 1.0]))
-cross = [np.array([[-1.0, 0.0], [1.0, 0.0]]), np.array([[0.0, -1.0], [0.0, 1.0]])]
-write_dxf(Path(sys.argv[1]), Drawing({"CUT": [ring], "MARK": [ring]}, {"MARK": cross}, {}))
-"""
-
-
-def test_dxf_bytes_do_not_depend_on_the_hash_seed(tmp_path):
-    """ezdxf writes the CLASSES of the entity types in use in set order, which follows the hash
-    seed: gearcad registers them sorted first, so two processes write the same bytes."""
-    import subprocess
-    import sys
-
-    for seed in ("4", "5"):
-        env = dict(os.environ, PYTHONHASHSEED=seed, PYTHONPATH=str(ROOT))
-        subprocess.run([sys.executable, "-c", _WRITE_TWICE, str(tmp_path / f"{seed}.dxf")], env=env, check=True)
-    assert (tmp_path / "4.dxf").read_bytes() == (tmp_path / "5.dxf").read_bytes()
 
 
 def test_caps_cover_the_region_and_keep_every_vertex():

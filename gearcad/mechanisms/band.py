@@ -186,13 +186,17 @@ def pair_band(
     closer = spread if internal else -spread
     alpha = g.pressure_angle
     reach = backlash + 4 * max(abs(e) for e in edge) / math.cos(alpha) + 2 * spread * math.tan(alpha) + 0.5 * g.module
-    with ThreadPoolExecutor(max_workers=2) as pool:  # GEOS releases the GIL: the cases side by side
-        jobs = [
-            pool.submit(_play, g, (edge[0], edge[0]), 0.0, tol, reach=reach),
-            pool.submit(_signed_play, g, (edge[2], edge[2]), closer, tol, reach=reach),
-            pool.submit(_play, g, (edge[1], edge[1]), -closer, tol, reach=reach),
-        ]
-        nominal, tight, wide = (job.result() for job in jobs)
+    if edge[0] == edge[1] == edge[2] and not spread:  # no stack (no process): one case, not three alike
+        tight = _signed_play(g, (edge[0], edge[0]), 0.0, tol, reach=reach)
+        nominal = wide = np.where(tight < 0, np.nan, tight)
+    else:
+        with ThreadPoolExecutor(max_workers=2) as pool:  # GEOS releases the GIL: the cases side by side
+            jobs = [
+                pool.submit(_play, g, (edge[0], edge[0]), 0.0, tol, reach=reach),
+                pool.submit(_signed_play, g, (edge[2], edge[2]), closer, tol, reach=reach),
+                pool.submit(_play, g, (edge[1], edge[1]), -closer, tol, reach=reach),
+            ]
+            nominal, tight, wide = (job.result() for job in jobs)
     worst = int(np.nanargmin(tight))
     # made parts keep twice the writing tolerance free; exact parts (no process) may bite by what
     # the writing tolerance takes from four flanks, which the mesh proof allows
