@@ -66,7 +66,7 @@ OVERRIDES = [
     ["bore.diameter=200"],
     ["output.chamfer=2.4"],
     ["output.chamfer=1.0", "output.thickness=1.5"],
-    ["output.kerf=1.9"],
+    ["output.kerf=1.9", "output.tolerance=0.01"],
     ["pair.center_distance=49"],
     ["teeth.clearance=5"],
 ]

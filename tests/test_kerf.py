@@ -101,7 +101,7 @@ def test_example_with_a_shaped_bore_builds_and_its_cut_paths_hold(profile, bore,
 def test_kerf_that_fills_the_teeth_names_part_and_place():
     """At 1.9 mm the beam fills the tooth spaces of module 1 (2.25 mm deep, 0.7 mm wide at the
     root) and the 1 mm pilot hole."""
-    over = {**QUICK, "output.kerf": 1.9, "teeth.module": 1.0}
+    over = {**QUICK, "output.kerf": 1.9, "teeth.module": 1.0, "output.tolerance": 0.01}
     with pytest.raises(DesignError) as exc:
         design(load_profile(ROOT / "profiles" / "spur_pair.toml", over))
     message = str(exc.value)

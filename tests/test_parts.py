@@ -42,8 +42,10 @@ def test_cut_paths_are_simple_and_within_tolerance(profile, overrides, bites):
         for ring in part.cut:
             drawn = arc_points(ring, tol / 100)
             assert is_simple(drawn), part.name
-            miss = shapely.distance(shapely.points(drawn), exact.boundary).max()
-            assert miss <= 0.75 * tol * 1.001, (part.name, miss)
+            band = shapely.buffer(exact.boundary, 0.75 * tol * 1.001, quad_segs=16)
+            if not band.covers(shapely.LineString(drawn)):  # measured only to say by how much
+                miss = shapely.distance(shapely.points(drawn), exact.boundary).max()
+                raise AssertionError((part.name, miss))
 
 
 def test_max_distance_is_exact_where_it_matters():
@@ -60,7 +62,6 @@ def test_max_distance_is_exact_where_it_matters():
 @pytest.mark.parametrize(
     "key,value,largest",
     [
-        ("output.kerf", 1.9, r"largest kerf every part takes is [0-9]\.[0-9]+ mm"),
         ("teeth.clearance", 5.0, r"largest clearance these teeth take is 0\.[0-9]+ mm"),
         ("teeth.backlash", 5.0, r"largest backlash module 2 takes is 3\.142 mm"),
     ],
@@ -72,10 +73,13 @@ def test_offsets_that_destroy_teeth_are_refused_with_the_largest_allowed(key, va
 
 
 def test_largest_kerf_is_accepted_and_keeps_the_spaces():
-    """Just under the reported largest kerf the build goes through and every tooth space is
+    """A kerf that destroys teeth is refused with the largest every part takes; just under the
+    reported largest kerf the build goes through and every tooth space is
     still cut: the cut path comes back to within the kerf of the root."""
-    with pytest.raises(DesignError) as exc:
-        _design("spur_pair", **{"output.kerf": 1.9})
+    coarse = {"output.tolerance": 0.01}
+    with pytest.raises(DesignError, match=r"largest kerf every part takes is [0-9]\.[0-9]+ mm") as exc:
+        _design("spur_pair", **{"output.kerf": 1.9}, **coarse)
+    assert str(exc.value).startswith("output.kerf = 1.9:")
     largest = float(str(exc.value).split("every part takes is ")[1].split(" mm")[0])
-    d = _design("spur_pair", **{"output.kerf": 0.98 * largest})
+    d = _design("spur_pair", **{"output.kerf": 0.98 * largest}, **coarse)
     assert all(is_simple(arc_points(r, 1e-3)) for p in d.parts() for r in p.cut)

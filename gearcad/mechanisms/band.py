@@ -187,8 +187,7 @@ def pair_band(
     alpha = g.pressure_angle
     reach = backlash + 4 * max(abs(e) for e in edge) / math.cos(alpha) + 2 * spread * math.tan(alpha) + 0.5 * g.module
     if edge[0] == edge[1] == edge[2] and not spread:  # no stack (no process): one case, not three alike
-        tight = _signed_play(g, (edge[0], edge[0]), 0.0, tol, reach=reach)
-        nominal = wide = np.where(tight < 0, np.nan, tight)
+        nominal = tight = wide = _signed_play(g, (edge[0], edge[0]), 0.0, tol, reach=reach)
     else:
         with ThreadPoolExecutor(max_workers=2) as pool:  # GEOS releases the GIL: the cases side by side
             jobs = [
@@ -204,8 +203,8 @@ def pair_band(
     low = float(tight[worst])
     return Band(
         mesh=name,
-        nominal=(float(np.nanmin(nominal)), float(np.nanmax(nominal))),
-        band=(low, float(np.nanmax(wide))),
+        nominal=_span(nominal, tight),
+        band=(low, _span(wide, tight)[1]),
         worst_tooth=int(g.teeth[worst]),
         worst_phi=float(g.phi1[worst]),
         edge=edge,
@@ -214,3 +213,10 @@ def pair_band(
         margin=margin,
         pressure_angle=alpha,
     )
+
+
+def _span(play: np.ndarray, signed: np.ndarray) -> tuple[float, float]:
+    """(smallest, largest) of a play over the cycle; where it jams everywhere (all NaN), the
+    signed play's (negative: the shrink that frees it)."""
+    values = signed if np.isnan(play).all() else play
+    return float(np.nanmin(values)), float(np.nanmax(values))
