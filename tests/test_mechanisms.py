@@ -75,10 +75,8 @@ def test_paper_by_eye_limits_are_above_the_exact_convex_ones(seed_tables):
         assert 0.4 * by_eye < exact < by_eye
 
 
-def test_roller_body_profile_builds(tmp_path):
-    out = tmp_path / "out"
-    assert main(["build", str(ROOT / "profiles" / "roller_body_m3.toml"), "--out", str(out)]) == 0
-    folder = out / "roller_body_m3"
+def test_roller_body_profile_builds(built):
+    folder = built / "roller_body_m3"
     report = json.loads((folder / "report.json").read_text())
     body = report["body"]
     assert body["convex"] and body["amplitude"] < body["amplitude_limit_convex"] < body["amplitude_limit_simple"]
@@ -178,10 +176,8 @@ def test_eps2_is_the_derivative_of_eq_8_and_eq_9_is_not():
     assert np.max(np.abs(paper - numeric) / np.abs(numeric)) > 0.1
 
 
-def test_rolling_wheel_profile_builds(tmp_path):
-    out = tmp_path / "out"
-    assert main(["build", str(ROOT / "profiles" / "rolling_wheel.toml"), "--out", str(out)]) == 0
-    report = json.loads((out / "rolling_wheel" / "report.json").read_text())
+def test_rolling_wheel_profile_builds(built):
+    report = json.loads((built / "rolling_wheel" / "report.json").read_text())
     assert report["motion"]["law_difference"] < 1e-9
     assert sorted(w["code"] for w in report["warnings"]) == ["paper-formula", "paper-formula"]
     assert "motion.png" in report["files"]
@@ -214,9 +210,8 @@ def test_planetary_ring_against_the_willis_formula():
 
 
 @pytest.mark.parametrize("name", ["planetary_external", "planetary_internal"])
-def test_train_profiles_build_and_assemble_without_overlap(tmp_path, name):
-    out = tmp_path / "out"
-    assert main(["build", str(ROOT / "profiles" / f"{name}.toml"), "--out", str(out)]) == 0
+def test_train_profiles_build_and_assemble_without_overlap(built, name):
+    out = built
     report = json.loads((out / name / "report.json").read_text())
     assert report["train"]["velocity_analysis_difference"] < 1e-12
     assert report["assembly"]["overlap"] < 0.01
