@@ -60,6 +60,11 @@ def build(
     name="out",
     formats='["dxf", "svg", "stl", "3mf"]',
 ):
+    """The small pair built with these settings into ``tmp_path``: (its folder, its report).
+    Built once per settings for the module (the tests only read what it wrote)."""
+    key = (tol, chamfer, kerf, dxf, bore, bore_extra, animation, formats)
+    if key in _BUILT and _BUILT[key][0].is_dir():
+        return _BUILT[key]
     path = tmp_path / f"{name}.toml"
     path.write_text(
         SMALL.format(
@@ -76,7 +81,11 @@ def build(
     out = tmp_path / name
     assert main(["build", str(path), "--out", str(out)]) == 0
     folder = out / "small"
-    return folder, json.loads((folder / "report.json").read_text())
+    _BUILT[key] = folder, json.loads((folder / "report.json").read_text())
+    return _BUILT[key]
+
+
+_BUILT: dict[tuple, tuple[Path, dict]] = {}
 
 
 def flattened(entity, distance=1e-5) -> np.ndarray:
@@ -91,7 +100,7 @@ def cut_polygon(path: Path) -> shapely.Polygon:
 
 
 def test_dxf_reads_back_as_the_outline_within_tolerance(tmp_path):
-    folder, report = build(tmp_path, formats='["dxf"]')
+    folder, report = build(tmp_path)
     for gear in report["gears"]:
         doc = ezdxf.readfile(folder / f"{gear['name']}.dxf")
         assert not doc.audit().has_errors and doc.units == 4
@@ -292,7 +301,7 @@ def test_a_manifold_error_is_a_clear_error():
 def test_every_flavour_describes_the_same_outline(tmp_path):
     shapes = {}
     for flavour in ("polyline", "lines-arcs", "polyline-flat"):
-        folder, _ = build(tmp_path, dxf=flavour, name=flavour.replace("-", "_"), formats='["dxf"]')
+        folder, _ = build(tmp_path, dxf=flavour, name=flavour.replace("-", "_"))
         doc = ezdxf.readfile(folder / "a.dxf")
         assert not doc.audit().has_errors
         if flavour == "lines-arcs":
