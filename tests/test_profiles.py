@@ -395,7 +395,7 @@ def _containers(inner: st.SearchStrategy) -> st.SearchStrategy:
 _junk = st.recursive(_scalars, _containers, max_leaves=12)
 
 
-@settings(max_examples=300, deadline=None)
+@settings(max_examples=120, deadline=None)
 @given(
     base=st.sampled_from([None, *PROFILES]),
     mechanism=st.sampled_from([None, *MECHANISMS]),

@@ -144,7 +144,7 @@ def test_every_folder_is_whole_after_a_kill_at_any_moment(tmp_path, exchange):
     rng = random.Random(7)
     previous = dict.fromkeys(NAMES, "gen-1")
     phases: dict[str, int] = {}
-    kills = 30 if exchange else 12
+    kills = 2 * len(targets)  # every target twice
     for k in range(kills):
         gen = f"gen-{k + 2}"
         proc, lines = _spawn(out, gen, **env), []

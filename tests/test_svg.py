@@ -185,7 +185,7 @@ def _gear_drawing():
             "gear1": {"name": "a", "curve": "ellipse", "pivot": "focus", "a": 20.0, "b": 16.0},
             "gear2": {"name": "b", "lobes": 1},
             "teeth": {"count": 25},
-            "output": {"tolerance": 0.01, "kerf": 0.1},
+            "output": {"tolerance": 0.01, "kerf": 0.1, "charts": False, "animation": False},
             "bore": {"diameter": 3.0},
         }
     )
