@@ -109,8 +109,7 @@ def test_dxf_files_read_back(built):
         # cut paths are closed LWPOLYLINEs; engraving open POLYLINEs (OpenSCAD skips them; dashed
         # pitch curves, so no program fills them)
         closed = [e for e in doc.modelspace().query("LWPOLYLINE POLYLINE") if e.is_closed]
-        cut = {tuple(np.round(_flatten(e), 6).ravel()) for e in closed if e.dxf.layer == "CUT"}
-        assert cut and all(e.dxf.layer == "CUT" for e in closed), path  # something to cut, nothing closed on MARK
+        assert closed and all(e.dxf.layer == "CUT" for e in closed), path  # something to cut, nothing closed on MARK
         mark = [e for e in doc.modelspace().query("POLYLINE") if e.dxf.layer == "MARK" and _not_cross(e)]
         # a toothed gear engraves its pitch curve; a plain wheel or the walker's shoe has none
         gears = {g["name"] for g in json.loads((path.parent / "report.json").read_text()).get("gears", [])}
