@@ -1,4 +1,5 @@
 import fcntl
+import functools
 import json
 import logging
 import os
@@ -49,6 +50,15 @@ def tooth_angle(ring: np.ndarray, placement, toward: float, pitch: float, *, spa
     t = toward + np.linspace(-pitch / 2, pitch / 2, 4001)
     r = reach(ring, placement, t) * (-1 if space else 1)
     return float(np.mean(t[r >= r.max() - 0.01 * (r.max() - r.min())]))
+
+
+@functools.cache
+def read_dxf(path: Path):
+    """A DXF file as ezdxf reads it, read once per test process: the ``built`` files are read
+    by several tests (each only looks)."""
+    import ezdxf
+
+    return ezdxf.readfile(path)
 
 
 @pytest.fixture(scope="session")

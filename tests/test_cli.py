@@ -12,7 +12,7 @@ import pytest
 from gearcad.cli import main
 from gearcad.findings import CODES
 
-from .conftest import PROFILES, ROOT
+from .conftest import PROFILES, ROOT, read_dxf
 
 LEAN = ["--set", "output.charts=false", "--set", "output.animation=false", "--set", 'output.formats=["dxf"]']
 """A build that writes only the DXF files: where a test looks at what the build does, not at
@@ -102,7 +102,7 @@ def _not_cross(polyline) -> bool:
 
 def test_dxf_files_read_back(built):
     for path in built.glob("*/*.dxf"):
-        doc = ezdxf.readfile(path)
+        doc = read_dxf(path)
         assert doc.units == 4  # mm
         auditor = doc.audit()
         assert not auditor.has_errors, path
@@ -119,7 +119,7 @@ def test_dxf_files_read_back(built):
 
 def test_pitch_dxf_matches_the_curve(built):
     report = json.loads((built / "elliptic_focus" / "report.json").read_text())
-    doc = ezdxf.readfile(built / "elliptic_focus" / "driver.dxf")
+    doc = read_dxf(built / "elliptic_focus" / "driver.dxf")
     dashes = [e for e in doc.modelspace().query("POLYLINE") if e.dxf.layer == "MARK" and _not_cross(e)]
     pts = np.array([(v.dxf.location.x, v.dxf.location.y) for e in dashes for v in e.vertices])
     r = np.hypot(pts[:, 0], pts[:, 1])
@@ -134,7 +134,7 @@ def test_toothed_outlines_read_back_and_mesh(built):
         path = built / report["name"] / "report.json"
         assert report["pair"]["teeth"]["mesh"]["meshes"], path
         for gear in report["gears"]:
-            doc = ezdxf.readfile(path.parent / f"{gear['name']}.dxf")
+            doc = read_dxf(path.parent / f"{gear['name']}.dxf")
             cut = [e for e in doc.modelspace().query("LWPOLYLINE") if e.dxf.layer == "CUT"]
             assert len(cut) == 1 + gear["part"]["holes"] and all(e.closed for e in cut)
             outer = max(cut, key=lambda e: abs(_area(_flatten(e))))

@@ -44,6 +44,8 @@ import numpy as np
 import pytest
 import shapely
 
+from .conftest import read_dxf
+
 ALL = os.environ.get("GEARCAD_CONSUMERS", "") == "all"
 REPRESENTATIVE = {
     ("elliptic_focus", "driver"),  # teeth on a noncircular pitch curve, pilot hole
@@ -173,7 +175,7 @@ def test_a_reader_ignoring_bulges_still_gets_every_outline(built):
     0.5 % — no bore or pitch circle comes out a triangle — and every part's cut rings, read that
     way, enclose its designed area within 0.5 %."""
     for profile, name, area, holes, folder in _parts(built):
-        doc = ezdxf.readfile(folder / f"{name}.dxf")
+        doc = read_dxf(folder / f"{name}.dxf")
         cut = _entity_rings(doc, "CUT", "LWPOLYLINE")
         assert len(cut) == 1 + holes, (profile, name)
         for vertices, fine in cut + _entity_rings(doc, "MARK", "POLYLINE"):
@@ -189,7 +191,7 @@ def test_engraving_is_written_where_openscad_cannot_mistake_it_for_the_part(buil
     """Only CUT holds region-forming entities (LWPOLYLINE, or LINE/ARC); MARK only POLYLINE —
     and no engraved path runs along a cut path (a laser would engrave, then cut, one line)."""
     for path in sorted(built.glob("*/*.dxf")):
-        doc = ezdxf.readfile(path)
+        doc = read_dxf(path)
         kinds = {(e.dxf.layer, e.dxftype()) for e in doc.modelspace()}
         assert {k for layer, k in kinds if layer == "MARK"} <= {"POLYLINE"}, path
         assert {k for layer, k in kinds if layer == "CUT"} <= {"LWPOLYLINE", "LINE", "ARC"}, path

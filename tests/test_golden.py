@@ -7,6 +7,8 @@ import pytest
 
 from gearcad.bodies import rollers as RB
 
+from .conftest import read_dxf
+
 
 def _report(built, name):
     return json.loads((built / name / "report.json").read_text(encoding="utf-8"))
@@ -72,10 +74,9 @@ def test_compound_ring(built, golden):
 def test_output_size_stays_within_the_readme(built, golden):
     """The focus pair's driver (41 teeth, 0.001 mm): arcs need at most the README's count and
     at least 5× fewer vertices than chords within the same tolerance."""
-    import ezdxf
 
     g = golden["output_size"]
-    doc = ezdxf.readfile(built / "elliptic_focus" / "driver.dxf")  # the outline's vertices: the CUT layer's
+    doc = read_dxf(built / "elliptic_focus" / "driver.dxf")  # the outline's vertices: the CUT layer's
     vertices = sum(len(e) for e in doc.modelspace().query('LWPOLYLINE[layer=="CUT"]'))
     assert vertices <= g["dxf_vertices_41_teeth_0.001"]["value"]
     assert g["arc_saving_at_least"]["value"] * vertices <= g["chord_vertices_41_teeth_0.001"]["value"]

@@ -16,6 +16,8 @@ from gearcad.export.dxf import PAPER_MARGIN_MM
 from gearcad.export.sheet import NAME_HEIGHT_MM, name_strokes
 from gearcad.mechanisms.layouts import SKIRT_MM
 
+from .conftest import read_dxf
+
 
 def _report(built, name):
     return json.loads((built / name / "report.json").read_text(encoding="utf-8"))
@@ -24,7 +26,7 @@ def _report(built, name):
 @pytest.mark.parametrize("profile", ["elliptic_focus", "walker", "roller_body_m3"])
 def test_dxf_opens_on_the_part_and_prints_it_at_full_size(built, profile):
     for path in sorted((built / profile).glob("*.dxf")):
-        doc = ezdxf.readfile(path)
+        doc = read_dxf(path)
         (x0, y0, _), (x1, y1, _) = doc.header["$EXTMIN"], doc.header["$EXTMAX"]
         (view,) = doc.viewports.get("*Active")
         cx, cy = view.dxf.center.x, view.dxf.center.y
@@ -40,7 +42,7 @@ def test_every_engraved_path_is_open_so_a_fill_cannot_engrave_a_region(built):
     for profile in ("elliptic_focus", "walker", "spur_pair"):
         report = _report(built, profile)
         for gear in report["gears"]:
-            doc = ezdxf.readfile(built / profile / f"{gear['name']}.dxf")
+            doc = read_dxf(built / profile / f"{gear['name']}.dxf")
             marks = doc.modelspace().query(f'POLYLINE[layer=="{report["output"]["layers"]["mark"]}"]')
             assert marks and not any(e.is_closed for e in marks), (profile, gear["name"])
             length = 0.0
@@ -69,7 +71,7 @@ def test_the_sheet_svg_is_the_sheet_and_previews_with_visible_lines(built):
 def test_the_sheet_names_each_part_inside_it(built):
     """Names are engraved in outline letters inside each part (the centre ellipse's two gears look
     alike): extra MARK paths in sheet.dxf, each inside one part, none over the pivot."""
-    doc = ezdxf.readfile(built / "elliptic_centre" / "sheet.dxf")
+    doc = read_dxf(built / "elliptic_centre" / "sheet.dxf")
     cut = [
         np.array([(x, y) for x, y, *_ in e.get_points()]) for e in doc.modelspace().query('LWPOLYLINE[layer=="CUT"]')
     ]
