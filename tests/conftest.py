@@ -53,8 +53,9 @@ def tooth_angle(ring: np.ndarray, placement, toward: float, pitch: float, *, spa
 
 @pytest.fixture(scope="session")
 def seed_tables() -> dict:
-    """The papers' tables exactly as printed (copied from shared/reference/seed_tables.json)."""
-    return json.loads((DATA / "seed_tables.json").read_text(encoding="utf-8"))
+    """The papers' tables exactly as printed: the package data the report's ``papers`` block reads
+    (gearcad/data/seed_tables.json, copied from shared/reference/seed_tables.json)."""
+    return json.loads((ROOT / "gearcad" / "data" / "seed_tables.json").read_text(encoding="utf-8"))
 
 
 @pytest.fixture(scope="session")
