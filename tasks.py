@@ -69,7 +69,7 @@ CONSUMER_PACKAGES = (
     "lib3mf1",
     "poppler-utils",
     "chromium",
-    "freecad",  # the STEP solids imported with its defaults (tests/test_step.py)
+    "freecad",  # the STEP solids (tests/test_step.py) and the DXF import's settings (tests/test_freecad_dxf.py)
 )
 
 
@@ -101,7 +101,7 @@ def consumers(args: list[str]) -> int:
     os.chdir(ROOT)
     rest = [a for a in args if a not in {"--no-install", "--install-only"}]
     env = dict(os.environ, GEARCAD_CONSUMERS="all")
-    command = [str(PYTHON), "-m", "pytest", "-q", "tests/test_consumers.py", *rest]
+    command = [str(PYTHON), "-m", "pytest", "-q", "tests/test_consumers.py", "tests/test_freecad_dxf.py", *rest]
     _say("running: GEARCAD_CONSUMERS=all " + " ".join(command))
     return subprocess.run(command, env=env).returncode
 

@@ -63,8 +63,9 @@ def read_dxf(path: Path):
 
 @pytest.fixture(scope="session")
 def seed_tables() -> dict:
-    """The papers' tables exactly as printed (copied from shared/reference/seed_tables.json)."""
-    return json.loads((DATA / "seed_tables.json").read_text(encoding="utf-8"))
+    """The papers' tables exactly as printed: the package data the report's ``papers`` block reads
+    (gearcad/data/seed_tables.json, copied from shared/reference/seed_tables.json)."""
+    return json.loads((ROOT / "gearcad" / "data" / "seed_tables.json").read_text(encoding="utf-8"))
 
 
 @pytest.fixture(scope="session")

@@ -145,7 +145,7 @@ def test_index_links_every_profile(site):
     out, designs = site
     checker = check_page(out / "index.html")
     assert {link for link in checker.links if link.endswith(".html")} == {f"{name}/index.html" for name in designs}
-    assert "rolling_wheel/motion.png" in checker.links  # a picture of each profile that has one
+    assert "rolling_wheel/assembly.svg" in checker.links  # a picture of its parts (not a chart)
     text = " ".join(checker.text)
     assert "paper-formula" in text and all(d.params.title in unescape(text) for d in designs.values())
 

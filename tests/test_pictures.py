@@ -26,8 +26,14 @@ def test_the_audit_finds_a_cut_title_and_a_legend_over_data():
     plt.close(fig)
     assert any("runs off the canvas" in p for p in problems)
     assert any("covers" in p for p in problems)
+    assert sum("has no unit" in p for p in problems) == 2  # neither axis is labelled
     fig, ax = plt.subplots(figsize=(6, 3))
     ax.plot(x, x, label="rising")
+    ax.set_xlabel("length")  # a quantity without its unit
+    fig.canvas.draw()
+    assert layout_problems(fig) == ["x axis of '' has no unit ('length')", "y axis of '' has no unit ('')"]
+    ax.set_xlabel("length, mm")
+    ax.set_ylabel("a / R")  # a ratio
     ax.legend(loc="lower right")
     fig.suptitle("short")
     fig.canvas.draw()

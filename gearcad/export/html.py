@@ -21,56 +21,17 @@ from .bounds import drawing_bounds
 from .drawing import assembly_drawing, part_drawing
 from .html_band import section_bands
 from .html_figures import Figures
+from .html_files import section_charts, section_files
+from .html_papers import section_papers
 from .html_style import page
+from .html_text import as_html as _value
+from .html_text import e as _e
+from .html_text import link as _link
 
 __all__ = ["pivot_marking", "write_profile_page"]
 
 _STANDARD = {"schema", "name", "title", "mechanism", "units", "tolerance", "parts", "assembly", "output"}
-_STANDARD |= {"warnings", "files"}
-
-
-def _fmt(value) -> str:
-    """A number as a reader wants it: 6 significant digits, exponent only when very large or small."""
-    if isinstance(value, bool):
-        return "yes" if value else "no"
-    if isinstance(value, int):
-        return str(value)
-    if isinstance(value, float):
-        if value == 0 or math.isnan(value):
-            return "0" if value == 0 else "NaN"
-        if 1e-3 <= abs(value) < 1e6:
-            return f"{value:.6g}"
-        return f"{value:.3e}"
-    if value is None:
-        return "—"
-    return str(value)
-
-
-def _e(value) -> str:
-    return escape(_fmt(value))
-
-
-def _value(value, depth: int = 0) -> str:
-    """Any JSON value of the report as HTML: tables for objects, lists inline where short."""
-    if isinstance(value, dict):
-        if not value:
-            return "—"
-        rows = "".join(f"<tr><th>{escape(str(k))}</th><td>{_value(v, depth + 1)}</td></tr>" for k, v in value.items())
-        return f'<table class="kv">{rows}</table>'
-    if isinstance(value, list):
-        if not value:
-            return "none"
-        if all(isinstance(v, dict) for v in value):
-            blocks = []
-            for k, v in enumerate(value):
-                label = v.get("name", f"#{k + 1}")
-                rest = {key: x for key, x in v.items() if key != "name"}
-                blocks.append(f"<h3>{escape(str(label))}</h3>{_value(rest, depth + 1)}")
-            return "".join(blocks)
-        shown = ", ".join(_value(v, depth + 1) for v in value[:12])
-        more = f", … ({len(value)} values)" if len(value) > 12 else ""
-        return f"[{shown}{more}]"
-    return _e(value)
+_STANDARD |= {"warnings", "files", "papers"}
 
 
 def pivot_marking(design: Design, part: Part, report_part: Mapping | None = None) -> str:
@@ -95,48 +56,6 @@ def pivot_marking(design: Design, part: Part, report_part: Mapping | None = None
     if part.pivot_mark > 0:
         marks.append(f"engraved cross ±{part.pivot_mark:.3g} mm (layer {out.mark_layer})")
     return " and ".join(marks) if marks else "not marked: no bore and no engraved cross"
-
-
-def _link(name: str) -> str:
-    return f'<a href="{escape(quote(name))}">{escape(name)}</a>'
-
-
-def _what(name: str, entry: Mapping) -> str:
-    kind = entry.get("kind", "")
-    part = entry.get("part")
-    bits = []
-    if name.startswith("sheet."):
-        bits.append("cutting sheet: every part laid out")
-    elif name == "plate.3mf":
-        bits.append("print plate: every part on the bed")
-    elif part == "assembly":
-        bits.append("assembly: parts in place (checks the fit; not for cutting or printing)")
-    elif part:
-        bits.append(f"part {part}")
-    for key, unit in (("vertices", "vertices"), ("segments", "segments"), ("triangles", "triangles")):
-        if key in entry:
-            bits.append(f"{entry[key]} {unit}")
-    if "faces" in entry:  # a STEP solid
-        faces = " + ".join(f"{n} {kind}" for kind, n in sorted(entry["faces"].items()))
-        bits += [f"solid: {faces} faces", f"{entry['volume']:.1f} mm³"]
-    if "mid_deviation" in entry:
-        bits.append(f"flank within {entry['mid_deviation']:.4f} mm of the exact section")
-    if "rows" in entry:
-        bits.append(f"table, {entry['rows']} rows")
-    if "frames" in entry:
-        bits.append(f"animation, {entry['frames']} frames")
-    if kind == "png":
-        bits.append("chart")
-    if kind == "json":
-        bits.append("the report: every number of this page and more")
-    return escape(", ".join(bits))
-
-
-def _size(entry: Mapping) -> str:
-    size = entry.get("bytes")
-    if size is None:
-        return ""
-    return f"{size / 1024:.1f} kB" if size >= 1024 else f"{size} B"
 
 
 def _section_parts(design: Design, figures: Figures, report: dict, counts: Counter) -> str:
@@ -233,9 +152,7 @@ def _section_numbers(design: Design, report: dict, counts: Counter) -> str:
         f"<td>({', '.join(_e(v) for v in p['placement']['offset'])})</td></tr>"
         for p in report["parts"]
     )
-    out = dict(report["output"])
-    params = design.params.output
-    out.update({"sheet": list(params.sheet), "gap": params.gap, "bed": list(params.bed)})
+    out = _output_table(report["output"], design.params.output)
     return (
         '<h2 id="numbers">Key numbers</h2>'
         f'<p class="note">Tolerance {_e(report["tolerance"])} mm; {escape(units)}.</p>'
@@ -243,8 +160,24 @@ def _section_numbers(design: Design, report: dict, counts: Counter) -> str:
         "<h3>Parts</h3><table><tr><th>part</th><th>placed</th><th>area, mm²</th><th>holes</th>"
         "<th>outline vertices</th><th>cut vertices</th><th>assembly angle</th><th>pivot in the assembly, mm</th>"
         f"</tr>{rows}</table>"
-        f"<h3>Output</h3>{_value(out)}"
+        f"<h3>Output</h3>{out}"
     )
+
+
+def _output_table(written: Mapping, params) -> str:
+    """What was written and how, each value with its unit."""
+    bore = written.get("bore") or {}
+    mm = [("thickness", written["thickness"]), ("chamfer", written["chamfer"]), ("kerf", written["kerf"])]
+    names = {"diameter": "bore", "keyway_width": "keyway width", "keyway_depth": "keyway depth"}
+    names |= {"flat": "D-flat, from the centre", "pilot": "pilot hole"}
+    mm += [(names.get(k, k), v) for k, v in bore.items() if v]
+    rows = [(name, f"{_e(v)} mm") for name, v in mm]
+    rows += [("cutting sheet", f"{params.sheet[0]:g} × {params.sheet[1]:g} mm"), ("gap", f"{params.gap:g} mm")]
+    rows += [("print bed", f"{params.bed[0]:g} × {params.bed[1]:g} mm")]
+    rows += [("formats", ", ".join(written["formats"])), ("DXF encoding", written["dxf"])]
+    rows += [("layers", f"cut {written['layers']['cut']}, marks {written['layers']['mark']}")]
+    body = "".join(f"<tr><th>{escape(k)}</th><td>{escape(v)}</td></tr>" for k, v in rows)
+    return f'<table class="kv">{body}</table>'
 
 
 def _section_report(report: dict, files: Mapping) -> str:
@@ -283,34 +216,6 @@ def _section_layouts(design: Design, figures: Figures, files: Mapping) -> str:
     return '<h2 id="layouts">Sheet and plate</h2><div class="pair">' + "".join(shown) + "</div>"
 
 
-def _section_charts(files: Mapping) -> str:
-    charts = [n for n, e in files.items() if e.get("kind") == "png"]
-    if not charts:
-        return ""
-    figures = "".join(
-        f'<figure><a href="{escape(quote(n))}"><img src="{escape(quote(n))}" alt="{escape(n)}"></a>'
-        f"<figcaption>{escape(n)}</figcaption></figure>"
-        for n in charts
-    )
-    return f'<h2 id="charts">Charts</h2><div class="charts">{figures}</div>'
-
-
-def _section_files(files: Mapping, page: str) -> str:
-    rows = "".join(
-        f"<tr><td>{_link(name)}</td><td>{escape(str(e.get('kind', '')))}</td><td>{_what(name, e)}</td>"
-        f"<td class='num'>{_size(e)}</td></tr>"
-        for name, e in files.items()
-        if name != page
-    )
-    return (
-        '<h2 id="files">Files</h2>'
-        '<p class="note">To cut: <b>sheet.dxf</b> or <b>sheet.svg</b> (every part, laid out) or one file per part. '
-        "To print: <b>plate.3mf</b> (every part on the bed) or one STL or 3MF per part. "
-        "The <b>assembly</b> files place the parts where they work: they are for checking the fit.</p>"
-        f"<table><tr><th>file</th><th>kind</th><th>what</th><th>size</th></tr>{rows}</table>"
-    )
-
-
 def write_profile_page(
     path: Path, design: Design, files: Mapping[str, Mapping], *, index: str | None = "../index.html"
 ) -> None:
@@ -344,12 +249,13 @@ def write_profile_page(
         ("parts", "Parts", _section_parts(design, figures, report, counts)),
         ("assembly", "Assembly", _section_assembly(design, figures, report, files)),
         ("findings", "Findings", _section_findings(report)),
+        ("papers", "The paper", section_papers(report)),
         ("fit", "Fit when made", section_bands(report)),
         ("numbers", "Key numbers", _section_numbers(design, report, counts)),
         ("layouts", "Sheet and plate", _section_layouts(design, figures, files)),
-        ("charts", "Charts", _section_charts(files)),
+        ("charts", "Charts", section_charts(files)),
         ("report", "Report", _section_report(report, files)),
-        ("files", "Files", _section_files(files, path.name)),
+        ("files", "Files", section_files(files, path.name)),
     ]
     nav = "".join(f'<a href="#{key}">{label}</a>' for key, label, text in sections if text)
     up = f' · <a href="{escape(quote(index))}">all profiles</a>' if index else ""

@@ -16,11 +16,15 @@ __all__ = ["index_entry", "index_page", "write_index"]
 def index_entry(report: Mapping, link: str, summary: str = "") -> dict:
     """An entry for :func:`write_index` from a profile's report (``report.json`` as a dict), the
     relative link to its page (e.g. ``"walker/index.html"``) and its one-line summary; its picture
-    is the profile's animation, else its first chart, if any."""
+    shows the parts (a chart is unreadable at a thumbnail's size, and two variants of a profile
+    draw the same limits chart): the animation, else the assembly's SVG, else a part's, else the
+    rendered solids; a chart only when nothing else was written."""
     files = report.get("files", {})
-    pictures = [n for n, e in files.items() if e.get("kind") == "gif"] + [
-        n for n, e in files.items() if e.get("kind") == "png"
-    ]
+    kinds = {n: e.get("kind") for n, e in files.items()}
+    parts = {p["name"] for p in report.get("parts", [])}
+    pictures = [n for n, k in kinds.items() if k == "gif"]
+    pictures += [n for n in ("assembly.svg", *(f"{p}.svg" for p in sorted(parts)), "solid.png") if n in kinds]
+    pictures += [n for n, k in kinds.items() if k == "png"]
     entry = {
         "name": report["name"],
         "title": report.get("title") or report["name"],
@@ -30,7 +34,7 @@ def index_entry(report: Mapping, link: str, summary: str = "") -> dict:
         "codes": sorted({w["code"] for w in report.get("warnings", [])}),
         "link": link,
     }
-    if pictures:  # the animation, else the first chart: beside the page it links to
+    if pictures:  # beside the page it links to
         entry["image"] = f"{link.rsplit('/', 1)[0]}/{pictures[0]}" if "/" in link else pictures[0]
     return entry
 

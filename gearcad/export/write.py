@@ -173,9 +173,16 @@ def _write(design: Design, folder: Path, drawing: dict) -> dict[str, dict]:
     for draw in (_animation, _charts):  # drawn here, or collected from the processes beside
         files.update(drawing[draw].result() if draw in drawing else draw(design, folder))
     files["index.html"] = {"kind": "html"}
+    if "papers" in design.data:
+        files["papers.html"] = {"kind": "html"}
     files["report.json"] = {"kind": "json"}
-    text = json.dumps(design.report(files), indent=2, ensure_ascii=False, allow_nan=False)
+    report = design.report(files)
+    text = json.dumps(report, indent=2, ensure_ascii=False, allow_nan=False)
     (folder / "report.json").write_text(text + "\n", encoding="utf-8")
+    if "papers" in report:  # the papers' numbers beside gearcad's
+        from .html_papers import write_papers_page
+
+        write_papers_page(folder / "papers.html", report)
     from .html import write_profile_page
 
     write_profile_page(folder / "index.html", design, files)

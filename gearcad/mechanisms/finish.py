@@ -20,6 +20,7 @@ from ..tolerances import budget
 from . import layouts
 from .base import Assembly, Design, Motion, Table, assembly_depth, assembly_overlap
 from .fit import assembly_marks
+from .papers import papers_block
 from .parts import BoreSpec, Part, Placement, cut_paths, make_part
 
 __all__ = ["Contact", "Draft", "PartSpec", "Proof", "finish", "prove"]
@@ -133,6 +134,13 @@ def prove(parts: dict[str, Part], draft: Draft) -> Assembly:
     )
 
 
+def _with_papers(draft: Draft) -> dict:
+    """The draft's report blocks and, for a profile that reproduces a seed, the papers' numbers
+    beside gearcad's (``papers``)."""
+    block = papers_block(draft.params, draft.data)
+    return draft.data if block is None else {**draft.data, "papers": block}
+
+
 def finish(draft: Draft, *, start: float | None = None) -> Design:
     """The complete design of a draft: parts with their cut paths, the assembly proven, the
     sheet and plate laid out (``start``: when the design began, for its ``seconds``)."""
@@ -162,7 +170,7 @@ def finish(draft: Draft, *, start: float | None = None) -> Design:
         part_list=parts,
         placements=draft.placements,
         assembly=assembly,
-        data=draft.data,
+        data=_with_papers(draft),
         units=draft.units,
         detail=draft.detail,
         details=(*draft.details, line),

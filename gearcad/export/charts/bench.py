@@ -77,7 +77,7 @@ def output_size(rows: list[dict], path: Path) -> None:
         tol, count, size = zip(*pts)
         a.loglog(tol, count, "o-", label=f"{method} ({'triangles' if method == 'STL' else 'vertices'})", color=f"C{k}")
         b.loglog(tol, np.array(size) / 1024, "o-", label=method, color=f"C{k}")
-    a.set_ylabel("count")
+    a.set_ylabel("vertices or triangles per file, count")
     b.set_ylabel("file size, KiB")
     for ax in (a, b):
         ax.set_xlabel("tolerance, mm")

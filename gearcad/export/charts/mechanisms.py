@@ -31,7 +31,7 @@ def limits_chart(limits: dict, direction: str, roller_radius: float, path: Path)
         lw=0.8,
         label=f"fit of exact convex: {fit['coefficient']:.3f}·m^{fit['exponent']:.3f}",
     )
-    ax.set_xlabel("oscillation frequency m")
+    ax.set_xlabel("oscillation frequency m, per turn of the body")
     ax.set_ylabel("largest amplitude a / R")
     ax.set_xticks(m, [str(int(v)) for v in m])
     ax.xaxis.set_minor_formatter(NullFormatter())  # only the m ticks are labelled (no stray "4×10⁰")
@@ -104,6 +104,8 @@ def train_chart(report: dict, parts, placements, path: Path) -> None:
     ax.plot([0, max(pl.offset[0] for pl in placements)], [0, 0], color="0.5", lw=2, alpha=0.4, label="carrier")
     ax.set_aspect("equal")
     ax.grid(alpha=0.3)
+    ax.set_xlabel("x, mm")
+    ax.set_ylabel("y, mm")
     ax.set_title("gears on the carrier (assembled)")
     names = [g["name"] for g in report["gears"]]
     bar.bar(names, [g["omega_rpm"] for g in report["gears"]], color=[f"C{k}" for k in range(len(names))])

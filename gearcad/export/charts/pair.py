@@ -92,7 +92,7 @@ def mesh_chart(data, teeth, path: Path) -> None:
         a.set_aspect("equal")
         a.grid(alpha=0.3)
         a.set_xlabel("x, mm")
-    ax.set_ylabel("y, mm")
+        a.set_ylabel("y, mm")
     mesh = teeth.mesh
     ax.set_title(f"module {m:.4f} mm, E = {data.pair.center_distance:.4f} mm")
     fig.legend(*ax.get_legend_handles_labels(), loc="lower center", ncol=2, fontsize=8)  # below the data

@@ -145,6 +145,8 @@ def walker_pitch_chart(paper: dict, rolling: dict, path: Path) -> None:
         ax.plot([0, data["L"]], [0, 0], "k+", ms=10)
         ax.set_aspect("equal")
         ax.grid(alpha=0.3)
+        ax.set_xlabel("x from the wheel's pivot, mm")
+        ax.set_ylabel("y, mm")
         ax.set_title(title)
         ax.legend(fontsize=8)
     fig.suptitle("wheel-walker pitch curves (mm)")

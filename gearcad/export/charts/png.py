@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import json
 import os
+import re
 from pathlib import Path
 
 import matplotlib
@@ -16,6 +17,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+from matplotlib.category import StrCategoryFormatter  # noqa: E402
 from matplotlib.collections import PolyCollection  # noqa: E402
 
 __all__ = ["plt", "save_png", "layout_problems", "PolyCollection"]
@@ -31,10 +33,30 @@ def _titles(fig) -> list:
     return [t for t in texts if t.get_visible() and t.get_text().strip()]
 
 
+_UNIT = re.compile(r"[,(]\s*\S|\b(in|per)\s+\S|\S\s*/\s*\S")
+"""What gives an axis its unit: ", mm", "(rad)", "in mm", "per turn", or a ratio "a / R"."""
+
+
+def _unit_problems(ax) -> list[str]:
+    """An axis with numbered ticks and no label, or a label with no unit (after a comma, in
+    brackets, after "in" or "per", or a ratio to a named quantity)."""
+    if not ax.axison:
+        return []
+    problems = []
+    for name, axis in (("x", ax.xaxis), ("y", ax.yaxis)):
+        numbered = axis.get_visible() and any(t.get_visible() and t.get_text() for t in axis.get_ticklabels())
+        if not numbered or isinstance(axis.get_major_formatter(), StrCategoryFormatter):  # names, not numbers
+            continue
+        label = axis.get_label_text().strip()
+        if not label or not _UNIT.search(label):
+            problems.append(f"{name} axis of {ax.get_title()[:40]!r} has no unit ({label!r})")
+    return problems
+
+
 def layout_problems(fig) -> list[str]:
     """What a reader would trip on in a drawn figure: a title cut by the canvas's edge, a legend
     drawn over data points of its own axes (lines and scatter points), a figure legend off the
-    canvas or over a plot."""
+    canvas or over a plot, a numbered axis without a unit."""
     renderer = fig.canvas.get_renderer()
     width, height = fig.bbox.width, fig.bbox.height
     problems = []
@@ -48,6 +70,8 @@ def layout_problems(fig) -> list[str]:
             problems.append("the figure's legend runs off the canvas")
         if any(box.overlaps(ax.get_window_extent(renderer)) for ax in fig.axes):
             problems.append("the figure's legend lies over a plot")
+    for ax in fig.axes:
+        problems += _unit_problems(ax)
     for ax in fig.axes:
         legend = ax.get_legend()
         if legend is None or not legend.get_visible():
