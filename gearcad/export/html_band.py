@@ -33,5 +33,24 @@ def section_bands(report: dict) -> str:
         "<p>Play on the pitch curve (mm): as drawn over one cycle, and over the process's tolerances "
         "(edges largest with the centres closer, smallest with them apart), measured on the offset outlines.</p>"
         "<table><tr><th>mesh</th><th>as drawn</th><th>made</th><th>tightest (driver tooth, angle)</th>"
-        f"<th>verdict</th><th>backlash to add</th></tr>{rows}</table>"
+        f"<th>verdict</th><th>backlash to add</th></tr>{rows}</table>" + _contact(bands)
+    )
+
+
+def _contact(bands: list[dict]) -> str:
+    """Contact ratio and working pressure angle of the meshes whose band carries them (a carrier
+    train's, a body's rollers; a gear pair gives its own under the teeth)."""
+    rows = "".join(
+        f"<tr><td>{escape(str(b['mesh']))}{' (internal)' if b.get('internal') else ''}</td>"
+        f"<td class='num'>{c['ratio_min']:.3f} at {c['ratio_min_at_phi1_deg']:.1f}° … "
+        f"{c['ratio_max']:.3f} at {c['ratio_max_at_phi1_deg']:.1f}°</td>"
+        f"<td class='num'>{c['pressure_angle_min_deg']:.2f}° … {c['pressure_angle_max_deg']:.2f}°</td></tr>"
+        for b in bands
+        if (c := b.get("contact"))
+    )
+    if not rows:
+        return ""
+    return (
+        "<p>Contact ratio (smallest, largest and where: the driver's turn) and working pressure angle:</p>"
+        f"<table><tr><th>mesh</th><th>contact ratio</th><th>working pressure angle</th></tr>{rows}</table>"
     )

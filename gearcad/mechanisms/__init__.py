@@ -13,7 +13,7 @@ from importlib import import_module
 
 from ..errors import GearcadError
 from ..profiles import ProfileParams
-from . import fit
+from . import band_trains, fit
 from .base import Design
 from .finish import Draft, finish
 from .parts import Part, Placement
@@ -48,4 +48,5 @@ def design(params: ProfileParams, stage: str = "full") -> Design:
             break
         params, draft = retry, mechanism.design(retry)
         bands = fit.pair_bands(draft)
-    return finish(fit.with_bands(draft, bands), start=start)
+    draft = band_trains.with_mesh_bands(fit.with_bands(draft, bands))  # a train's meshes, a body's rollers
+    return finish(draft, start=start)

@@ -38,6 +38,8 @@ class RollerBodyDetail:
     oscillation: RB.Oscillation
     roller_radius: float
     """Units of R, after fitting a whole number of teeth."""
+    pitch: ParametricFrame | None = None
+    """The toothed body's pitch curve (mm, counter-clockwise arc), None without teeth."""
 
 
 def _oscillation(p: RollerBodyParams) -> RB.Oscillation:
@@ -107,6 +109,7 @@ def _toothed_body(osc: RB.Oscillation, p: RollerBodyParams) -> dict:
         "_body_ring": body.outline.outer,
         "_roller_ring": roller.outline.outer,
         "_roller_turns": turns,
+        "_pitch": frame,
     }
 
 
@@ -246,7 +249,7 @@ def design(p: RollerBodyParams) -> Draft:
         contacts=contacts,
         data=data,
         units=UNITS,
-        detail=RollerBodyDetail(osc, r),
+        detail=RollerBodyDetail(osc, r, None if teeth is None else teeth["_pitch"]),
         charts=_charts(osc, p, r, data),
         where="body",
     )

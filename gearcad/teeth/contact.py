@@ -26,7 +26,7 @@ from ..pitch.curve import curvature
 from ..pitch.pair import PairData
 from .rack import Rack
 
-__all__ = ["ContactData", "contact_along", "tip_cut"]
+__all__ = ["ContactData", "contact_along", "contact_ratio", "tip_cut"]
 
 
 @dataclass(frozen=True)
@@ -75,6 +75,20 @@ def tip_cut(kappa: np.ndarray, h: float, alpha: float) -> np.ndarray:
     return np.maximum(h * (2 + h * k) / (root + math.sin(alpha)), 0.0)
 
 
+def contact_ratio(k1, k2, tips: tuple[float, float], alpha: float, module: float) -> np.ndarray:
+    """The contact ratio of two toothings meshing about a pitch point where their pitch curves
+    have signed curvatures ``k1``, ``k2`` (1/mm; negative: concave, a ring), their tips ``tips``
+    mm above them."""
+    k1, k2 = np.asarray(k1, dtype=float), np.asarray(k2, dtype=float)
+    c1, c2 = tip_cut(k1, tips[0], alpha), tip_cut(k2, tips[1], alpha)
+    # a tip cannot drive beyond where the line of action touches the mate's base circle
+    # (that would be undercut flank): cap each cut at ρ_mate·sin α on a convex mate
+    with np.errstate(divide="ignore"):
+        c1 = np.where(k2 > 0, np.minimum(c1, math.sin(alpha) / k2), c1)
+        c2 = np.where(k1 > 0, np.minimum(c2, math.sin(alpha) / k1), c2)
+    return (c1 + c2) / (math.pi * module * math.cos(alpha))
+
+
 def contact_along(pair: PairData, racks: tuple[Rack, Rack], positions: int = 720) -> ContactData:
     """Contact ratio and working pressure angles at ``positions`` driver angles over a cycle."""
     phi1 = np.linspace(0.0, pair.cycle, positions, endpoint=False)
@@ -83,13 +97,7 @@ def contact_along(pair: PairData, racks: tuple[Rack, Rack], positions: int = 720
     alpha, m = rack.params.pressure_angle, rack.params.module
     k1 = curvature(pair.gear1, phi1 % (2 * np.pi))
     k2 = curvature(pair.gear2, theta2 % (2 * np.pi))
-    c1, c2 = tip_cut(k1, rack.v_tip, alpha), tip_cut(k2, racks[1].v_tip, alpha)
-    # a tip cannot drive beyond where the line of action touches the mate's base circle
-    # (that would be undercut flank): cap each cut at ρ_mate·sin α on a convex mate
-    with np.errstate(divide="ignore"):
-        c1 = np.where(k2 > 0, np.minimum(c1, math.sin(alpha) / k2), c1)
-        c2 = np.where(k1 > 0, np.minimum(c2, math.sin(alpha) / k1), c2)
-    ratio = (c1 + c2) / (math.pi * m * math.cos(alpha))
+    ratio = contact_ratio(k1, k2, (rack.v_tip, racks[1].v_tip), alpha, m)
     r1 = pair.gear1.r(phi1 % (2 * np.pi))
     mu = np.arctan2(pair.gear1.dr(phi1 % (2 * np.pi)), r1)
     return ContactData(phi1=phi1, ratio=ratio, pressure_angle=alpha - mu, coast_pressure_angle=alpha + mu)

@@ -1,0 +1,181 @@
+"""The backlash band of any placed mesh: a carrier train's (the ring included) or a roller's on
+its toothed body, measured as :mod:`.band` measures a gear pair's.
+
+A mesh is given in gear 1's own frame at each position of its cycle: where gear 2's pivot sits,
+how far it is turned, the pitch point, and the way gear 2's pivot moves when a centre-distance
+error takes play (:class:`MeshGeometry`).  For an external mesh that is towards gear 1's pivot
+(the centres closer); for an internal one (a pinion in a ring) away from it, the centres farther
+apart: the pinion then sits deeper in the ring's tooth spaces.  (On the operating pitch circles
+a ring's space and a pinion's tooth are 2r'(e/2r + inv α − inv α') and 2r'(s/2r + inv α − inv α'),
+so the play is 2a'(inv α − inv α'): it falls as a' = a·cos α/cos α' grows — the sign opposite to
+an external pair's 2a'(inv α' − inv α).)  A roller's axle moves along the common normal towards
+the body.  Both parts are offset by the edge (shapely's buffer; a ring's teeth grow into its
+spaces), gear 2 placed with the error, and turned each way about its pivot until it touches gear 1
+(stepped by the gap, never through): the two free turns times gear 2's pitch radius at the
+contact are the play, mm on its pitch curve.  Where the parts overlap as placed, the shrink ε that
+frees them counts −4ε/cos α.  Only a window of three modules about the contact is offset.
+"""
+
+from __future__ import annotations
+
+import math
+from concurrent.futures import ThreadPoolExecutor
+from dataclasses import dataclass, replace
+
+import numpy as np
+import shapely
+
+from .band import Band
+
+__all__ = ["MeshGeometry", "clip", "mesh_band", "mesh_play"]
+
+_WINDOW = 3.0
+"""Radius of the window about the contact, modules: contact stays within about one pitch."""
+
+
+@dataclass(frozen=True)
+class MeshGeometry:
+    """A mesh in gear 1's frame (mm, rad), at n positions over its cycle."""
+
+    shapes: tuple[shapely.Geometry, shapely.Geometry]
+    """Both parts as drawn about their pivots (a ring: a polygon with its toothed hole)."""
+    phi1: np.ndarray
+    """(n,) gear 1's turn from the assembly at each position (reported as the driver angle)."""
+    centre2: np.ndarray
+    """(n, 2) gear 2's pivot."""
+    angle2: np.ndarray
+    """(n,) gear 2's turn: its own coordinates are turned so, then moved to ``centre2``."""
+    contact: np.ndarray
+    """(n, 2) the pitch point."""
+    tighter: np.ndarray
+    """(n, 2) unit vector: gear 2's pivot moved this way takes play (a centre-distance error)."""
+    module: float
+    pressure_angle: float
+    teeth: np.ndarray
+    """(n,) gear 1's tooth at the contact (index from its first)."""
+
+    def at(self, keep: np.ndarray) -> MeshGeometry:
+        """The same mesh at the positions ``keep`` (a boolean mask) only."""
+        fields = ("phi1", "centre2", "angle2", "contact", "tighter", "teeth")
+        return replace(self, **{f: getattr(self, f)[keep] for f in fields})
+
+
+def _rotate(points: np.ndarray, angle: np.ndarray) -> np.ndarray:
+    c, s = np.cos(angle), np.sin(angle)
+    return np.column_stack([c * points[:, 0] - s * points[:, 1], s * points[:, 0] + c * points[:, 1]])
+
+
+def clip(g: MeshGeometry, grow: float) -> tuple[np.ndarray, np.ndarray]:
+    """Each part about the contact at each position, in its own coordinates: cut once, wide
+    enough for any offset up to ``grow`` mm, and then only offset and trimmed (:func:`mesh_play`)."""
+    big = _WINDOW * g.module * 7 / 6 + grow
+    own = _rotate(g.contact - g.centre2, -g.angle2)  # the contact in gear 2's own coordinates
+    return tuple(
+        shapely.intersection(shape, shapely.buffer(shapely.points(centres), big, quad_segs=16))
+        for shape, centres in ((g.shapes[0], g.contact), (g.shapes[1], own))
+    )
+
+
+def _windows(pieces: np.ndarray, centres: np.ndarray, radius: float, offset, tol: float) -> np.ndarray:
+    """``pieces`` grown by ``offset`` mm (scalar or per centre), trimmed to ``radius`` about each centre."""
+    largest = float(np.max(np.abs(offset)))
+    if largest:
+        steps = max(2, int(math.ceil(math.pi / 4 / math.acos(max(1 - tol / largest, -1.0)))))
+        pieces = shapely.buffer(pieces, offset, quad_segs=steps)
+    return shapely.intersection(pieces, shapely.buffer(shapely.points(centres), radius, quad_segs=16))
+
+
+def mesh_play(
+    g: MeshGeometry,
+    offsets: tuple,
+    shift: float,
+    tol: float,
+    *,
+    reach: float,
+    steps: int = 8,
+    pieces: tuple[np.ndarray, np.ndarray] | None = None,
+) -> np.ndarray:
+    """Free play at each position (mm on gear 2's pitch curve); NaN where the parts overlap as
+    placed.  ``offsets`` grow gear 1 and gear 2 (mm, scalars or per position), ``shift`` moves
+    gear 2's pivot along ``g.tighter`` (mm; negative: the other way), ``reach`` bounds the play
+    sought; ``pieces`` the parts cut about the contact (:func:`clip`; default: cut here).
+
+    Each way, gear 2 is turned by the gap over the farthest reach of its window from its pivot (no
+    point moves farther than the gap, so it never passes through gear 1); ``steps`` of that bring
+    the gap under a millionth of a module."""
+    radius = _WINDOW * g.module
+    if pieces is None:
+        pieces = clip(g, float(max(np.max(np.abs(o)) for o in offsets)))
+    own = _rotate(g.contact - g.centre2, -g.angle2)
+    w1 = _windows(pieces[0], g.contact, radius, offsets[0], tol)
+    w2 = _windows(pieces[1], own, radius, offsets[1], tol)
+    shapely.prepare(w1)
+    coords, which = shapely.get_coordinates(w2, return_index=True)
+    far = np.zeros(len(g.phi1))
+    np.maximum.at(far, which, np.hypot(coords[:, 0], coords[:, 1]))
+    far = np.maximum(far, 1e-9)
+    centre = g.centre2 + shift * g.tighter
+
+    def place(turn: np.ndarray) -> np.ndarray:
+        xy = _rotate(coords, (g.angle2 + turn)[which]) + centre[which]
+        return shapely.set_coordinates(w2.copy(), xy)
+
+    arm = np.hypot(*(g.contact - g.centre2).T)  # gear 2's pitch radius at the contact
+    limit = min(reach, 1.2 * math.pi * g.module) / arm  # more than a pitch never frees a tooth
+    zero = np.zeros_like(g.phi1)
+    free = shapely.area(shapely.intersection(w1, place(zero))) <= 1e-9 * g.module**2
+    total = np.zeros_like(g.phi1)
+    for sign in (1.0, -1.0):
+        turn = zero.copy()
+        for _ in range(steps):
+            turn = np.minimum(turn + shapely.distance(w1, place(sign * turn)) / far, limit)
+        total += turn
+    return np.where(free, total * arm, np.nan)
+
+
+def _signed_play(g: MeshGeometry, pieces, edge: float, shift: float, tol: float, *, reach: float) -> np.ndarray:
+    """:func:`mesh_play` with both parts grown by ``edge``, negative where jammed: the shrink ε
+    that frees it counts −4ε/cos α."""
+    play = mesh_play(g, (edge, edge), shift, tol, reach=reach, pieces=pieces)
+    jammed = np.isnan(play)
+    if not jammed.any():
+        return play
+    sub, cut = g.at(jammed), (pieces[0][jammed], pieces[1][jammed])
+    lo, hi = np.zeros(int(jammed.sum())), np.full(int(jammed.sum()), 0.5 * g.module)
+    for _ in range(14):
+        mid = 0.5 * (lo + hi)
+        free = ~np.isnan(mesh_play(sub, (edge - mid, edge - mid), shift, tol, reach=reach, steps=0, pieces=cut))
+        hi, lo = np.where(free, mid, hi), np.where(free, lo, mid)
+    play[jammed] = -4 * hi / math.cos(g.pressure_angle)
+    return play
+
+
+def mesh_band(g: MeshGeometry, *, edge: tuple[float, float, float], spread: float, tol: float, name: str) -> Band:
+    """The band of one mesh drawn without backlash: the play as drawn, with every edge at its
+    largest and gear 2's pivot ``spread`` mm towards the tight side, and at its smallest with it
+    as far the other way; ``tol`` the outline tolerance (the worst case keeps twice it free)."""
+    alpha = g.pressure_angle
+    reach = 4 * max(abs(e) for e in edge) / math.cos(alpha) + 2 * spread * math.tan(alpha) + 0.5 * g.module
+    cases = [(edge[0], 0.0), (edge[2], spread), (edge[1], -spread)]
+    if not any(edge) and not spread:  # exact parts: the three cases are one
+        cases = cases[:1]
+    pieces = clip(g, max(abs(e) for e in edge) + 0.5 * g.module)  # the bisection shrinks up to half a module
+    with ThreadPoolExecutor(max_workers=2) as pool:  # GEOS releases the GIL: the cases side by side
+        jobs = [pool.submit(_signed_play, g, pieces, e, s, tol, reach=reach) for e, s in cases]
+        plays = [job.result() for job in jobs]
+    nominal, tight, wide = (plays * 3)[:3] if len(plays) == 1 else plays
+    worst = int(np.nanargmin(tight))
+    margin = 2 * tol if any(edge) or spread else -4 * tol / math.cos(alpha)
+    low = float(tight[worst])
+    return Band(
+        mesh=name,
+        nominal=(float(np.nanmin(nominal)), float(np.nanmax(nominal))),
+        band=(low, float(np.nanmax(wide))),
+        worst_tooth=int(g.teeth[worst]),
+        worst_phi=float(g.phi1[worst]),
+        edge=edge,
+        center_spread=spread,
+        needed_backlash=max(0.0, margin - low),
+        margin=margin,
+        pressure_angle=alpha,
+    )

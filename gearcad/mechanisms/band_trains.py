@@ -1,0 +1,206 @@
+"""The bands of a carrier train's meshes (each, the ring's included) and of a toothed body's
+rollers, with each mesh's contact ratio and working pressure angle (:mod:`.band_mesh` measures).
+
+A carrier train's gears are circles turning about fixed centres in the carrier's frame: gear k
+turned by Δ turns gear k + 1 by ∓Δ·r_k/r_{k+1} (external −, internal +), and the positions step
+gear k by one pitch and a fraction over its turn, so they visit teeth all round and every phase
+of a pitch.  On circles the working pressure angle is the rack's α everywhere and the contact
+ratio is the textbook ε_α (a ring's tip circle is concave: :func:`~..teeth.contact.contact_ratio`).
+
+A roller rolls on the body's pitch curve: in the body's frame its axle follows the curve's
+parallel at its pitch radius ρ, and as the contact moves an arc δs along the body the roller
+turns δs/ρ, from the assembled phase.  Its axle is fixed on the frame, so the tooth force, along
+the line of action through the pitch point, makes α with the velocity both pitch points share:
+the working pressure angle is α on both flanks; the contact ratio follows the body's curvature.
+The positions step the body evenly over a turn.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, replace
+
+import numpy as np
+import shapely
+
+from ..findings import finding
+from ..teeth.contact import ContactData, contact_ratio
+from .band import Band
+from .band_mesh import MeshGeometry, mesh_band
+from .fit import _process_block
+
+__all__ = ["MeshBand", "mesh_bands", "with_mesh_bands", "train_meshes", "roller_meshes"]
+
+TWO_PI = 2 * math.pi
+
+
+@dataclass(frozen=True)
+class MeshBand:
+    """A mesh's band, whether it is internal, and its contact along the positions."""
+
+    band: Band
+    internal: bool
+    contact: ContactData
+
+    def as_dict(self) -> dict:
+        """report.json's ``bands[]`` entry: the pair's keys, the centre-distance change that frees
+        it signed (an internal mesh: negative, the centres closer), ``internal`` and ``contact``."""
+        out = self.band.as_dict()
+        if self.internal:
+            out["center_distance_change"] = -out["center_distance_change"]
+        return {**out, "internal": self.internal, "contact": self.contact.as_dict()}
+
+    def sentence(self) -> str:
+        c = self.contact
+        return (
+            f"contact {self.band.mesh}: ratio {c.ratio.min():.3f}…{c.ratio.max():.3f}, working pressure angle "
+            f"{math.degrees(c.pressure_angle.min()):.2f}°…{math.degrees(c.pressure_angle.max()):.2f}°"
+        )
+
+
+def _rotate(points: np.ndarray, angle: np.ndarray) -> np.ndarray:
+    c, s = np.cos(angle), np.sin(angle)
+    return np.column_stack([c * points[:, 0] - s * points[:, 1], s * points[:, 0] + c * points[:, 1]])
+
+
+def _shape(spec) -> shapely.Polygon:
+    return shapely.Polygon(spec.outer, None if spec.hole is None else [spec.hole])
+
+
+def train_meshes(draft, positions: int = 12) -> list[tuple[str, MeshGeometry, bool, ContactData]]:
+    """Each mesh of a carrier train: (name, geometry in gear k's frame, internal, contact)."""
+    from .carrier_train import layout
+
+    p = draft.params
+    sides, alpha = layout(p).sides, p.pressure_angle
+    shapes = [_shape(s) for s in draft.parts]
+    out = []
+    for k, (kind, (r_from, r_to)) in enumerate(zip(p.meshes, sides)):
+        inside = kind == "internal"
+        first_ring, second_ring = inside and r_from > r_to, inside and r_from < r_to
+        z, m = (p.inner_teeth if k == p.compound else p.teeth[k]), p.modules[k + 1]
+        one, two = draft.placements[k], draft.placements[k + 1]
+        c1, c2 = np.array(one.offset, dtype=float), np.array(two.offset, dtype=float)
+        line = (c2 - c1) / np.hypot(*(c2 - c1))
+        contact = c1 + r_from * (-line if second_ring else line)
+        i = np.arange(positions)
+        turn = (np.floor(i * z / positions) + i / positions) * TWO_PI / z
+        a1 = one.angle + turn
+        ratio = (r_from / r_to) * (1.0 if inside else -1.0)
+        tile = lambda v: np.tile(v, (positions, 1))  # noqa: E731
+        material = (math.atan2(*(contact - c1)[::-1]) - a1) / (TWO_PI / z)
+        teeth = (np.floor(material) if first_ring else np.round(material)).astype(int) % z
+        geometry = MeshGeometry(
+            shapes=(shapes[k], shapes[k + 1]),
+            phi1=turn,
+            centre2=_rotate(tile(c2 - c1), -a1),
+            angle2=two.angle + ratio * turn - a1,
+            contact=_rotate(tile(contact - c1), -a1),
+            tighter=_rotate(tile(line if inside else -line), -a1),
+            module=m,
+            pressure_angle=alpha,
+            teeth=teeth,
+        )
+        k1 = np.full(positions, (-1.0 if first_ring else 1.0) / r_from)
+        k2 = np.full(positions, (-1.0 if second_ring else 1.0) / r_to)
+        ratio_along = contact_ratio(k1, k2, (m, m), alpha, m)
+        flat = np.full(positions, alpha)
+        name = f"{draft.parts[k].name}/{draft.parts[k + 1].name}"
+        out.append((name, geometry, inside, ContactData(turn, ratio_along, flat, flat)))
+    return out
+
+
+def roller_meshes(draft, positions: int = 36) -> list[tuple[str, MeshGeometry, bool, ContactData]]:
+    """Each roller against a toothed body: (name, geometry in the body's frame, False, contact);
+    none when the body has no teeth."""
+    p, detail = draft.params, draft.detail
+    frame = getattr(detail, "pitch", None)
+    if frame is None:
+        return []
+    teeth = draft.data["teeth"]
+    m, z, alpha = teeth["module"], teeth["body_teeth"], p.pressure_angle
+    rho, length = detail.roller_radius * p.scale, frame.perimeter
+    shapes = (_shape(draft.parts[0]), _shape(draft.parts[1]))
+    out = []
+    for k, placed in enumerate(draft.placements[1:]):
+        start = TWO_PI * k / 3  # τ runs clockwise, the body's arc s counter-clockwise (u = −τ)
+        s0 = frame.arc_at(np.array([-start]))
+        _, _, n0 = frame.frame(s0)
+        phase = math.atan2(-n0[0, 1], -n0[0, 0]) - placed.angle  # the roller's own angle at the contact
+        turn = TWO_PI * np.arange(positions) / positions
+        s = frame.arc_at(-(start + turn))
+        back = (s0 - s) % length  # the arc the contact has run along the body
+        point, _, normal = frame.frame(s)
+        centre = point + rho * normal  # the body's pitch curve is the axle's path moved in by ρ
+        geometry = MeshGeometry(
+            shapes=shapes,
+            phi1=turn,
+            centre2=centre,
+            angle2=np.arctan2(-normal[:, 1], -normal[:, 0]) - (phase + back / rho),
+            contact=point,
+            tighter=-normal,
+            module=m,
+            pressure_angle=alpha,
+            teeth=np.round(s / (math.pi * m)).astype(int) % z,
+        )
+        ratio = contact_ratio(frame.curvature(s), np.full(positions, 1 / rho), (m, m), alpha, m)
+        flat = np.full(positions, alpha)
+        out.append((f"body/roller {k + 1}", geometry, False, ContactData(turn, ratio, flat, flat)))
+    return out
+
+
+def mesh_bands(draft) -> tuple[MeshBand, ...]:
+    """The band of every mesh of a carrier train or a toothed body under its profile's process
+    (none: the play as drawn); () for any other mechanism."""
+    if draft.mechanism == "carrier-train":
+        meshes = train_meshes(draft)
+    elif draft.mechanism == "roller-body":
+        meshes = roller_meshes(draft)
+    else:
+        return ()
+    params = draft.params
+    edge, spread = params.process.edge(params.output.chamfer), params.process.center_spread()
+    tol = params.output.tolerance
+    return tuple(
+        MeshBand(mesh_band(g, edge=edge, spread=spread, tol=tol, name=name), inside, contact)
+        for name, g, inside, contact in meshes
+    )
+
+
+def _jams(b: Band, internal: bool) -> str:
+    apart = b.needed_backlash / (2 * math.tan(b.pressure_angle))
+    where = f"tooth {b.worst_tooth} of {b.mesh.split('/')[0]} at its turn {math.degrees(b.worst_phi):.1f}°"
+    return (
+        f"{b.mesh}: the play falls to {b.band[0]:.4f} mm at {where} (edges {b.edge[2]:+.3f} mm, centres "
+        f"{'+' if internal else '−'}{b.center_spread:.3f} mm{', an internal mesh' if internal else ''}); "
+        f"it needs {b.needed_backlash:.3f} mm more play: the centres {apart:.3f} mm "
+        f"{'closer' if internal else 'apart'}, or the parts {b.needed_backlash * math.cos(b.pressure_angle) / 4:.3f} "
+        "mm smaller on each edge (these teeth are cut without backlash)"
+    )
+
+
+def with_mesh_bands(draft):
+    """The draft with its train's or rollers' bands and contact in the report, the checks' lines
+    and the findings (``jams`` an error, ``loose`` a warning), as :func:`.fit.with_bands` does."""
+    bands = mesh_bands(draft)
+    if not bands:
+        return draft
+    process = draft.params.process
+    findings, lines = list(draft.findings), list(draft.details)
+    limit = process.value("max_play")
+    for mb in bands:
+        b = mb.band
+        lines.append(
+            f"band {b.mesh} ({process.kind}): play {b.nominal[0]:.4f}…{b.nominal[1]:.4f} mm as drawn, "
+            f"{b.band[0]:.4f}…{b.band[1]:.4f} mm made; {'fits' if b.fits else 'JAMS'}"
+        )
+        lines.append(mb.sentence())
+        if not b.fits:
+            findings.append(finding("jams", _jams(b, mb.internal), b.mesh))
+        if process.kind != "none" and limit and b.band[1] > limit:
+            findings.append(
+                finding("loose", f"{b.mesh}: the play may reach {b.band[1]:.3f} mm (process.max_play = {limit:g})")
+            )
+    bands_out = [*draft.data.get("bands", []), *(mb.as_dict() for mb in bands)]
+    data = {**draft.data, "bands": bands_out, "process": _process_block(process)}
+    return replace(draft, findings=tuple(findings), details=tuple(lines), data=data)
