@@ -28,6 +28,8 @@ from .gear_pair import ClaimParams, Gear2Params, GearPairParams, PairParams, Tee
 from .reading import (
     EXCLUSIVE_KEYS,
     MECHANISMS,
+    MODEL_OF,
+    MODELS,
     ProfileParams,
     apply_overrides,
     load_profile,
@@ -78,6 +80,8 @@ __all__ = [
     "BoreParams",
     # constants
     "MECHANISMS",
+    "MODELS",
+    "MODEL_OF",
     "CURVES",
     "DXF_FLAVOURS",
     "FORMATS",

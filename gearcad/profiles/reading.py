@@ -28,6 +28,8 @@ from .rolling_wheel import RollingWheelParams
 
 __all__ = [
     "MECHANISMS",
+    "MODELS",
+    "MODEL_OF",
     "EXCLUSIVE_KEYS",
     "ProfileParams",
     "parse_profile",
@@ -38,9 +40,13 @@ __all__ = [
     "profile_schema",
 ]
 
-MECHANISMS = ("gear-pair", "roller-body", "rolling-wheel", "carrier-train")
-ProfileParams = GearPairParams | RollerBodyParams | RollingWheelParams | CarrierTrainParams
-_BY_MECHANISM: dict[str, type[BaseModel]] = dict(zip(MECHANISMS, ProfileParams.__args__, strict=True))
+MODELS: tuple[type[ParamsModel], ...] = (GearPairParams, RollerBodyParams, RollingWheelParams, CarrierTrainParams)
+"""Every mechanism's profile model, the default first: a new mechanism's model is one more entry
+(its ``mechanism`` field's default is its name)."""
+MECHANISMS = tuple(model.model_fields["mechanism"].default for model in MODELS)
+MODEL_OF: dict[str, type[ParamsModel]] = dict(zip(MECHANISMS, MODELS, strict=True))
+"""The profile model of each ``mechanism`` value."""
+ProfileParams = Union[MODELS]  # noqa: UP007 - made from the table, not written out again
 
 EXCLUSIVE_KEYS = (("teeth.module", "teeth.count"), ("gear1.b", "gear1.eccentricity"))
 """Keys of which a profile gives one: an override that sets one removes the other."""
@@ -54,7 +60,7 @@ def _mechanism_of(value: Any) -> Any:
 
 
 _TAGGED = Annotated[
-    Union[tuple(Annotated[cls, Tag(tag)] for tag, cls in _BY_MECHANISM.items())],  # noqa: UP007
+    Union[tuple(Annotated[cls, Tag(tag)] for tag, cls in MODEL_OF.items())],  # noqa: UP007
     Discriminator(_mechanism_of),
 ]
 
@@ -92,7 +98,7 @@ def parse_profile(data: Mapping[str, Any], *, default_name: str = "profile") -> 
     if not isinstance(data, Mapping):
         raise ProfileError(f"the profile = {show(data)}: must be a table of keys")
     mechanism = data.get("mechanism", "gear-pair")
-    cls = _BY_MECHANISM.get(mechanism) if isinstance(mechanism, str) else None
+    cls = MODEL_OF.get(mechanism) if isinstance(mechanism, str) else None
     if cls is None:
         raise ProfileError(f"mechanism = {show(mechanism)}: must be one of " + ", ".join(map(repr, MECHANISMS)))
     named = "name" in data
