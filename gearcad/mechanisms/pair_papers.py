@@ -70,6 +70,8 @@ def paper_extras(params: GearPairParams, pitch: PairDesign) -> PaperExtras:
         charts = {
             "walker_speed": speed,
             "walker_pitch": (WP.paper_polar(geometry, pitch.walker.i_paper), WP.pair_polar(pitch.pair)),
+            # the shoe standing: (hub angle, turn, crank pin B1 from the hub) at each of SHOE_POSES
+            "shoe": (ring, [(phi, phi, S.crank_pin(geometry, phi)[0]) for phi in SHOE_POSES], geometry.K),
         }
         summary = {k: {f: v[f] for f in v if f != "v"} for k, v in speed.items() if isinstance(v, dict)}
         return PaperExtras({"shoe": shoe, "vehicle_speed": summary}, tuple(found), charts, ring, geometry)

@@ -6,7 +6,6 @@ from pathlib import Path
 
 import numpy as np
 
-from ...pitch.curve import TWO_PI, points
 from .png import PolyCollection, plt, save_png
 
 __all__ = ["draw", "pitch_chart", "kinematics_chart", "mesh_chart"]
@@ -21,9 +20,15 @@ def pitch_chart(data, path: Path, rings) -> None:
         closed = np.vstack([ring, ring[:1]]) + np.asarray(gear.pivot)
         ax.plot(closed[:, 0], closed[:, 1], color=colour, lw=1.4, ls=ls, label=gear.name)
         ax.plot(*gear.pivot, "+", color=colour, ms=10)
-        for c in gear.shape.corners:
-            p = points(gear.curve, np.array([c.phi]))[0] + np.asarray(gear.pivot)
-            ax.plot(*p, "o", mfc="none", color="red", ms=8)
+        for c in gear.shape.corners:  # the curve's own radius there: r(φ) (cos φ, sin φ)
+            r = gear.curve.r(np.array([c.phi]))[0]
+            ax.plot(
+                *(r * np.array([np.cos(c.phi), np.sin(c.phi)]) + np.asarray(gear.pivot)),
+                "o",
+                mfc="none",
+                color="red",
+                ms=8,
+            )
     contact = data.gears[0].curve.r(np.array([0.0]))[0]
     ax.plot([0, e], [0, 0], color="0.6", lw=0.8, ls=":")
     ax.plot(contact, 0, "k.", ms=6)
@@ -32,7 +37,7 @@ def pitch_chart(data, path: Path, rings) -> None:
     ax.set_xlabel("x, mm")
     ax.set_ylabel("y, mm")
     ax.grid(alpha=0.3)
-    phi = np.linspace(0.0, TWO_PI, 1441)
+    phi = np.linspace(0.0, 2 * np.pi, 1441)
     for gear, colour, ls in zip(data.gears, colours, dashes):
         ax2.plot(np.degrees(phi), gear.curve.r(phi), color=colour, ls=ls, label=gear.name)
     ax2.set_xlabel("polar angle φ, degrees")
@@ -127,12 +132,7 @@ def draw(design, folder: Path) -> list[str]:
             charts.walker_speed_chart(extra["walker_speed"], folder / "vehicle_speed.png")
             charts.walker_pitch_chart(*extra["walker_pitch"], folder / "paper_pitch_curves.png")
             names += ["vehicle_speed.png", "paper_pitch_curves.png"]
-        if papers.shoe is not None:
-            from ...bodies.shoe import crank_pin
-            from ...mechanisms.pair_papers import SHOE_POSES
-
-            g = papers.geometry
-            poses = [(phi, phi, crank_pin(g, phi)[0]) for phi in SHOE_POSES]
-            charts.shoe_chart(papers.shoe, poses, g.K, folder / "shoe.png")
+        if "shoe" in extra:
+            charts.shoe_chart(*extra["shoe"], folder / "shoe.png")
             names.append("shoe.png")
     return names
