@@ -19,7 +19,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import DesignError
-from .curve import TWO_PI
+from .curve import TWO_PI, harmonic_series
 
 __all__ = ["MotionLimits", "MotionFit", "fit_motion", "follower_from_ratio", "law_functions"]
 
@@ -167,16 +167,5 @@ def law_functions(fit: MotionFit):
     coef = np.zeros(top + 1, dtype=complex)
     for j, c, s in fit.harmonics:
         coef[j] = c - 1j * s
-    orders = np.arange(top + 1)
-
-    def series(phi, power):
-        phi = np.asarray(phi, dtype=float)
-        scaled = coef * (1j * orders) ** power
-        z = np.exp(1j * phi)
-        acc = np.full(phi.shape, scaled[-1], dtype=complex)
-        for a in scaled[-2::-1]:
-            acc *= z
-            acc += a
-        return acc.real
-
+    series = harmonic_series(coef)
     return (lambda p: fit.mean + series(p, 0), lambda p: series(p, 1), lambda p: series(p, 2))

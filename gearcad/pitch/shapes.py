@@ -8,7 +8,7 @@ from collections.abc import Callable
 import numpy as np
 
 from ..errors import DesignError
-from .curve import PitchCurve
+from .curve import PitchCurve, harmonic_series
 
 __all__ = [
     "circle",
@@ -251,21 +251,7 @@ def from_samples(
             "fewer samples"
         )
     _check_lobes(np.flatnonzero(~small[1:]) + 1, lobes, key)
-    # r = Re Σ (c_k − i·s_k)·z^k with z = e^{iφ}, by Horner's rule: one complex multiply-add per
-    # order on the angles' array (10× faster than a cos and a sin of every angle × order, and
-    # memory of one array however many samples the profile gives)
-    spectrum = np.where(small, 0.0, cos_c - 1j * sin_c)[: top + 1]
-    orders = np.arange(top + 1)
-
-    def series(phi, power):
-        phi = np.asarray(phi, dtype=float)
-        coef = spectrum * (1j * orders) ** power
-        z = np.exp(1j * phi)
-        acc = np.full(phi.shape, coef[-1], dtype=complex)
-        for a in coef[-2::-1]:
-            acc *= z
-            acc += a
-        return acc.real[()]
+    series = harmonic_series(np.where(small, 0.0, cos_c - 1j * sin_c)[: top + 1])
 
     return PitchCurve(
         name=name,
