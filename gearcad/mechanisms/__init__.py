@@ -35,17 +35,5 @@ def design(params: ProfileParams, stage: str = "full") -> Design:
             )
         return replace(staged_design(params, stage), seconds=time.perf_counter() - start)
     mechanism = import_module(f".{MECHANISMS[params.mechanism].module}", __name__)
-    given, params = params, fit.made(params)  # the process's kerf and the backlash it needs
-    draft = mechanism.design(params)
-    bands = fit.pair_bands(draft)
-    extra = 0.0
-    for _ in range(2):  # the closed form falls short on a noncircular pair: add what the band lacks
-        if not bands or bands[0].fits or not fit.chose_backlash(given):
-            break
-        extra += 1.25 * bands[0].needed_backlash
-        retry = fit.made(given, extra)
-        if not fit.backlash_takes(retry):  # the tips reach the roots: no backlash frees them
-            break
-        params, draft = retry, mechanism.design(retry)
-        bands = fit.pair_bands(draft)
+    draft, bands = fit.chosen(params, mechanism.design)  # the process's cutter and the backlash it needs
     return finish(fit.with_bands(draft, bands), start=start)
