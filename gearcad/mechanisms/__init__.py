@@ -33,7 +33,7 @@ def design(params: ProfileParams, stage: str = "full") -> Design:
             raise GearcadError(
                 f"stage = {stage!r}: only a gear pair has stages before 'full' (this is a {params.mechanism})"
             )
-        return replace(staged_design(params, stage), seconds=time.perf_counter() - start)
+        return replace(staged_design(fit.made(params), stage), seconds=time.perf_counter() - start)
     mechanism = import_module(f".{MECHANISMS[params.mechanism].module}", __name__)
     draft, bands = fit.chosen(params, mechanism.design)  # the process's cutter and the backlash it needs
     return finish(fit.with_bands(draft, bands), start=start)

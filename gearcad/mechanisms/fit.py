@@ -60,7 +60,7 @@ def needed_backlash(params) -> float:
     if process is None or process.kind == "none":
         return max(0.0, 1.5 * writing_play(params) - 4 * teeth.clearance / math.cos(alpha))
     edge = max(0.0, process.edge(params.output.chamfer)[2])
-    return 4 * edge / math.cos(alpha) + 2 * process.center_spread() * math.tan(alpha) + 2.25 * tol
+    return 4 * edge / math.cos(alpha) + 2 * process.center_spread() * math.tan(alpha) + 9 * tol / 4
 
 
 def chose_backlash(params) -> bool:
@@ -99,7 +99,7 @@ def made(params, backlash: float | None = None):
 def _excess(params, band: Band) -> float:
     """How much more play the band's worst case keeps than it must (mm; negative: short): the
     band's margin under a process, with none what the writing can take."""
-    exact = params.process is None or params.process.kind == "none"
+    exact = _process(params) is None or _process(params).kind == "none"
     return band.band[0] - (writing_play(params) if exact else band.margin)
 
 
@@ -112,14 +112,14 @@ def chosen(given, design_of, *, designs: int = 4):
     (a tolerance, or 1 % of the backlash) is cut again with the excess taken off, and between a
     backlash that jams and one that fits the next lies where the jam's shortfall runs out.  A
     noncircular pair's play is not linear in the backlash (the tips leave the roots at once), so
-    this is a bracketing search, not one step.  With no process only a shortfall is cut again:
-    the default play is a few tolerances."""
+    this is a bracketing search, not one step.  With no process the closed form's play is cut
+    once: more backlash must not hide an interference the mesh proof reports."""
     params = made(given)
     draft = design_of(params)
     bands = pair_bands(draft)
-    if not bands or not chose_backlash(given):
+    exact = _process(given) is None or _process(given).kind == "none"
+    if not bands or not chose_backlash(given) or exact:  # exact parts: the closed form, never a cure
         return draft, bands
-    exact = given.process is None or given.process.kind == "none"
     tol = given.output.tolerance
     tries = [(params.teeth.backlash, _excess(params, bands[0]), draft, bands)]
     for _ in range(designs - 1):
@@ -127,7 +127,7 @@ def chosen(given, design_of, *, designs: int = 4):
         jams = [t for t in tries if t[1] < 0]
         best = min(fits, key=lambda t: t[0]) if fits else None
         short = max(jams, key=lambda t: t[0]) if jams else None
-        if best is not None and (exact or best[1] <= max(tol, 0.01 * best[0])):
+        if best is not None and best[1] <= max(tol, 0.01 * best[0]):
             break
         if best is not None and short is not None and best[0] - short[0] <= max(tol, 0.01 * best[0]):
             break
