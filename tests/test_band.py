@@ -59,6 +59,18 @@ def test_a_laser_focus_pair_fits_by_default_and_the_band_is_fast(spur):
     band = d.report()["bands"][0]
     assert d.params.output.kerf == 0.2 and band["verdict"] == "fits" and band["min"] > 0
     assert d.ok
+    # the smallest backlash that fits: one step of a bisection over fixed backlashes brackets it
+    # within the chooser's resolution (1 % or a tolerance) below its choice (before: 0.3447 mm
+    # chosen, the smallest 0.297: 16 % over; the band measured the follower at the rolling angle)
+    chosen = d.params.teeth.backlash
+    less = chosen - max(0.01 * chosen, d.params.output.tolerance)
+    below = gearcad.design(
+        gearcad.load_profile(
+            ROOT / "profiles" / "elliptic_focus.toml", {**QUICK, "process.kind": "laser", "teeth.backlash": less}
+        )
+    )
+    assert below.report()["bands"][0]["verdict"] == "jams" and not below.ok
+    assert any(f.code == "backlash-fixed" and "keeps the worst case free" in f.message for f in below.findings)
     import time
 
     seconds = []

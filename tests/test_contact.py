@@ -63,7 +63,8 @@ def test_contact_ratio_is_the_tooth_pairs_counted_in_mesh():
     """Turned δ into gear 1, the driving flanks overlap a little beyond each end of the path of
     contact (by ~√δ): counts at δ and 4δ extrapolate to the touching count, 2·n(δ) − n(4δ),
     averaged over one pitch of the spur pair, which is ε itself."""
-    design = gearcad.design("profiles/spur_pair.toml")
+    # exact teeth: no default play (6·tol/cos α) between the flanks
+    design = gearcad.design(gearcad.load_profile("profiles/spur_pair.toml", {"teeth.backlash": 0.0}))
     phi1 = np.linspace(0.0, 2 * np.pi / 20, 100, endpoint=False)
     counted = 2 * _counted(design, phi1, 0.002) - _counted(design, phi1, 0.008)
     assert abs(counted - design.report()["pair"]["teeth"]["contact"]["ratio_min"]) < 0.03

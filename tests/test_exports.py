@@ -144,7 +144,8 @@ def _reference_parts():
         "name": "r",
         "gear1": {"name": "a", "curve": "ellipse", "pivot": "focus", "a": 20.0, "b": 16.0},
         "gear2": {"name": "b", "lobes": 1},
-        "teeth": {"count": 25},
+        # the build's teeth: its default play at output.tolerance 0.001 is 6·tol/cos α
+        "teeth": {"count": 25, "backlash": 0.006 / 0.9396926207859084},
         "output": {"tolerance": 1e-4},
         "bore": {"diameter": 3.0},
     }

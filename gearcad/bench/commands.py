@@ -32,7 +32,7 @@ def _build(profiles: list[Path], sets: list[str], out: Path) -> list[str]:
 def gearcad_commands(work: Path) -> dict[str, tuple[str, Command]]:
     """key → (description, command); every command writes under ``work/<key>``."""
     focus = PROFILES / "elliptic_focus.toml"
-    count = [f"teeth.count={FOCUS_TEETH}"]
+    count = [f"teeth.count={FOCUS_TEETH}", "teeth.backlash=0"]  # the exact teeth the references cut
     specs = {
         "dxf": ("focus pair, 39 teeth, DXF only", _build([focus], count + DXF_ONLY, work / "dxf" / "out")),
         "all": ("focus pair, 39 teeth, every output", _build([focus], count, work / "all" / "out")),

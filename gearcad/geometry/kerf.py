@@ -41,10 +41,11 @@ class KerfFault:
     angle_deg: float
     radius: float
 
-    def describe(self, part: str) -> str:
+    def describe(self, part: str, cutter: str = "beam") -> str:
         verb = "fills" if self.what in ("tooth space", "hole") else "cuts away"
         return (
-            f"{part}: the beam {verb} a {self.what} at {self.angle_deg:.1f}° and {self.radius:.2f} mm from the pivot "
+            f"{part}: the {cutter} {verb} a {self.what} at {self.angle_deg:.1f}° and {self.radius:.2f} mm "
+            "from the pivot "
             f"({self.left:.3f} mm of it {'left uncut' if verb == 'fills' else 'lost'})"
         )
 

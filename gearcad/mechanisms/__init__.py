@@ -33,20 +33,8 @@ def design(params: ProfileParams, stage: str = "full") -> Design:
             raise GearcadError(
                 f"stage = {stage!r}: only a gear pair has stages before 'full' (this is a {params.mechanism})"
             )
-        return replace(staged_design(params, stage), seconds=time.perf_counter() - start)
+        return replace(staged_design(fit.made(params), stage), seconds=time.perf_counter() - start)
     mechanism = import_module(f".{MECHANISMS[params.mechanism].module}", __name__)
-    given, params = params, fit.made(params)  # the process's kerf and the backlash it needs
-    draft = mechanism.design(params)
-    bands = fit.pair_bands(draft)
-    extra = 0.0
-    for _ in range(2):  # the closed form falls short on a noncircular pair: add what the band lacks
-        if not bands or bands[0].fits or not fit.chose_backlash(given):
-            break
-        extra += 1.25 * bands[0].needed_backlash
-        retry = fit.made(given, extra)
-        if not fit.backlash_takes(retry):  # the tips reach the roots: no backlash frees them
-            break
-        params, draft = retry, mechanism.design(retry)
-        bands = fit.pair_bands(draft)
+    draft, bands = fit.chosen(params, mechanism.design)  # the process's cutter and the backlash it needs
     draft = band_trains.with_mesh_bands(fit.with_bands(draft, bands))  # a train's meshes, a body's rollers
     return finish(draft, start=start)

@@ -121,39 +121,95 @@ def _placer(g: PairGeometry, offsets, spread: float, tol: float):
     return w1, place, far
 
 
-def _play(g: PairGeometry, offsets, spread: float, tol: float, *, reach: float, steps: int = 8) -> np.ndarray:
-    """Free play at each position (mm on gear 2's pitch curve, at its nominal contact radius);
-    NaN where the parts overlap as placed.
+def _least_overlap(w1, place, bound: np.ndarray, iterations: int = 24) -> np.ndarray:
+    """Per position, a turn of gear 2 (rad, within ±``bound``) where the parts do not overlap, or
+    where they overlap least: 0 where they are apart as placed, else a golden-section search (for
+    a turn where they are apart: the gap from there is what measures the play, and parts that
+    overlap even by a sliver show no gap either way).
+    The assembled angle map is the pitch curves' rolling; with the centres moved or the edges
+    grown unevenly the follower sits elsewhere in its play, and a pair that overlaps as placed
+    may turn free (today's jam at the nominal angle overstated what a noncircular pair needs)."""
+    turn = np.zeros_like(bound)
+    stuck = np.flatnonzero(shapely.area(shapely.intersection(w1, place(turn))) > 0)
+    if not len(stuck):
+        return turn
+    golden = (math.sqrt(5) - 1) / 2
 
-    Each way, gear 2 is turned by the gap left over the farthest reach of its window (no point
-    of it moves farther than the gap, so it never passes through gear 1); the gap shrinks by
-    about cos α times that each step, so ``steps`` bring it under a millionth of a module.
+    def area(at: np.ndarray) -> np.ndarray:
+        full = np.zeros_like(bound)
+        full[stuck] = at
+        return shapely.area(shapely.intersection(w1[stuck], place(full)[stuck]))
+
+    lo, hi = -bound[stuck], bound[stuck].copy()
+    a, b = hi - golden * (hi - lo), lo + golden * (hi - lo)
+    fa, fb = area(a), area(b)
+    for _ in range(iterations):
+        left = fa <= fb  # the least lies in [lo, b]: b becomes the upper end, a the new b
+        hi, lo = np.where(left, b, hi), np.where(left, lo, a)
+        a2, b2 = hi - golden * (hi - lo), lo + golden * (hi - lo)
+        a, b = np.where(left, a2, b), np.where(left, a, b2)
+        fresh = area(np.where(left, a, b))  # the one new probe of each position
+        fa, fb = np.where(left, fresh, fb), np.where(left, fa, fresh)
+        if not np.any(np.minimum(fa, fb)):
+            break
+    turn[stuck] = np.where(fa <= fb, a, b)
+    return turn
+
+
+def _play(
+    g: PairGeometry, offsets, spread: float, tol: float, *, reach: float, steps: int = 8, start=None
+) -> tuple[np.ndarray, np.ndarray]:
+    """Free play at each position (mm on gear 2's pitch curve, at its nominal contact radius);
+    NaN where the parts overlap wherever gear 2 sits; and the turn of gear 2 it was measured from.
+
+    Gear 2 is first turned to where it is free (:func:`_least_overlap`; ``start`` given: there);
+    from there, each way, it is turned by the gap left over the farthest reach of its window (no
+    point of it moves farther than the gap, so it never passes through gear 1); the gap shrinks
+    by about cos α times that each step, so ``steps`` bring it under a millionth of a module.
     ``reach`` (mm) bounds the play sought."""
     w1, place, far = _placer(g, offsets, spread, tol)
     arm = g.center_distance - g.r1
     limit = min(reach, 1.2 * math.pi * g.module) / arm  # more than a pitch never frees a tooth
-    zero = np.zeros_like(g.phi1)
     touching = 1e-9 * g.module**2
-    free = shapely.area(shapely.intersection(w1, place(zero))) <= touching
+    if start is None:  # the follower's play lies within a quarter pitch of the rolling angle
+        start = _least_overlap(w1, place, np.minimum(limit, 0.25 * math.pi * g.module / arm))
+
+    def apart(turn: np.ndarray, at=slice(None)) -> np.ndarray:
+        full = start.copy()
+        full[at] += turn
+        return shapely.area(shapely.intersection(w1[at], place(full)[at])) <= touching
+
+    free = apart(np.zeros_like(start))
     total = np.zeros_like(g.phi1)
     for sign in (1.0, -1.0):
-        turn = zero.copy()
+        turn = np.zeros_like(g.phi1)
         for _ in range(steps):
-            gap = shapely.distance(w1, place(sign * turn))
+            gap = shapely.distance(w1, place(start + sign * turn))
             turn = np.minimum(turn + gap / far, limit)
+        if steps:  # the gap is the nearest flank's, which may be the one turning away: bisect there
+            nudge = 1e-4 * g.module / arm
+            stalled = np.flatnonzero(free & (turn + nudge < limit))
+            stalled = stalled[apart(sign * (turn + nudge)[stalled], stalled)]
+            lo, hi = turn[stalled], limit[stalled]
+            for _ in range(18 if len(stalled) else 0):
+                mid = 0.5 * (lo + hi)
+                ok = apart(sign * mid, stalled)
+                lo, hi = np.where(ok, mid, lo), np.where(ok, hi, mid)
+            turn[stalled] = lo
         total += turn
-    return np.where(free, total * arm, np.nan)
+    return np.where(free, total * arm, np.nan), start
 
 
 def play_along(g: PairGeometry, *, edge: float, tol: float, reach: float) -> np.ndarray:
     """The play at each of ``g``'s driver angles (mm on the pitch curve; NaN where the parts
     overlap), both parts grown by ``edge`` mm at the drawn centre distance."""
-    return _play(g, (edge, edge), 0.0, tol, reach=reach)
+    return _play(g, (edge, edge), 0.0, tol, reach=reach)[0]
 
 
 def _signed_play(g: PairGeometry, offsets, spread: float, tol: float, *, reach: float) -> np.ndarray:
-    """:func:`_play`, negative where jammed: the shrink ε that frees it counts −4ε/cos α."""
-    play = _play(g, offsets, spread, tol, reach=reach)
+    """:func:`_play`, negative where jammed: the shrink ε that frees it (gear 2 where it overlapped
+    least) counts −4ε/cos α."""
+    play, start = _play(g, offsets, spread, tol, reach=reach)
     jammed = np.isnan(play)
     if not jammed.any():
         return play
@@ -163,7 +219,8 @@ def _signed_play(g: PairGeometry, offsets, spread: float, tol: float, *, reach: 
     lo, hi = np.zeros(int(jammed.sum())), np.full(int(jammed.sum()), 0.5 * g.module)
     for _ in range(14):
         mid = 0.5 * (lo + hi)
-        free = ~np.isnan(_play(sub, (offsets[0] - mid, offsets[1] - mid), spread, tol, reach=reach, steps=0))
+        shrunk = (offsets[0] - mid, offsets[1] - mid)
+        free = ~np.isnan(_play(sub, shrunk, spread, tol, reach=reach, steps=0, start=start[jammed])[0])
         hi, lo = np.where(free, mid, hi), np.where(free, lo, mid)
     play[jammed] = -4 * hi / math.cos(g.pressure_angle)
     return play
@@ -195,7 +252,7 @@ def pair_band(
                 pool.submit(_signed_play, g, (edge[2], edge[2]), closer, tol, reach=reach),
                 pool.submit(_play, g, (edge[1], edge[1]), -closer, tol, reach=reach),
             ]
-            nominal, tight, wide = (job.result() for job in jobs)
+            (nominal, _), tight, (wide, _) = (job.result() for job in jobs)
     worst = int(np.nanargmin(tight))
     # made parts keep twice the writing tolerance free; exact parts (no process) may bite by what
     # the writing tolerance takes from four flanks, which the mesh proof allows

@@ -150,7 +150,8 @@ def finish(draft: Draft, *, start: float | None = None) -> Design:
         make_part(s.name, s.outer, output=out, bore=s.bore, wall=s.wall, marks=s.marks, hole=s.hole, caps=s.caps)
         for s in draft.parts
     )
-    parts = assembly_marks(draft, cut_paths(made, out))  # a gear pair's dots where its teeth meet
+    router = getattr(getattr(draft.params, "process", None), "kind", None) == "cnc"
+    parts = assembly_marks(draft, cut_paths(made, out, router=router))  # a gear pair's dots where its teeth meet
     assembly = prove({p.name: p for p in parts}, draft)
     findings = draft.findings
     if not assembly.fits and not any(f.code == "interference" for f in findings):

@@ -27,11 +27,13 @@ __all__ = [
     "assembly_marks",
     "backlash_takes",
     "chose_backlash",
+    "chosen",
     "made",
     "needed_backlash",
     "pair_bands",
     "pair_geometry",
     "with_bands",
+    "writing_play",
 ]
 
 
@@ -39,26 +41,33 @@ def _process(params):
     return getattr(params, "process", None)
 
 
+def writing_play(params) -> float:
+    """What the writing tolerance can take from a pair's play (mm on the pitch curve): each written
+    outline strays up to ``output.tolerance`` towards its mate, on both flanks of a tooth space:
+    4·tol/cos α."""
+    return 4 * params.output.tolerance / math.cos(params.teeth.pressure_angle)
+
+
 def needed_backlash(params) -> float:
-    """The backlash the closed form asks for under the profile's process (mm; 0 with none)."""
+    """The backlash the closed form asks for (mm): under a process 4·δ/cos α for the edges,
+    2·Δa·tan α for the centres, and the band's margin (2·tol) with a quarter of a tolerance to
+    spare; with none, what the writing can take (:func:`writing_play`) and the mesh proof's
+    allowed bite (its depth 2·tol, over cos α), less what ``teeth.clearance`` leaves."""
     process, teeth = _process(params), getattr(params, "teeth", None)
-    if process is None or process.kind == "none" or teeth is None:
+    if teeth is None:
         return 0.0
-    alpha = teeth.pressure_angle
+    alpha, tol = teeth.pressure_angle, params.output.tolerance
+    if process is None or process.kind == "none":
+        return max(0.0, 1.5 * writing_play(params) - 4 * teeth.clearance / math.cos(alpha))
     edge = max(0.0, process.edge(params.output.chamfer)[2])
-    return 4 * edge / math.cos(alpha) + 2 * process.center_spread() * math.tan(alpha) + 4 * params.output.tolerance
+    return 4 * edge / math.cos(alpha) + 2 * process.center_spread() * math.tan(alpha) + 9 * tol / 4
 
 
 def chose_backlash(params) -> bool:
-    """Whether gearcad chooses this profile's backlash (a process named, teeth.backlash left out)."""
-    process, teeth = _process(params), getattr(params, "teeth", None)
-    return (
-        process is not None
-        and process.kind != "none"
-        and params.mechanism == "gear-pair"
-        and teeth is not None
-        and "backlash" not in teeth.model_fields_set
-    )
+    """Whether gearcad chooses this profile's backlash: a gear pair with teeth that leaves
+    ``teeth.backlash`` out (with no process: the play the writing tolerance needs)."""
+    teeth = getattr(params, "teeth", None)
+    return params.mechanism == "gear-pair" and teeth is not None and "backlash" not in teeth.model_fields_set
 
 
 def backlash_takes(params) -> bool:
@@ -69,16 +78,75 @@ def backlash_takes(params) -> bool:
     return not module or teeth.backlash < 0.8 * math.pi * module / 2
 
 
-def made(params, extra: float = 0.0):
+def made(params, backlash: float | None = None):
     """The profile as it will be cut: ``output.kerf`` the process's cutter width, and (a gear
-    pair that leaves ``teeth.backlash`` out) the backlash its process needs, plus ``extra``."""
+    pair that leaves ``teeth.backlash`` out) the backlash ``backlash``, by default the closed
+    form's (:func:`needed_backlash`)."""
     process = _process(params)
-    if process is None or process.kind == "none":
-        return params
-    update = {"output": params.output.model_copy(update={"kerf": process.cutter(params.output.kerf)})}
+    update = {}
+    if process is not None and process.kind != "none":
+        update["output"] = params.output.model_copy(update={"kerf": process.cutter(params.output.kerf)})
+        bore = getattr(params, "bore", None)
+        if process.kind == "cnc" and bore is not None and "pilot" not in bore.model_fields_set:
+            # a router cuts no hole narrower than its tool: the default pilot gives way to the cross
+            update["bore"] = bore.model_copy(update={"pilot": 0.0})
     if chose_backlash(params):
-        update["teeth"] = params.teeth.model_copy(update={"backlash": needed_backlash(params) + extra})
-    return params.model_copy(update=update)
+        chosen = needed_backlash(params) if backlash is None else backlash
+        update["teeth"] = params.teeth.model_copy(update={"backlash": chosen})
+    return params.model_copy(update=update) if update else params
+
+
+def _excess(params, band: Band) -> float:
+    """How much more play the band's worst case keeps than it must (mm; negative: short): the
+    band's margin under a process, with none what the writing can take."""
+    exact = _process(params) is None or _process(params).kind == "none"
+    return band.band[0] - (writing_play(params) if exact else band.margin)
+
+
+def chosen(given, design_of, *, designs: int = 4):
+    """(draft, bands) of ``given`` as made, with the backlash gearcad chooses: the smallest that
+    keeps the band's worst case free, found over at most ``designs`` cuts of the pair.
+
+    The first cut takes the closed form's backlash (:func:`needed_backlash`).  While it is short
+    the next adds what the band says it lacks; a pair that fits by more than the resolution
+    (a tolerance, or 1 % of the backlash) is cut again with the excess taken off, and between a
+    backlash that jams and one that fits the next lies where the jam's shortfall runs out.  A
+    noncircular pair's play is not linear in the backlash (the tips leave the roots at once), so
+    this is a bracketing search, not one step.  With no process the closed form's play is cut
+    once: more backlash must not hide an interference the mesh proof reports."""
+    params = made(given)
+    draft = design_of(params)
+    bands = pair_bands(draft)
+    exact = _process(given) is None or _process(given).kind == "none"
+    if not bands or not chose_backlash(given) or exact:  # exact parts: the closed form, never a cure
+        return draft, bands
+    tol = given.output.tolerance
+    tries = [(params.teeth.backlash, _excess(params, bands[0]), draft, bands)]
+    for _ in range(designs - 1):
+        fits = [t for t in tries if t[1] >= 0]
+        jams = [t for t in tries if t[1] < 0]
+        best = min(fits, key=lambda t: t[0]) if fits else None
+        short = max(jams, key=lambda t: t[0]) if jams else None
+        if best is not None and best[1] <= max(tol, 0.01 * best[0]):
+            break
+        if best is not None and short is not None and best[0] - short[0] <= max(tol, 0.01 * best[0]):
+            break
+        if short is None:  # fits by too much: take the excess off (the play grows at least as fast)
+            guess = best[0] - best[1]
+        else:  # short: add what it lacks, a tenth more (a jam's shortfall is a shrink, ~0.9 of it)
+            guess = short[0] - 1.1 * short[1] + 0.25 * tol
+            if best is not None:
+                width = best[0] - short[0]
+                guess = min(max(guess, short[0] + 0.1 * width), best[0] - 0.1 * width)
+        retry = made(given, max(guess, 0.0))
+        if not backlash_takes(retry):  # the tips reach the roots: no backlash frees them
+            break
+        draft = design_of(retry)
+        bands = pair_bands(draft)
+        tries.append((retry.teeth.backlash, _excess(retry, bands[0]), draft, bands))
+    fits = [t for t in tries if t[1] >= 0]
+    _, _, draft, bands = min(fits, key=lambda t: t[0]) if fits else tries[-1]
+    return draft, bands
 
 
 def pair_geometry(design: Design, positions: int | None = None) -> PairGeometry | None:
@@ -156,6 +224,18 @@ def with_bands(design: Design, bands: tuple[Band, ...]) -> Design:
                 findings.append(
                     finding("backlash-fixed", f"{b.mesh}: teeth.backlash = {need:.3f} mm keeps the worst case free")
                 )
+        writing = writing_play(design.params)
+        if process.kind == "none" and fixed and b.band[0] < writing:
+            need = design.params.teeth.backlash + writing - b.band[0]
+            findings.append(
+                finding(
+                    "backlash-fixed",
+                    f"{b.mesh}: the play falls to {b.band[0]:.4f} mm at {where}, less than the writing tolerance "
+                    f"can take ({writing:.4f} mm): the written outlines may touch; teeth.backlash = {need:.4f} mm "
+                    "keeps them apart",
+                    b.mesh,
+                )
+            )
         limit = process.value("max_play")
         if process.kind != "none" and limit and b.band[1] > limit:
             findings.append(

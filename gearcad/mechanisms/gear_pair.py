@@ -291,7 +291,10 @@ def design(params: GearPairParams) -> Draft:
         module = spec.module or pitch.gears[0].perimeter / (math.pi * spec.count)
         check_teeth_work([(g.perimeter / (math.pi * module), module) for g in pitch.gears], out.tolerance)
         alike = pitch.mate_shape_difference is not None and pitch.mate_shape_difference < 1e-6
-        teeth = cut_pair(pitch.pair, pitch.gears, spec, mate_rotation=pitch.mate_rotation if alike else None, tol=tol)
+        turn = pitch.mate_rotation if alike else None
+        teeth = cut_pair(
+            pitch.pair, pitch.gears, spec, mate_rotation=turn, tol=tol, min_fillet=params.process.tool_radius()
+        )
         if beta > 0:
             for i, g in enumerate(pitch.gears):  # the bore first: cheap, where the sections are not
                 check_bore(g.name, teeth.fine[i], params.bore, out.tolerance, teeth.plan.module)

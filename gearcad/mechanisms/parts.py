@@ -232,21 +232,23 @@ def make_part(
     return Blank(name, outline, fine, mark, pivot_mark, pivot, diameter)
 
 
-def cut_paths(parts: tuple[Blank, ...], output: CutSpec) -> tuple[Part, ...]:
+def cut_paths(parts: tuple[Blank, ...], output: CutSpec, *, router: bool = False) -> tuple[Part, ...]:
     """Every blank made a complete part, its cut paths as they will be written: offset half the
     kerf into the waste, arcs fitted, each checked simple and within the tolerance.  A kerf that
     would fill a tooth space or close a hole of any part is refused with the largest kerf every
-    part takes."""
+    part takes (``router``: the kerf is a router's tool, set by process.tool_diameter)."""
     tol = output.tolerance
     fine_tol = budget(tol).fine
     flat = output.dxf == "polyline-flat"
     kerfed = [p.fine if output.kerf <= 0 else kerf_path(p.fine, output.kerf / 2, fine_tol) for p in parts]
     faults = [(p, kerf_fault(p.fine, k, output.kerf / 2, fine_tol)) for p, k in zip(parts, kerfed) if output.kerf > 0]
     if any(f for _, f in faults):
-        spoilt = "; ".join(one.describe(p.name) for p, f in faults for one in f)
+        key, cutter = ("process.tool_diameter", "tool") if router else ("output.kerf", "beam")
+        spoilt = "; ".join(one.describe(p.name, cutter) for p, f in faults for one in f)
         largest = min(_largest_kerf(p.fine, output.kerf, fine_tol) for p, f in faults if f)
         raise DesignError(
-            f"output.kerf = {output.kerf:g}: {spoilt}; the largest kerf every part takes is {largest:.3f} mm"
+            f"{key} = {output.kerf:g}: {spoilt}; the largest {'tool' if router else 'kerf'} every part takes "
+            f"is {largest:.3f} mm"
         )
     # a part whose rings repeat an earlier part's (the two gears of a self-conjugate pair are cut
     # alike to ~1e-13 mm) takes that part's fitted paths: fitted once, they are within the

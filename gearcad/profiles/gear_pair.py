@@ -88,7 +88,10 @@ class TeethParams(ParamsModel):
     profile_shift: ProfileShift = 0.0
     """Profile shift of gear 1, × module; gear 2 gets the opposite, so the centre distance stays."""
     backlash: LengthOrZero = 0.0
-    """Backlash of the pair on the pitch curves, mm."""
+    """Backlash of the pair on the pitch curves, mm.  Left out, gearcad chooses it: under a
+    [process] the smallest that keeps the band's worst case free; with none 6·tol/cos α (what
+    the writing tolerance can take, 4·tol/cos α, and the mesh proof's allowed bite), less what
+    teeth.clearance leaves."""
     clearance: LengthOrZero = 0.0
     """Every toothed outline is offset inwards by this, mm."""
     helix_angle_deg: HelixAngleDeg = 0.0

@@ -54,8 +54,9 @@ class ProcessParams(ParamsModel):
     elephant_foot: Small | None = None
     """FDM: how much further the first layers bulge out (mm; default 0.2): only ever less play."""
     tool_diameter: Tool | None = None
-    """CNC: the end mill's diameter (default 3.175): its path is offset by the radius, and a space
-    or inside corner it cannot reach is refused like a kerf's."""
+    """CNC: the end mill's diameter (default 3.175): its path is offset by the radius, the teeth's
+    root fillets are cut with at least its radius (the rack's tip rounded so), and a tooth space,
+    hole or inside corner it cannot reach is refused in one line naming this key."""
     center_distance_tolerance: Small | None = None
     """±Δa: how far the assembled centre distance strays (mm; default 0.1 laser, 0.2 FDM, 0.05 CNC)."""
     bore_play: Small | None = None
@@ -86,6 +87,11 @@ class ProcessParams(ParamsModel):
         nominal, spread = self.value("xy_compensation"), self.value("xy_variation")
         foot = max(0.0, self.value("elephant_foot") - chamfer) if self.kind == "fdm" else 0.0
         return nominal, nominal - spread, nominal + spread + foot
+
+    def tool_radius(self) -> float:
+        """A router's tool radius (mm; 0 for any other process): the smallest root fillet, and the
+        smallest inside corner radius, its parts can have."""
+        return self.value("tool_diameter") / 2 if self.kind == "cnc" else 0.0
 
     def center_spread(self) -> float:
         """±Δa with the bores' play (half of each bore's diametral play), mm."""

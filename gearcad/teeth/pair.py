@@ -127,18 +127,35 @@ def _with_clearance(gear: ToothedGear, clearance: float, tolerance: float) -> To
     return replace(gear, outline=Outline((ring,)), space_root=_nearest(ring, gear.outline.outer[gear.space_root]))
 
 
-def _rack(params: ToothSpec, module: float, shift: float) -> Rack:
-    return Rack.from_params(
-        RackParams(
-            module=module,
-            pressure_angle=params.pressure_angle,
-            addendum=params.addendum,
-            dedendum=params.dedendum,
-            tip_radius=params.tip_radius,
-            profile_shift=shift,
-            thinning=params.backlash / 2,
-        )
+def _rack(params: ToothSpec, module: float, shift: float, min_fillet: float = 0.0) -> Rack:
+    """The generating rack; its tip rounded with at least ``min_fillet`` mm (a router's tool
+    radius: the root fillet it cuts is then no tighter than the tool), refused in one line
+    naming process.tool_diameter where the rack's tip has no room for it."""
+    tip = max(params.tip_radius, min_fillet / module)
+    rack = RackParams(
+        module=module,
+        pressure_angle=params.pressure_angle,
+        addendum=params.addendum,
+        dedendum=params.dedendum,
+        tip_radius=tip,
+        profile_shift=shift,
+        thinning=params.backlash / 2,
     )
+    if tip == params.tip_radius:
+        return Rack.from_params(rack)
+    a = params.pressure_angle
+    room = math.pi * module / 4 - shift * module * math.tan(a) + params.backlash / 4
+    room += (shift - params.dedendum) * module * math.tan(a)  # the rack tooth's half width at its tip line
+    largest = max(room, 0.0) * math.cos(a) / (1 - math.sin(a))  # the fillet the tip has room for
+    if min_fillet > largest:
+        raise DesignError(
+            f"process.tool_diameter = {2 * min_fillet:g}: the tool cannot reach the roots of teeth of module "
+            f"{module:.4g} mm; at most {2 * largest:.3f} mm fits their tooth spaces (the root fillet is the tool's "
+            f"radius), or teeth.module ≥ {module * min_fillet / largest:.3g} mm for this tool"
+            if largest > 0
+            else f"process.tool_diameter = {2 * min_fillet:g}: the rack tooth comes to a point before its tip line"
+        )
+    return Rack.from_params(rack)
 
 
 def cut_pair(
@@ -149,13 +166,15 @@ def cut_pair(
     mate_rotation: float | None = None,
     tol: Tolerances = DEFAULT,
     relief: bool = True,
+    min_fillet: float = 0.0,
 ) -> ToothedPairData:
     """Teeth on both gears of a rolling pair, proven to mesh.
 
     ``mate_rotation`` is δ with r2(θ) = r1(θ + δ) when gear 2 is gear 1 turned (a self-conjugate
     pair), None otherwise: then the teeth are planned so the two gears are one part.
     ``relief`` trims gear 1 by the mate's sweep where the proof finds the rack-cut pair too deep
-    (:mod:`.relief`); False keeps the rack's teeth as cut.
+    (:mod:`.relief`); False keeps the rack's teeth as cut.  ``min_fillet`` (mm) is the smallest
+    root fillet: a router's tool radius.
     """
     refuse_corners(gears)
     # a self-conjugate noncircular pair: gear 2 is gear 1 turned, and the count must make the
@@ -178,7 +197,9 @@ def cut_pair(
 
     def cut(frame, z, phase, shift):
         try:
-            gear = cut_teeth(frame, _rack(params, plan.module, shift), z, phase, tolerance=fine_tol, stop=stop)
+            gear = cut_teeth(
+                frame, _rack(params, plan.module, shift, min_fillet), z, phase, tolerance=fine_tol, stop=stop
+            )
             return _with_clearance(gear, params.clearance, fine_tol)
         except BaseException:
             stop.set()
