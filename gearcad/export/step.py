@@ -15,7 +15,15 @@ import shapely
 from ..mechanisms import Design
 from .step_brep import StepSolid, ruled_section, straight_solid, twisted_solid, volume
 
-__all__ = ["write_step_files", "write_step", "write_step_assembly", "face_counts", "volume", "STEP_TIMESTAMP"]
+__all__ = [
+    "write_step_files",
+    "write_part_step",
+    "write_step",
+    "write_step_assembly",
+    "face_counts",
+    "volume",
+    "STEP_TIMESTAMP",
+]
 
 STEP_TIMESTAMP = "2000-01-01T00:00:00"
 """The FILE_NAME time stamp of every STEP file: fixed (ISO 8601, as the standard asks), so that
@@ -166,17 +174,22 @@ def _solid(design: Design, part, rings) -> tuple[StepSolid, dict]:
     }
 
 
+def write_part_step(design: Design, name: str, folder: Path) -> tuple[StepSolid, dict]:
+    """The part ``name``'s ``<name>.step`` into ``folder``: its solid and its files entry."""
+    part = design.part(name)
+    solid, extra = _solid(design, part, design.made_rings(name))  # the part itself: no kerf
+    path = folder / f"{name}.step"
+    counts = write_step(path, solid)
+    return solid, {"bytes": path.stat().st_size, "kind": "step", "part": name, **counts, **extra}
+
+
 def write_step_files(design: Design, folder: Path) -> dict[str, dict]:
     """Every part's ``<name>.step`` and ``assembly.step`` (parts placed as in assembly.3mf) into
     ``folder``; returns their files entries (faces by type, volume in mm³)."""
     files: dict[str, dict] = {}
     solids: dict[str, StepSolid] = {}
-    for part in design.parts():  # a solid is the part itself: its paths without the laser's kerf
-        solid, extra = _solid(design, part, design.made_rings(part.name))
-        path = folder / f"{part.name}.step"
-        counts = write_step(path, solid)
-        files[path.name] = {"bytes": path.stat().st_size, "kind": "step", "part": part.name, **counts, **extra}
-        solids[part.name] = solid
+    for part in design.parts():
+        solids[part.name], files[f"{part.name}.step"] = write_part_step(design, part.name, folder)
     path = folder / "assembly.step"
     count = write_step_assembly(path, solids, design.placements)
     files[path.name] = {"bytes": path.stat().st_size, "kind": "step", "part": "assembly", "components": count}
