@@ -414,6 +414,13 @@ def test_prusaslicer_slices_an_stl_and_a_3mf(built, tmp_path):
 
 # ------------------------------------------------------------------------------------- FreeCAD
 
+FREECAD_SUBSET = {
+    ("elliptic_focus", "driver"),  # teeth on a noncircular pitch curve: planes and cylinders
+    ("herringbone_elliptic", "driver"),  # twisted teeth: B-spline flanks, a chamfered bore
+    ("rolling_wheel", "assembly"),  # an assembly (the smallest)
+}
+"""What FreeCAD reads by default (a FreeCAD process reads ~1 MB of STEP a second); all of them
+with ``GEARCAD_CONSUMERS=all``."""
 FREECAD_SCRIPT = """
 import json, sys
 import FreeCAD, Import, Part
@@ -437,9 +444,8 @@ def test_freecad_imports_every_step_part_as_one_valid_solid(request, tmp_path):
     part's file as one object of the part's name holding one valid closed solid; each assembly
     (read by ``Part.read``: FreeCAD 0.20.2's ``Import.insert`` ends in a segmentation fault on
     every STEP assembly in FreeCADCmd, its own exported App::Part too) as one valid closed
-    solid per placed part.  The files are tests/conftest.py's ``built_step`` (0.01 mm); by
-    default the representative parts, the herringbone's (B-spline flanks) and the smallest
-    assembly."""
+    solid per placed part.  The files are tests/conftest.py's ``built_step`` (0.01 mm): by
+    default :data:`FREECAD_SUBSET`."""
     freecad = shutil.which("freecadcmd") or shutil.which("FreeCADCmd")
     if freecad is None:
         pytest.skip(f"FreeCAD is not installed: apt-get install -y freecad (or {INSTALL})")
@@ -447,12 +453,10 @@ def test_freecad_imports_every_step_part_as_one_valid_solid(request, tmp_path):
     paths, placed = [], {}
     for folder in sorted(p for p in built_step.iterdir() if p.is_dir()):
         report = json.loads((folder / "report.json").read_text(encoding="utf-8"))
-        for name in (p["name"] for p in report["parts"]):
-            if ALL or (folder.name, name) in REPRESENTATIVE or folder.name == "herringbone_elliptic":
+        for name in [p["name"] for p in report["parts"]] + ["assembly"]:
+            if ALL or (folder.name, name) in FREECAD_SUBSET:
                 paths.append(str(folder / f"{name}.step"))
-        if ALL or folder.name == "rolling_wheel":
-            paths.append(str(folder / "assembly.step"))
-            placed[paths[-1]] = report["files"]["assembly.step"]["components"]
+        placed[str(folder / "assembly.step")] = report["files"]["assembly.step"]["components"]
     script = tmp_path / "freecad_step.py"
     script.write_text(FREECAD_SCRIPT, encoding="utf-8")
     run = subprocess.run(
