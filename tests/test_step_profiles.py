@@ -17,6 +17,7 @@ held to the same bound, perimeter × tolerance × thickness.
 
 from __future__ import annotations
 
+import hashlib
 import json
 import math
 
@@ -146,7 +147,7 @@ def _section_edges(shape, z: float) -> tuple[list[tuple[str, np.ndarray, np.ndar
 
 
 def test_every_profile_writes_every_part_and_its_assembly_as_valid_solids(built_step):
-    checked = 0
+    checked, seen = 0, {}
     for path in PROFILES:
         folder = built_step / path.stem
         report = json.loads((folder / "report.json").read_text(encoding="utf-8"))
@@ -155,6 +156,18 @@ def test_every_profile_writes_every_part_and_its_assembly_as_valid_solids(built_
         assert {n for n, f in files.items() if f["kind"] == "step"} == {f"{n}.step" for n in parts} | {"assembly.step"}
         for name, part in parts.items():
             where = f"{path.stem}/{name}"
+            # a part written before under another name (a planetary's sun is the compound ring's
+            # first gear, a self-conjugate pair's gears are alike): the same bytes but the name,
+            # read back once
+            text = (folder / f"{name}.step").read_text(encoding="utf-8")
+            assert f"PRODUCT('{name}'" in text, where
+            same = hashlib.sha256(text.replace(f"'{name}'", "''").encode()).hexdigest()
+            if same in seen:
+                assert files[f"{name}.step"]["faces"] == seen[same]["faces"], where
+                assert files[f"{name}.step"]["volume"] == seen[same]["volume"], where
+                checked += 1
+                continue
+            seen[same] = files[f"{name}.step"]
             shape = _read(folder / f"{name}.step")
             # one valid solid of one closed shell, the faces the report gives
             assert BRepCheck_Analyzer(shape).IsValid(), where
