@@ -69,7 +69,7 @@ CONSUMER_PACKAGES = (
     "lib3mf1",
     "poppler-utils",
     "chromium",
-    "freecad",  # the STEP solids imported with its defaults (tests/test_consumers.py)
+    "freecad",  # the STEP solids imported with its defaults (tests/test_step.py)
 )
 
 
