@@ -11,9 +11,9 @@ profiles/walker.toml --out /tmp/x`` or ``python3 tasks.py test -k walker``.
 
 ``consumers`` installs, with apt-get (as root, or through sudo), the programs that
 tests/test_consumers.py drives — OpenSCAD, LibreCAD, Inkscape (with the Python modules its DXF
-import needs), PrusaSlicer, lib3mf, poppler-utils (pdftoppm, pdftocairo) and Chromium (the HTML
-report's browser test) — printing each command before it runs it, then runs that test file on
-every part of every profile (``GEARCAD_CONSUMERS=all``).  ``consumers --install-only`` stops
+import needs), PrusaSlicer, lib3mf, poppler-utils (pdftoppm, pdftocairo), Chromium (the HTML
+report's browser test) and FreeCAD (the STEP files) — printing each command before it runs it,
+then runs that test file on every part of every profile (``GEARCAD_CONSUMERS=all``).  ``consumers --install-only`` stops
 after installing; ``consumers --no-install`` only runs the checks.
 """
 

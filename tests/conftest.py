@@ -68,11 +68,27 @@ def seed_tables() -> dict:
     return json.loads((ROOT / "gearcad" / "data" / "seed_tables.json").read_text(encoding="utf-8"))
 
 
+def _once(tmp_path_factory, worker_id, name: str, build) -> Path:
+    """``build(out)`` run once for the whole test run, also when pytest-xdist runs the tests in
+    several processes (the first to arrive builds under a lock, the others wait and read)."""
+    if worker_id == "master":  # one process
+        out = tmp_path_factory.mktemp(name) / "out"
+        build(out)
+        return out
+    shared = tmp_path_factory.getbasetemp().parent / name
+    shared.mkdir(exist_ok=True)
+    out, done = shared / "out", shared / "done"
+    with open(shared / "lock", "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        if not done.exists():
+            build(out)
+            done.write_text("ok")
+    return out
+
+
 @pytest.fixture(scope="session")
 def built(tmp_path_factory, worker_id) -> Path:
-    """Every profile built once, with every output, shared by the tests that read files back —
-    once for the whole run, also when pytest-xdist runs the tests in several processes (the
-    first to arrive builds under a lock, the others wait and read)."""
+    """Every profile built once, with every output, shared by the tests that read files back."""
     from gearcad.cli import main
 
     def build_all(out: Path) -> None:  # every chart audited as it is drawn (tests/test_pictures.py)
@@ -82,19 +98,29 @@ def built(tmp_path_factory, worker_id) -> Path:
         finally:
             del os.environ["GEARCAD_CHART_AUDIT"]
 
-    if worker_id == "master":  # one process
-        out = tmp_path_factory.mktemp("build") / "out"
-        build_all(out)
-        return out
-    shared = tmp_path_factory.getbasetemp().parent / "built"
-    shared.mkdir(exist_ok=True)
-    out, done = shared / "out", shared / "done"
-    with open(shared / "lock", "w") as lock:
-        fcntl.flock(lock, fcntl.LOCK_EX)
-        if not done.exists():
-            build_all(out)
-            done.write_text("ok")
-    return out
+    return _once(tmp_path_factory, worker_id, "built", build_all)
+
+
+STEP_BUILD = {**COARSE, "output.formats": ["step", "3mf", "dxf"]}
+"""What :func:`built_step` sets: STEP beside the files it is checked against, at 0.01 mm."""
+
+
+@pytest.fixture(scope="session")
+def built_step(tmp_path_factory, worker_id) -> Path:
+    """Every profile's STEP files (every part and the assembly) with its 3MF and DXF, written
+    once at :data:`STEP_BUILD` for the tests that read them back (tests/test_step_profiles.py,
+    FreeCAD's import in tests/test_consumers.py), report.json beside them."""
+    import gearcad
+    from gearcad.export.write import write_design
+
+    def build_all(out: Path) -> None:  # in this process, one after another: no pool to start
+        for path in PROFILES:
+            design = gearcad.design(profile(path.stem, STEP_BUILD))
+            folder = out / path.stem
+            folder.mkdir(parents=True)
+            write_design(design, folder)
+
+    return _once(tmp_path_factory, worker_id, "built_step", build_all)
 
 
 @pytest.fixture(scope="session")

@@ -62,7 +62,7 @@ def test_bench_quick_smoke_run(tmp_path: Path, capsys, monkeypatch):
     with (out / "results.csv").open() as fh:
         rows = list(csv.DictReader(fh))
     studies = {r["study"] for r in rows}
-    assert {"quadrature", "walker-i", "output", "build", "teeth-scaling", "helical"} <= studies
+    assert {"quadrature", "walker-i", "output", "build", "teeth-scaling", "helical", "step"} <= studies
     assert not {"peers", "goals"} & studies
     assert any(s.startswith("envelope") for s in studies)
     for r in rows:
@@ -80,9 +80,19 @@ def test_bench_quick_smoke_run(tmp_path: Path, capsys, monkeypatch):
     for r in rows:
         if r["method"] == "gearcad closed-form envelope":
             assert float(r["error"]) <= float(r["n"]) * 1.01
+    # the focus pair's two STEP files, as written: their sizes, and the goal verdict that follows
+    step = next(r for r in rows if r["study"] == "step")
+    sizes = [(out / "work" / "step" / f"{n}.step").stat().st_size for n in ("driver", "follower")]
+    assert int(step["bytes"]) == max(sizes) and int(step["bytes_total"]) == sum(sizes)
+    met = float(step["seconds"]) <= 2.0 and max(sizes) <= 1_000_000
+    printed = capsys.readouterr().out
+    assert (
+        step["met"] == str(met)
+        and f"STEP: focus pair, 2 STEP files (driver, follower): {float(step['seconds']):.2f} s" in printed
+    )
     # peak memory of a whole build stays under 250 MB
     assert all(float(r["peak_mb"]) < 250 for r in rows if r["study"] == "build")
-    assert "measurements written" in capsys.readouterr().out
+    assert "measurements written" in printed
 
 
 _FAKE_PEER = '''

@@ -15,10 +15,12 @@ Each program runs where it is installed and skips, naming its install command, w
   designed volume; ``--export-gcode`` slices an STL and a 3MF.
 * lib3mf 1.8 (Debian's lib3mf1, through its C interface): every 3MF reads in strict mode with
   no warning, every mesh manifold and oriented.
+* FreeCAD 0.20: its default STEP import reads every part's STEP file as one valid closed solid
+  of the part's name, and every assembly as one valid solid per placed part.
 * A reader that ignores bulges: the vertices of every closed ring alone (no bulges) enclose
   the ring's area within 0.5 %, and every part's within 0.5 %.
 
-The slower programs (Inkscape, LibreCAD, PrusaSlicer's slicing) take a representative subset
+The slower programs (Inkscape, LibreCAD, PrusaSlicer's slicing, FreeCAD) take a representative subset
 of parts by default; ``GEARCAD_CONSUMERS=all`` runs every part of every profile (what
 ``tasks.py consumers`` does).  ``GEARCAD_CONSUMERS_REPORT=file.json`` writes every measured area
 error there (docs/consumers.md's table comes from such a run).
@@ -410,6 +412,67 @@ def test_prusaslicer_slices_an_stl_and_a_3mf(built, tmp_path):
         assert run.returncode == 0 and "Slicing result exported" in run.stdout, run.stdout + run.stderr
         text = gcode.read_text(encoding="utf-8", errors="replace")
         assert re.search(r"^G1 .*E", text, re.M), path  # moves that extrude
+
+
+# ------------------------------------------------------------------------------------- FreeCAD
+
+FREECAD_SUBSET = {
+    ("elliptic_focus", "driver"),  # teeth on a noncircular pitch curve: planes and cylinders
+    ("herringbone_elliptic", "driver"),  # twisted teeth: B-spline flanks, a chamfered bore
+    ("rolling_wheel", "assembly"),  # an assembly (the smallest)
+}
+"""What FreeCAD reads by default (a FreeCAD process reads ~1 MB of STEP a second); all of them
+with ``GEARCAD_CONSUMERS=all``."""
+FREECAD_SCRIPT = """
+import json, sys
+import FreeCAD, Import, Part
+for path in json.loads(sys.argv[-1]):
+    if path.endswith("assembly.step"):
+        shape = Part.read(path)
+        closed = [s.isValid() and s.isClosed() for s in shape.Solids]
+        print("GEARCAD", json.dumps([path, len(closed), shape.isValid(), closed]))
+        continue
+    doc = FreeCAD.newDocument()
+    Import.insert(path, doc.Name)  # File > Import with the default preferences
+    found = [o for o in doc.Objects if hasattr(o, "Shape")]
+    print("GEARCAD", json.dumps([path, [o.Label for o in found], [len(o.Shape.Solids) for o in found],
+          [o.Shape.isValid() and all(s.isClosed() for s in o.Shape.Solids) for o in found]]))
+    FreeCAD.closeDocument(doc.Name)
+"""
+
+
+def test_freecad_imports_every_step_part_as_one_valid_solid(request, tmp_path):
+    """FreeCAD 0.20's default STEP import (``Import.insert``, what File ▸ Import runs) reads each
+    part's file as one object of the part's name holding one valid closed solid; each assembly
+    (read by ``Part.read``: FreeCAD 0.20.2's ``Import.insert`` ends in a segmentation fault on
+    every STEP assembly in FreeCADCmd, its own exported App::Part too) as one valid closed
+    solid per placed part.  The files are tests/conftest.py's ``built_step`` (0.01 mm): by
+    default :data:`FREECAD_SUBSET`."""
+    freecad = shutil.which("freecadcmd") or shutil.which("FreeCADCmd")
+    if freecad is None:
+        pytest.skip(f"FreeCAD is not installed: apt-get install -y freecad (or {INSTALL})")
+    built_step = request.getfixturevalue("built_step")
+    paths, placed = [], {}
+    for folder in sorted(p for p in built_step.iterdir() if p.is_dir()):
+        report = json.loads((folder / "report.json").read_text(encoding="utf-8"))
+        for name in [p["name"] for p in report["parts"]] + ["assembly"]:
+            if ALL or (folder.name, name) in FREECAD_SUBSET:
+                paths.append(str(folder / f"{name}.step"))
+        placed[str(folder / "assembly.step")] = report["files"]["assembly.step"]["components"]
+    script = tmp_path / "freecad_step.py"
+    script.write_text(FREECAD_SCRIPT, encoding="utf-8")
+    run = subprocess.run(
+        [freecad, str(script), json.dumps(paths)], capture_output=True, text=True, timeout=600, cwd=tmp_path
+    )
+    lines = [json.loads(line[len("GEARCAD ") :]) for line in run.stdout.splitlines() if line.startswith("GEARCAD ")]
+    assert [line[0] for line in lines] == paths, run.stdout[-2000:] + run.stderr[-2000:]
+    for path, *read in lines:
+        if path in placed:
+            count, valid, closed = read
+            assert count == placed[path] and valid and all(closed), (path, read)
+        else:
+            labels, solids, valid = read
+            assert labels == [Path(path).stem] and solids == [1] and all(valid), (path, read)
 
 
 # -------------------------------------------------------------------------------------- lib3mf

@@ -14,8 +14,6 @@ relative, and each solid to its own closed form.
 from __future__ import annotations
 
 import math
-import shutil
-import subprocess
 
 import ezdxf
 import numpy as np
@@ -245,7 +243,11 @@ def test_twisted_parts_are_lofted_through_the_3mf_sections(herringbone):
         mesh = trimesh.load(folder / f"{part.name}.3mf", force="mesh")
         # the same sections, ruled (STEP: bilinear patches; 3MF: two triangles on a diagonal);
         # the bore's chamfer is a cone here and facets there
-        assert _volume(shape, 1e-4) == pytest.approx(mesh.volume, rel=1e-3)
+        volume = _volume(shape, 1e-7)
+        assert volume == pytest.approx(mesh.volume, rel=1e-3)
+        # the report's volume is the ruled sections' in closed form (Simpson's rule, exact for
+        # areas quadratic in z) less the bores': OpenCASCADE integrates the file's faces alike
+        assert files[path.name]["volume"] == pytest.approx(volume, rel=1e-9)
         # halfway up the widest interval: the flank, read off the file's B-spline faces, within
         # the tolerance of the section finely cut there (and as the report gives it)
         sections = design.sections[part.name]
@@ -297,25 +299,3 @@ def test_profiles_take_step_and_refuse_what_is_not_a_format():
     assert "step" not in load_profile("profiles/spur_pair.toml").output.formats  # asked for, not default
     with pytest.raises(gearcad.ProfileError, match="step"):
         load_profile("profiles/spur_pair.toml", ['output.formats=["stp"]'])
-
-
-FREECAD = shutil.which("freecadcmd") or shutil.which("FreeCADCmd")
-
-
-def test_freecad_imports_every_part_as_one_valid_solid(request, tmp_path):
-    if FREECAD is None:
-        pytest.skip("FreeCAD is not installed: apt-get install -y freecad (or python3 tasks.py consumers)")
-    spur, herringbone = request.getfixturevalue("spur"), request.getfixturevalue("herringbone")
-    paths = [p for _, folder, _ in (spur, herringbone) for p in sorted(folder.glob("*.step")) if p.stem != "assembly"]
-    script = tmp_path / "check.py"
-    script.write_text(
-        "import Part\n"
-        f"for path in {[str(p) for p in paths]!r}:\n"
-        "    shape = Part.read(path)\n"
-        "    print('GEARCAD', path, len(shape.Solids), shape.isValid(), shape.Solids[0].isClosed())\n",
-        encoding="utf-8",
-    )
-    run = subprocess.run([FREECAD, str(script)], capture_output=True, text=True, timeout=300)
-    lines = [line.split() for line in run.stdout.splitlines() if line.startswith("GEARCAD")]
-    assert len(lines) == len(paths), run.stdout + run.stderr
-    assert all(line[2:] == ["1", "True", "True"] for line in lines), lines

@@ -17,6 +17,7 @@ from .peers import PEER, bench_peers, peer_version
 from .process import measure
 from .quadrature import bench_quadrature
 from .report import markdown, peer_ratios, peers_table, write_csv
+from .step import bench_step, step_lines
 from .timing import Progress
 
 __all__ = ["run_bench", "SECTIONS"]
@@ -53,7 +54,7 @@ def run_bench(
         peer = None if "peers" in skip else peer_version()
         timed = (3 * runs + 3 if peer else 0) + (0 if "goals" in skip else 6 * runs)
         staged = 0 if "stages" in skip else (6 if quick else 9)
-        progress = Progress(8 + builds + timed + staged)
+        progress = Progress(9 + builds + timed + staged)
         rows = bench_quadrature(quick)
         progress.step("quadrature")
         rows += bench_envelope(quick)
@@ -62,12 +63,14 @@ def run_bench(
         progress.step("output size")
         rows += helical_benchmark(quick=quick)  # twisted solids: time and triangles against width and tolerance
         progress.step("helical solids")
+        rows += bench_step(quick, work / "step")  # the focus pair's STEP files: time and size
+        progress.step("STEP files")
         rows += bench_builds(quick, work, progress.step)
         hard = stability.stability_map(quick)
         progress.step("stability map")
         commands = gearcad_commands(work / "runs")
         labels = {key: text for key, (text, _) in commands.items()}
-        measured, lines = {}, []
+        measured, lines = {}, step_lines(rows)
         if "peers" not in skip and peer is None:
             lines.append(f"peers: {PEER} is not importable here (pip install {PEER}); the section is skipped")
         elif peer is not None:

@@ -13,9 +13,17 @@ from pathlib import Path
 import shapely
 
 from ..mechanisms import Design
-from .step_brep import StepSolid, ruled_section, straight_solid, twisted_solid
+from .step_brep import StepSolid, ruled_section, straight_solid, twisted_solid, volume
 
-__all__ = ["write_step_files", "write_step", "write_step_assembly", "face_counts", "volume", "STEP_TIMESTAMP"]
+__all__ = [
+    "write_step_files",
+    "write_part_step",
+    "write_step",
+    "write_step_assembly",
+    "face_counts",
+    "volume",
+    "STEP_TIMESTAMP",
+]
 
 STEP_TIMESTAMP = "2000-01-01T00:00:00"
 """The FILE_NAME time stamp of every STEP file: fixed (ISO 8601, as the standard asks), so that
@@ -43,17 +51,6 @@ def face_counts(shape) -> dict[str, int]:
         counts[kind] = counts.get(kind, 0) + 1
         explorer.Next()
     return counts
-
-
-def volume(shape, *, relative_error: float = 1e-7) -> float:
-    """The shape's volume, mm³, integrated over its faces by OpenCASCADE to ``relative_error``
-    (adaptive: a ruled face of thousands of spans defeats a fixed Gauss rule)."""
-    from OCP.BRepGProp import BRepGProp
-    from OCP.GProp import GProp_GProps
-
-    props = GProp_GProps()
-    BRepGProp.VolumeProperties_s(shape, props, relative_error)
-    return float(props.Mass())
 
 
 def _document():
@@ -115,20 +112,22 @@ def _number_occurrences(model) -> None:
     from OCP.StepRepr import StepRepr_NextAssemblyUsageOccurrence
     from OCP.TCollection import TCollection_HAsciiString
 
+    occurrences = model.Entities()  # picked by type in OpenCASCADE: a file has 10⁴–10⁵ entities
+    occurrences.SelectType(StepRepr_NextAssemblyUsageOccurrence.get_type_descriptor_s(), True)
     count = 0
-    for k in range(1, model.NbEntities() + 1):
-        entity = model.Value(k)
-        if isinstance(entity, StepRepr_NextAssemblyUsageOccurrence):
-            count += 1
-            entity.SetId(TCollection_HAsciiString(str(count)))
+    while occurrences.More():
+        count += 1
+        occurrences.Value().SetId(TCollection_HAsciiString(str(count)))
+        occurrences.Next()
 
 
-def write_step(path: Path, solid: StepSolid, *, relative_error: float = 1e-7) -> dict:
+def write_step(path: Path, solid: StepSolid) -> dict:
     """One part as one named solid in mm; returns its faces by type and its volume (mm³)."""
     doc, tool = _document()
     _named(tool.AddShape(solid.shape, False), solid.name)
     _write(path, doc)
-    return {"faces": face_counts(solid.shape), "volume": volume(solid.shape, relative_error=relative_error)}
+    measured = volume(solid.shape) if solid.volume is None else solid.volume
+    return {"faces": face_counts(solid.shape), "volume": measured}
 
 
 def write_step_assembly(path: Path, solids: dict[str, StepSolid], placements: Sequence) -> int:
@@ -175,23 +174,22 @@ def _solid(design: Design, part, rings) -> tuple[StepSolid, dict]:
     }
 
 
+def write_part_step(design: Design, name: str, folder: Path) -> tuple[StepSolid, dict]:
+    """The part ``name``'s ``<name>.step`` into ``folder``: its solid and its files entry."""
+    part = design.part(name)
+    solid, extra = _solid(design, part, design.made_rings(name))  # the part itself: no kerf
+    path = folder / f"{name}.step"
+    counts = write_step(path, solid)
+    return solid, {"bytes": path.stat().st_size, "kind": "step", "part": name, **counts, **extra}
+
+
 def write_step_files(design: Design, folder: Path) -> dict[str, dict]:
     """Every part's ``<name>.step`` and ``assembly.step`` (parts placed as in assembly.3mf) into
     ``folder``; returns their files entries (faces by type, volume in mm³)."""
-    from ..mechanisms.parts import cut_paths
-
-    out = design.params.output
-    parts = design.parts()
-    if out.kerf > 0:  # a solid is the part itself: its paths fitted without the laser's offset
-        parts = cut_paths(parts, out.model_copy(update={"kerf": 0.0}))
     files: dict[str, dict] = {}
     solids: dict[str, StepSolid] = {}
-    for part in parts:
-        solid, extra = _solid(design, part, part.cut)
-        path = folder / f"{part.name}.step"
-        counts = write_step(path, solid, relative_error=1e-7 if not extra else 1e-5)
-        files[path.name] = {"bytes": path.stat().st_size, "kind": "step", "part": part.name, **counts, **extra}
-        solids[part.name] = solid
+    for part in design.parts():
+        solids[part.name], files[f"{part.name}.step"] = write_part_step(design, part.name, folder)
     path = folder / "assembly.step"
     count = write_step_assembly(path, solids, design.placements)
     files[path.name] = {"bytes": path.stat().st_size, "kind": "step", "part": "assembly", "components": count}

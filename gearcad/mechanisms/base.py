@@ -129,6 +129,9 @@ class Design:
     sections: dict = field(default_factory=dict)
     """Part name → its twisted sections (``teeth.helical.GearSections``): such a part's solid
     is lofted through them instead of extruded."""
+    made: dict = field(default_factory=dict, compare=False)
+    """Part name → its cut rings fitted without the kerf (the part itself, for its exact solid),
+    made when STEP is written with ``output.kerf`` > 0; see :meth:`made_rings`."""
     charts: dict = field(default_factory=dict)
     """Chart name → the data it is drawn from, computed with the design (exporters only draw)."""
     seconds: float = field(default=0.0, compare=False)
@@ -146,6 +149,15 @@ class Design:
 
     def part(self, name: str) -> Part:
         return next(p for p in self.part_list if p.name == name)
+
+    def made_rings(self, name: str) -> tuple:
+        """The part's cut rings as the part itself is (no kerf: what a solid of it is), lines and
+        arcs within the tolerance of the exact outline, outer first."""
+        if name in self.made:
+            return self.made[name]
+        if self.params.output.kerf > 0:
+            raise ValueError(f"{name}: the rings without kerf are made only with 'step' in output.formats")
+        return self.part(name).cut
 
     def failures(self, allow=()) -> tuple[Finding, ...]:
         """The findings that fail a check (``findings.ERRORS``), but those whose code is in

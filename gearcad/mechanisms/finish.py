@@ -180,6 +180,12 @@ def finish(draft: Draft, *, start: float | None = None) -> Design:
         sheet=layouts.sheet_layout(parts, draft.placements, out) if formats & {"dxf", "svg"} else (),
         plate=layouts.plate_layout(parts, draft.placements, out, draft.sections) if "3mf" in formats else (),
         sections=draft.sections,
+        made=_made_rings(made, out) if "step" in formats and out.kerf > 0 else {},
         charts=draft.charts,
         seconds=time.perf_counter() - start,
     )
+
+
+def _made_rings(blanks, out) -> dict:
+    """Every part's cut rings fitted as without a kerf: the part itself, for its solid."""
+    return {p.name: p.cut for p in cut_paths(blanks, out.model_copy(update={"kerf": 0.0}))}
