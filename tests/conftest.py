@@ -103,6 +103,18 @@ def built(tmp_path_factory, worker_id) -> Path:
 
 STEP_BUILD = {**COARSE, "output.formats": ["step", "3mf", "dxf"]}
 """What :func:`built_step` sets: STEP beside the files it is checked against, at 0.01 mm."""
+STEP_KINDS = ("elliptic_focus", "herringbone_elliptic", "planetary_internal", "rolling_wheel", "walker")
+STEP_PROFILES = (
+    PROFILES
+    if os.environ.get("GEARCAD_CONSUMERS", "") == "all"
+    else [
+        EXAMPLES / f"{n}.toml"
+        for n in ("elliptic_focus", "herringbone_elliptic", "planetary_internal", "rolling_wheel", "walker")
+    ]
+)
+"""The profiles :func:`built_step` writes: one of each kind of part (teeth on a noncircular curve,
+twisted teeth, a ring's internal teeth, a plain wheel and a kerf, the walker's shoe) in the
+suite; every profile with ``GEARCAD_CONSUMERS=all`` (``python3 tasks.py consumers``)."""
 
 
 @pytest.fixture(scope="session")
@@ -114,7 +126,7 @@ def built_step(tmp_path_factory, worker_id) -> Path:
     from gearcad.export.write import write_design
 
     def build_all(out: Path) -> None:  # in this process, one after another: no pool to start
-        for path in PROFILES:
+        for path in STEP_PROFILES:
             design = gearcad.design(profile(path.stem, STEP_BUILD))
             folder = out / path.stem
             folder.mkdir(parents=True)

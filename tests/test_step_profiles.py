@@ -2,7 +2,8 @@
 valid closed solid of the right faces, its volume the 3MF's with the arcs' difference, its
 section at half thickness the DXF's cut outline; every assembly naming its parts.
 
-One build of every profile at 0.01 mm (``built_step``, tests/conftest.py), read by one test so
+One build at 0.01 mm of a profile of each kind of part — every profile with
+``GEARCAD_CONSUMERS=all`` (``built_step``, tests/conftest.py) — read by one test so
 that pytest-xdist reads it in one worker.  The fine checks (the assembly read back and placed,
 byte-identical rewrites, the twisted flank between sections, the chamfer's closed form) are in
 tests/test_step.py on two small builds.
@@ -48,7 +49,7 @@ from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_SHELL, TopAbs_SOLID  # n
 from OCP.TopExp import TopExp_Explorer  # noqa: E402
 from OCP.TopoDS import TopoDS  # noqa: E402
 
-from .conftest import PROFILES, STEP_BUILD  # noqa: E402
+from .conftest import STEP_BUILD, STEP_PROFILES  # noqa: E402
 
 SURFACES = {
     GeomAbs_Plane: "plane",
@@ -148,7 +149,7 @@ def _section_edges(shape, z: float) -> tuple[list[tuple[str, np.ndarray, np.ndar
 
 def test_every_profile_writes_every_part_and_its_assembly_as_valid_solids(built_step):
     checked, seen = 0, {}
-    for path in PROFILES:
+    for path in STEP_PROFILES:
         folder = built_step / path.stem
         report = json.loads((folder / "report.json").read_text(encoding="utf-8"))
         files, thickness, chamfer = report["files"], report["output"]["thickness"], report["output"]["chamfer"]
@@ -217,7 +218,8 @@ def test_every_profile_writes_every_part_and_its_assembly_as_valid_solids(built_
         assert occurrences == files["assembly.step"]["components"] and occurrences >= len(parts), path.stem
         assert "PRODUCT('assembly'" in text and all(f"PRODUCT('{n}'" in text for n in parts), path.stem
         assert text.count("MANIFOLD_SOLID_BREP(") == len(parts), path.stem
-    assert checked == sum(len(json.loads((built_step / p.stem / "report.json").read_text())["parts"]) for p in PROFILES)
+    parts = [json.loads((built_step / p.stem / "report.json").read_text())["parts"] for p in STEP_PROFILES]
+    assert checked == sum(map(len, parts))
 
 
 def test_a_solid_is_the_part_without_the_lasers_kerf(tmp_path):
