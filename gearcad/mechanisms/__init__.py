@@ -13,7 +13,7 @@ from importlib import import_module
 
 from ..errors import GearcadError
 from ..profiles import ProfileParams
-from . import band_trains, fit
+from . import band_trains, fit, mesh_fit
 from .base import Design
 from .finish import Draft, finish
 from .parts import Part, Placement
@@ -35,6 +35,8 @@ def design(params: ProfileParams, stage: str = "full") -> Design:
             )
         return replace(staged_design(params, stage), seconds=time.perf_counter() - start)
     mechanism = import_module(f".{MECHANISMS[params.mechanism].module}", __name__)
+    if params.mechanism in mesh_fit.KEYS:  # a train's meshes, a body's rollers: their backlash and bands
+        return finish(mesh_fit.chosen(params, mechanism.design), start=start)
     given, params = params, fit.made(params)  # the process's kerf and the backlash it needs
     draft = mechanism.design(params)
     bands = fit.pair_bands(draft)
