@@ -55,7 +55,8 @@ def closed_form(params) -> float:
     the band's margin 2·tol with a quarter of a tolerance to spare (as a gear pair's)."""
     process, alpha = params.process, params.pressure_angle
     edge = max(0.0, process.edge(params.output.chamfer)[2])
-    return 4 * edge / math.cos(alpha) + 2 * process.center_spread() * math.tan(alpha) + 2.25 * params.output.tolerance
+    tol = params.output.tolerance
+    return 4 * edge / math.cos(alpha) + 2 * process.center_spread() * math.tan(alpha) + 2 * tol + tol / 4
 
 
 def _excess(bands) -> float:
