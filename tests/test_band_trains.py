@@ -172,3 +172,116 @@ def test_the_built_pages_and_reports_carry_every_mesh(built):
         assert [b["internal"] for b in report["bands"]] == [m in ("planet/ring", "ring/gear3") for m in meshes]
         page = (built / name / "index.html").read_text(encoding="utf-8")
         assert 'id="fit"' in page and f"<td>{meshes[-1]}" in page and "working pressure angle" in page
+
+
+# ---- the backlash of trains and bodies: cut, chosen under a process, warned when fixed ----
+
+
+def _tooth_arc(ring: np.ndarray, radius: float) -> float:
+    """Material along a circle (for a ring's toothed hole: space), mm: the circle's length inside
+    the outline, read off the drawn ring by shapely."""
+    import shapely
+
+    circle = shapely.Point(0, 0).buffer(radius, quad_segs=2048).exterior
+    return shapely.intersection(shapely.Polygon(ring), circle).length
+
+
+def test_train_backlash_thins_each_gear_and_widens_the_ring_spaces_by_half():
+    """The drawn parts read back: a gear's tooth on the pitch circle is πm/2 − b/2 long, a ring's
+    space (its hole inside the pitch circle) πm/2 + b/2, each within the outline tolerance."""
+    b, m = 0.3, 1.5
+    parts = drafted("planetary_internal", carrier_train.design, {**FINE, "train.backlash": b})[1].parts
+    for part, z in zip(parts[:2], (20, 16)):
+        assert _tooth_arc(part.outer, m * z / 2) / z == pytest.approx(math.pi * m / 2 - b / 2, abs=0.001)
+    ring = parts[2]
+    assert _tooth_arc(ring.hole, m * 52 / 2) / 52 == pytest.approx(math.pi * m / 2 + b / 2, abs=0.001)
+
+
+def test_a_backlash_too_large_is_refused_naming_the_key():
+    from gearcad.errors import DesignError
+
+    with pytest.raises(DesignError, match=r"train.backlash = 2.4: .* the largest backlash module 1.5 takes is 2.356"):
+        drafted("planetary_external", carrier_train.design, {"train.backlash": 2.4})
+
+
+@pytest.fixture(scope="module")
+def laser_train():
+    """planetary_internal under a laser's defaults, its backlash left to gearcad (coarse outlines)."""
+    from gearcad.mechanisms import design
+
+    from .conftest import COARSE, profile
+
+    return design(profile("planetary_internal", {**COARSE, "process.kind": "laser"}))
+
+
+def _worst(params, backlash):
+    """The tightest worst case over a train's meshes (mm less the margin) cut with ``backlash``."""
+    from gearcad.mechanisms.fit import made
+    from gearcad.mechanisms.mesh_fit import with_backlash
+
+    bands = mesh_bands(carrier_train.design(with_backlash(made(params), backlash)))
+    return min(mb.band.band[0] - mb.band.margin for mb in bands)
+
+
+def test_a_laser_train_gets_the_smallest_backlash_that_fits(laser_train):
+    """Every mesh fits with the chosen b, reported and cut; with b less the resolution
+    (max(tol, 1 % of b)) and a tolerance more, the worst case jams — measured here, not by the
+    chooser; and b is the closed form 4·δ/cos α + 2·Δa·tan α plus the margin (circles: the play
+    grows one for one with b), within the resolution."""
+    bands, p = laser_train.data["bands"], laser_train.params
+    b, tol = p.train.backlash, p.output.tolerance
+    assert [x["verdict"] for x in bands] == ["fits", "fits"]
+    assert all(x["backlash"] == b and x["backlash_chosen"] for x in bands)
+    assert laser_train.data["train"]["backlash"] == b
+    assert any(line.startswith(f"train.backlash = {b:.4f} mm (chosen") for line in laser_train.details)
+    assert min(x["min"] for x in bands) >= 2 * tol
+    resolution = max(tol, 0.01 * b)
+    assert _worst(p, b - resolution - tol) < 0  # smaller by more than the resolution: it jams
+    closed = 4 * 0.025 / math.cos(ALPHA) + 2 * 0.1 * math.tan(ALPHA) + 2 * tol
+    assert closed - tol <= b <= closed + resolution + tol
+
+
+def test_a_fixed_backlash_too_small_warns_with_the_value_needed():
+    """train.backlash = 0.05 under a laser: each mesh jams, and the warning's value frees it
+    (about the closed form: the play grows one for one with the backlash)."""
+    import re
+
+    from gearcad.mechanisms import design
+
+    from .conftest import COARSE, profile
+
+    done = design(profile("planetary_external", {**COARSE, "process.kind": "laser", "train.backlash": 0.05}))
+    warned = [f.message for f in done.findings if f.code == "backlash-fixed"]
+    assert [f.code for f in done.findings].count("jams") == 2 and len(warned) == 2
+    need = max(float(re.search(r"train.backlash = ([0-9.]+) mm", w).group(1)) for w in warned)
+    closed = 4 * 0.025 / math.cos(ALPHA) + 2 * 0.1 * math.tan(ALPHA) + 2 * 0.01
+    assert need == pytest.approx(closed, abs=0.012)
+    assert "train.backlash +" in [f.message for f in done.findings if f.code == "jams"][0]
+
+
+def test_fdm_tips_in_roots_no_backlash_frees_them():
+    """FDM's defaults: both edges +0.3 mm (0.1 + the elephant foot) and the centres 0.2 mm off take
+    0.8 mm from a radial clearance of 0.25·1.5 = 0.375 mm: the finding says no backlash helps."""
+    from gearcad.mechanisms.band_trains import _jams, radial_room
+
+    from .conftest import COARSE, profile
+
+    params = profile("planetary_external", {**COARSE, "process.kind": "fdm"})
+    assert radial_room(params, 1.5) == pytest.approx(0.375 - 0.6 - 0.2)
+    chamfered = profile("roller_body_m3", {**COARSE, "process.kind": "fdm", "output.chamfer": 0.2})
+    assert radial_room(chamfered, 1.6) == pytest.approx(0.4 - 0.2 - 0.2)
+    gears = drafted("planetary_external", carrier_train.design, {"train.backlash": 1.0})[1]
+    band = mesh_band(train_meshes(gears, 3)[0][1], edge=(0.0, -0.1, 0.3), spread=0.2, tol=0.01, name="m", backlash=1.0)
+    assert not band.fits  # a full millimetre of backlash and still jammed
+    assert "the tips reach the mate's roots" in _jams(band, False, "train.backlash", -0.425)
+
+
+def test_the_rollers_share_one_band_found_at_their_own_turns(rollers):
+    """The three rollers meet the body alike a third of a turn apart: roller 2's band, measured on
+    its own, is roller 1's, its worst place 120° of the body earlier."""
+    found = roller_meshes(rollers)
+    shared = mesh_bands(rollers)
+    own = mesh_band(found[1][1], edge=(0.0, 0.0, 0.0), spread=0.0, tol=0.01, name="body/roller 2")
+    assert shared[1].band.band == pytest.approx(own.band, abs=1e-6)
+    assert shared[1].band.nominal == pytest.approx(own.nominal, abs=1e-6)
+    assert shared[1].band.worst_phi == pytest.approx((shared[0].band.worst_phi - 2 * math.pi / 3) % (2 * math.pi))

@@ -13,7 +13,7 @@ from importlib import import_module
 
 from ..errors import GearcadError
 from ..profiles import ProfileParams
-from . import band_trains, fit
+from . import band_trains, fit, mesh_fit
 from .base import Design
 from .finish import Draft, finish
 from .parts import Part, Placement
@@ -35,6 +35,8 @@ def design(params: ProfileParams, stage: str = "full") -> Design:
             )
         return replace(staged_design(fit.made(params), stage), seconds=time.perf_counter() - start)
     mechanism = import_module(f".{MECHANISMS[params.mechanism].module}", __name__)
+    if params.mechanism in mesh_fit.KEYS:  # a train's meshes, a body's rollers: their backlash and bands
+        return finish(mesh_fit.chosen(params, mechanism.design), start=start)
     draft, bands = fit.chosen(params, mechanism.design)  # the process's cutter and the backlash it needs
     draft = band_trains.with_mesh_bands(fit.with_bands(draft, bands))  # a train's meshes, a body's rollers
     return finish(draft, start=start)

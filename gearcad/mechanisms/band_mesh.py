@@ -100,9 +100,8 @@ def mesh_play(
     gear 2's pivot along ``g.tighter`` (mm; negative: the other way), ``reach`` bounds the play
     sought; ``pieces`` the parts cut about the contact (:func:`clip`; default: cut here).
 
-    Each way, gear 2 is turned by the gap over the farthest reach of its window from its pivot (no
-    point moves farther than the gap, so it never passes through gear 1); ``steps`` of that bring
-    the gap under a millionth of a module."""
+    Each way, gear 2 is turned towards gear 1 until they touch (:func:`_turn_to_touch`); ``steps``
+    bring the gap under a millionth of a module."""
     radius = _WINDOW * g.module
     if pieces is None:
         pieces = clip(g, float(max(np.max(np.abs(o)) for o in offsets)))
@@ -123,39 +122,101 @@ def mesh_play(
     arm = np.hypot(*(g.contact - g.centre2).T)  # gear 2's pitch radius at the contact
     limit = min(reach, 1.2 * math.pi * g.module) / arm  # more than a pitch never frees a tooth
     zero = np.zeros_like(g.phi1)
-    free = shapely.area(shapely.intersection(w1, place(zero))) <= 1e-9 * g.module**2
+    placed = place(zero)
+    free = shapely.area(shapely.intersection(w1, placed)) <= 1e-9 * g.module**2
+    if not steps or not free.any():  # only whether they are free: no play to measure
+        return np.where(free, 0.0, np.nan)
+    gap = shapely.distance(w1, placed)
     total = np.zeros_like(g.phi1)
     for sign in (1.0, -1.0):
-        turn = zero.copy()
-        for _ in range(steps):
-            turn = np.minimum(turn + shapely.distance(w1, place(sign * turn)) / far, limit)
-        total += turn
+        total += _turn_to_touch(w1, lambda turn: place(sign * turn), gap, far, limit, steps, 1e-6 * g.module)
     return np.where(free, total * arm, np.nan)
+
+
+def _turn_to_touch(w1, place, gap: np.ndarray, far: np.ndarray, limit, steps: int, settled: float) -> np.ndarray:
+    """The turn (rad, ≥ 0, at most ``limit``) that brings gear 2's windows (``place(turn)``) to
+    touch gear 1's, from ``gap`` (mm) at turn 0, in ``steps`` looks at the gap.
+
+    A turn by the gap over ``far`` (the farthest reach of gear 2's window from its pivot) moves no
+    point farther than the gap, so it never passes through gear 1, but it closes only the share
+    r_b/far of the gap (about 0.2–0.8).  Once two gaps are known the flanks close about linearly,
+    so the secant's step (to 95 % of the way) is taken instead; where that lands the parts
+    touching or overlapping (a gap of 0) it is taken back and the safe step taken."""
+    turn, before, gap_before = np.zeros_like(gap), None, None
+    for _ in range(steps):
+        safe = gap / far
+        step = safe
+        if before is not None:
+            closing = (gap_before - gap) / np.maximum(turn - before, 1e-15)  # mm per rad
+            step = np.where(closing > 0, np.maximum(safe, 0.95 * gap / np.where(closing > 0, closing, 1.0)), safe)
+        ahead = np.minimum(turn + step, limit)
+        gap_ahead = shapely.distance(w1, place(ahead))
+        over = np.flatnonzero((gap_ahead <= 0) & (step > safe))
+        if len(over):  # the secant went too far: the safe step there
+            ahead[over] = np.minimum(turn[over] + safe[over], limit[over] if np.ndim(limit) else limit)
+            gap_ahead[over] = shapely.distance(w1[over], place(ahead)[over])
+        before, gap_before, turn, gap = turn, gap, ahead, gap_ahead
+        if np.all((gap <= settled) | (turn >= limit)):  # every position has come to rest
+            break
+    return turn
 
 
 def _signed_play(g: MeshGeometry, pieces, edge: float, shift: float, tol: float, *, reach: float) -> np.ndarray:
     """:func:`mesh_play` with both parts grown by ``edge``, negative where jammed: the shrink ε
-    that frees it counts −4ε/cos α."""
+    that frees it counts −4ε/cos α.
+
+    A rack-cut flank moved ε along its normal moves ε/cos α along the pitch curve, so the play
+    grows by 4ε/cos α as both parts shrink by ε: a jammed position is measured shrunk until it
+    is free and its play extrapolated back to ε = 0.  Two quick looks confirm it (free just
+    past the shrink so found, jammed just short of it); where they do not (a tip in a root,
+    where the relation is not linear), the shrink is bisected between what they showed."""
     play = mesh_play(g, (edge, edge), shift, tol, reach=reach, pieces=pieces)
     jammed = np.isnan(play)
     if not jammed.any():
         return play
     sub, cut = g.at(jammed), (pieces[0][jammed], pieces[1][jammed])
-    lo, hi = np.zeros(int(jammed.sum())), np.full(int(jammed.sum()), 0.5 * g.module)
-    for _ in range(14):
-        mid = 0.5 * (lo + hi)
-        free = ~np.isnan(mesh_play(sub, (edge - mid, edge - mid), shift, tol, reach=reach, steps=0, pieces=cut))
-        hi, lo = np.where(free, mid, hi), np.where(free, lo, mid)
-    play[jammed] = -4 * hi / math.cos(g.pressure_angle)
+    cos_a, most = math.cos(g.pressure_angle), 0.5 * g.module
+
+    def free(shrink: np.ndarray, at: np.ndarray | None = None, steps: int = 0) -> np.ndarray:
+        """The play with both parts shrunk (at the jammed positions ``at``: default all)."""
+        few, part = (sub, cut) if at is None else (sub.at(at), (cut[0][at], cut[1][at]))
+        return mesh_play(few, (edge - shrink, edge - shrink), shift, tol, reach=reach, steps=steps, pieces=part)
+
+    # what the stack adds (the edge, the shift's share along the flanks) frees the drawn parts
+    start = max(edge, 0.0) + abs(shift) * math.sin(g.pressure_angle) + 2 * tol
+    shrink = np.full(int(jammed.sum()), min(most, start))
+    for _ in range(12):
+        stuck = np.isnan(free(shrink))
+        if not stuck.any() or np.all(shrink[stuck] >= most):
+            break
+        shrink = np.where(stuck, np.minimum(2 * shrink, most), shrink)
+    need = np.clip(shrink - free(shrink, steps=8) * cos_a / 4, 0.0, shrink)  # NaN where even `most` jams
+    lo, hi = np.zeros_like(shrink), np.where(np.isnan(need), most, need)
+    measured = np.flatnonzero(~np.isnan(need))
+    step = tol / 4
+    past = ~np.isnan(free(need[measured] + step, measured))
+    short = (need[measured] <= step) | np.isnan(free(np.maximum(need[measured] - step, 0.0), measured))
+    # not free just past it: between there and the shrink that freed it; free just short: below
+    lo[measured[~past]], hi[measured[~past]] = need[measured[~past]] + step, shrink[measured[~past]]
+    lo[measured[~short]], hi[measured[~short]] = 0.0, need[measured[~short]] - step
+    doubtful = measured[~(past & short)]
+    for _ in range(14 if len(doubtful) else 0):
+        mid = 0.5 * (lo[doubtful] + hi[doubtful])
+        ok = ~np.isnan(free(mid, doubtful))
+        hi[doubtful], lo[doubtful] = np.where(ok, mid, hi[doubtful]), np.where(ok, lo[doubtful], mid)
+    play[jammed] = -4 * hi / cos_a
     return play
 
 
-def mesh_band(g: MeshGeometry, *, edge: tuple[float, float, float], spread: float, tol: float, name: str) -> Band:
-    """The band of one mesh drawn without backlash: the play as drawn, with every edge at its
-    largest and gear 2's pivot ``spread`` mm towards the tight side, and at its smallest with it
-    as far the other way; ``tol`` the outline tolerance (the worst case keeps twice it free)."""
+def mesh_band(
+    g: MeshGeometry, *, edge: tuple[float, float, float], spread: float, tol: float, name: str, backlash: float = 0.0
+) -> Band:
+    """The band of one mesh: the play as drawn, with every edge at its largest and gear 2's pivot
+    ``spread`` mm towards the tight side, and at its smallest with it as far the other way;
+    ``tol`` the outline tolerance (the worst case keeps twice it free), ``backlash`` the play the
+    teeth are cut with (bounds the search with the stack)."""
     alpha = g.pressure_angle
-    reach = 4 * max(abs(e) for e in edge) / math.cos(alpha) + 2 * spread * math.tan(alpha) + 0.5 * g.module
+    reach = backlash + 4 * max(abs(e) for e in edge) / math.cos(alpha) + 2 * spread * math.tan(alpha) + 0.5 * g.module
     cases = [(edge[0], 0.0), (edge[2], spread), (edge[1], -spread)]
     if not any(edge) and not spread:  # exact parts: the three cases are one
         cases = cases[:1]

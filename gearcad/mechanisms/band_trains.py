@@ -29,9 +29,13 @@ from .band import Band
 from .band_mesh import MeshGeometry, mesh_band
 from .fit import _process_block
 
-__all__ = ["MeshBand", "mesh_bands", "with_mesh_bands", "train_meshes", "roller_meshes"]
+__all__ = ["KEYS", "MeshBand", "mesh_bands", "radial_room", "with_mesh_bands", "train_meshes", "roller_meshes"]
 
 TWO_PI = 2 * math.pi
+KEYS = {"carrier-train": "train.backlash", "roller-body": "teeth.backlash"}
+"""The backlash key of each mechanism whose meshes are measured here."""
+_CLEARANCE = 0.25
+"""Radial clearance of the standard rack these teeth are cut by (dedendum 1.25 less addendum 1), × module."""
 
 
 @dataclass(frozen=True)
@@ -160,34 +164,91 @@ def mesh_bands(draft) -> tuple[MeshBand, ...]:
         return ()
     params = draft.params
     edge, spread = params.process.edge(params.output.chamfer), params.process.center_spread()
-    tol = params.output.tolerance
-    return tuple(
-        MeshBand(mesh_band(g, edge=edge, spread=spread, tol=tol, name=name), inside, contact)
-        for name, g, inside, contact in meshes
-    )
+    tol, backlash = params.output.tolerance, params.backlash
+
+    def band(name, g):
+        return mesh_band(g, edge=edge, spread=spread, tol=tol, name=name, backlash=backlash)
+
+    if draft.mechanism == "roller-body" and meshes and _alike(meshes, draft.data["teeth"]["roller_teeth"]):
+        first = band(*meshes[0][:2])
+        bands = [_turned(first, name, TWO_PI * k / 3) for k, (name, *_) in enumerate(meshes)]
+    else:
+        bands = [band(name, g) for name, g, *_ in meshes]
+    return tuple(MeshBand(b, inside, contact) for b, (_, _, inside, contact) in zip(bands, meshes))
 
 
-def _jams(b: Band, internal: bool) -> str:
+def _alike(meshes, roller_teeth: int) -> bool:
+    """Whether every roller meets the body as the first does a third of a turn later: the same
+    point of the body, the axle in the same place, turned by whole teeth (rollers phased as
+    designed, positions a multiple of 3).  Then the three bands are one, found at other turns."""
+    g0 = meshes[0][1]
+    n = len(g0.phi1)
+    if n % 3:
+        return False
+    pitch = TWO_PI / roller_teeth
+    for k, (_, g, *_) in enumerate(meshes[1:], start=1):
+        ahead = np.roll(np.arange(n), -k * n // 3)
+        size = float(np.max(np.abs(g0.centre2)))
+        if not (
+            np.allclose(g0.centre2[ahead], g.centre2, rtol=0, atol=1e-9 * size)
+            and np.allclose(g0.contact[ahead], g.contact, rtol=0, atol=1e-9 * size)
+            and np.all(g0.teeth[ahead] == g.teeth)
+            and np.allclose(np.remainder(g0.angle2[ahead] - g.angle2 + pitch / 2, pitch) - pitch / 2, 0, atol=1e-9)
+        ):
+            return False
+    return True
+
+
+def _turned(b: Band, name: str, turn: float) -> Band:
+    """The first roller's band as the roller ``turn`` (rad) of the body further on has it."""
+    return replace(b, mesh=name, worst_phi=float((b.worst_phi - turn) % TWO_PI))
+
+
+def radial_room(params, module: float) -> float:
+    """What is left of the radial clearance (mm) with both edges at their largest and the
+    centres' error taken from it: below the band's margin, the tips reach the mate's roots."""
+    process = params.process
+    edge = max(0.0, process.edge(params.output.chamfer)[2])
+    return _CLEARANCE * module - 2 * edge - process.center_spread()
+
+
+def _jams(b: Band, internal: bool, key: str, room: float) -> str:
     apart = b.needed_backlash / (2 * math.tan(b.pressure_angle))
     where = f"tooth {b.worst_tooth} of {b.mesh.split('/')[0]} at its turn {math.degrees(b.worst_phi):.1f}°"
-    return (
+    text = (
         f"{b.mesh}: the play falls to {b.band[0]:.4f} mm at {where} (edges {b.edge[2]:+.3f} mm, centres "
         f"{'+' if internal else '−'}{b.center_spread:.3f} mm{', an internal mesh' if internal else ''}); "
-        f"it needs {b.needed_backlash:.3f} mm more play: the centres {apart:.3f} mm "
-        f"{'closer' if internal else 'apart'}, or the parts {b.needed_backlash * math.cos(b.pressure_angle) / 4:.3f} "
-        "mm smaller on each edge (these teeth are cut without backlash)"
+        f"it needs {b.needed_backlash:.3f} mm more play: "
+    )
+    if room < 2 * abs(b.margin):
+        return text + (
+            f"no backlash gives it, the tips reach the mate's roots (the radial clearance, 0.25 module, keeps "
+            f"{room:+.3f} mm with both edges {b.edge[2]:+.3f} mm and the centres {b.center_spread:.3f} mm off): "
+            f"a larger module, smaller edges (output.chamfer takes the elephant foot off) or a tighter "
+            f"process.center_distance_tolerance"
+        )
+    return text + (
+        f"{key} +{b.needed_backlash:.3f} mm, or the centres {apart:.3f} mm {'closer' if internal else 'apart'}, "
+        f"or the parts {b.needed_backlash * math.cos(b.pressure_angle) / 4:.3f} mm smaller on each edge"
     )
 
 
-def with_mesh_bands(draft):
-    """The draft with its train's or rollers' bands and contact in the report, the checks' lines
-    and the findings (``jams`` an error, ``loose`` a warning), as :func:`.fit.with_bands` does."""
-    bands = mesh_bands(draft)
+def with_mesh_bands(draft, bands: tuple[MeshBand, ...] | None = None, *, chosen: bool = False):
+    """The draft with its train's or rollers' bands (default: measured here) and contact in the
+    report, the checks' lines and the findings (``jams`` an error; ``loose``, ``backlash-fixed``
+    warnings), as :func:`.fit.with_bands` does; ``chosen``: gearcad chose the backlash."""
+    bands = mesh_bands(draft) if bands is None else bands
     if not bands:
         return draft
-    process = draft.params.process
+    params = draft.params
+    process, key = params.process, KEYS[draft.mechanism]
     findings, lines = list(draft.findings), list(draft.details)
+    fixed = "backlash" in (params.train if draft.mechanism == "carrier-train" else params.teeth).model_fields_set
+    module = min(params.modules) if draft.mechanism == "carrier-train" else draft.data["teeth"]["module"]
+    room = radial_room(params, module)
     limit = process.value("max_play")
+    how = "chosen for the process's worst case" if chosen else ("as given" if fixed else "the default")
+    lines.append(f"{key} = {params.backlash:.4f} mm ({how})")
     for mb in bands:
         b = mb.band
         lines.append(
@@ -196,11 +257,15 @@ def with_mesh_bands(draft):
         )
         lines.append(mb.sentence())
         if not b.fits:
-            findings.append(finding("jams", _jams(b, mb.internal), b.mesh))
+            findings.append(finding("jams", _jams(b, mb.internal, key, room), b.mesh))
+            if fixed and process.kind != "none" and room >= 2 * abs(b.margin):
+                need = params.backlash + b.needed_backlash
+                findings.append(finding("backlash-fixed", f"{b.mesh}: {key} = {need:.3f} mm keeps the worst case free"))
         if process.kind != "none" and limit and b.band[1] > limit:
             findings.append(
                 finding("loose", f"{b.mesh}: the play may reach {b.band[1]:.3f} mm (process.max_play = {limit:g})")
             )
-    bands_out = [*draft.data.get("bands", []), *(mb.as_dict() for mb in bands)]
+    cut = {"backlash": params.backlash, "backlash_chosen": chosen}
+    bands_out = [*draft.data.get("bands", []), *(mb.as_dict() | cut for mb in bands)]
     data = {**draft.data, "bands": bands_out, "process": _process_block(process)}
     return replace(draft, findings=tuple(findings), details=tuple(lines), data=data)

@@ -16,6 +16,7 @@ from ..errors import DesignError
 from ..tolerances import budget
 
 __all__ = [
+    "check_backlash",
     "POINT_BUDGET",
     "FINEST_TOLERANCE",
     "COARSEST_TOLERANCE",
@@ -122,3 +123,13 @@ turn is finer than any tooth."""
 SAMPLE_NOISE = 0.1
 """The smallest orders of sampled radii are dropped as noise while together they move the curve
 by at most this fraction of the output tolerance."""
+
+
+def check_backlash(backlash: float, module: float, key: str) -> None:
+    """Refuse a backlash that would thin every tooth (``module`` mm, the smallest) to under half
+    its thickness, as a pair's ``teeth.backlash`` is refused."""
+    if backlash >= math.pi * module / 2:
+        raise DesignError(
+            f"{key} = {backlash:g}: it would thin every tooth to under half its thickness; "
+            f"the largest backlash module {module:.4g} takes is {math.pi * module / 2:.3f} mm"
+        )

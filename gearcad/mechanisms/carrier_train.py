@@ -16,7 +16,7 @@ from ..profiles import CarrierTrainParams
 from ..tolerances import budget
 from ..trains import carrier as CT
 from . import compound_ring as CR
-from .budget import check_teeth_work
+from .budget import check_backlash, check_teeth_work
 from .finish import Contact, Draft, PartSpec
 from .parts import Placement
 
@@ -133,6 +133,7 @@ def design(p: CarrierTrainParams) -> Draft:
         toothings.append((p.inner_teeth, p.inner_module))
         keys += " / train.compound"
     check_teeth_work(toothings, p.output.tolerance, keys=keys)
+    check_backlash(p.backlash, min(m for _, m in toothings), "train.backlash")
     train, direct, compound, findings = _speeds(p, lay)
     difference = float(np.max(np.abs(direct - train.omega)))
     gears = [
@@ -165,6 +166,7 @@ def design(p: CarrierTrainParams) -> Draft:
             "carrier_rpm": p.carrier_rpm,
             "gear1_eps": p.gear1_eps,
             "carrier_eps": p.carrier_eps,
+            "backlash": p.backlash,
             "velocity_analysis_difference": difference,
         },
         "gears": gears,

@@ -34,12 +34,18 @@ RPM = 2 * math.pi / 60
 def toothing(p: CarrierTrainParams, teeth: int, module: float, *, internal: bool) -> np.ndarray:
     """A toothed ring about the origin, sampled at the fine tolerance ((n, 2) float, mm): the
     gear's outline, tooth at angle 0; ``internal`` gives the hole of a ring whose teeth these
-    are (rack addendum and dedendum swapped, clockwise), a tooth space at angle 0."""
+    are (rack addendum and dedendum swapped, clockwise), a tooth space at angle 0.  The teeth
+    are half ``train.backlash`` thinner; a ring's hole, whose teeth are its spaces, half thicker
+    (its rack so much narrower: the ring teeth's tip rounding no larger than the rack's tip takes)."""
     fine = budget(p.output.tolerance).fine
     addendum, dedendum = (1.25, 1.0) if internal else (1.0, 1.25)
-    rack = Rack.from_params(
-        RackParams(module=module, pressure_angle=p.pressure_angle, addendum=addendum, dedendum=dedendum)
-    )
+    thinning = (-0.5 if internal else 0.5) * p.backlash
+    tip = RackParams.tip_radius
+    if thinning < 0:  # a narrower rack: its tip rounding (the ring teeth's tip) as large as its tip takes
+        a = p.pressure_angle
+        room = (math.pi * module / 4 + thinning / 2 - dedendum * module * math.tan(a)) / (1 / math.cos(a) - math.tan(a))
+        tip = min(tip, 0.999 * room / module)
+    rack = Rack.from_params(RackParams(module, p.pressure_angle, addendum, dedendum, tip_radius=tip, thinning=thinning))
     gear = cut_teeth(
         arc_frame(shapes.circle(module * teeth / 2)),
         rack,

@@ -20,7 +20,7 @@ from ..teeth.frame import ParametricFrame, arc_frame
 from ..teeth.gear import cut_teeth
 from ..teeth.rack import Rack, RackParams
 from ..tolerances import budget
-from .budget import COARSEST_TOLERANCE, POINT_BUDGET, check_teeth_work
+from .budget import COARSEST_TOLERANCE, POINT_BUDGET, check_backlash, check_teeth_work
 from .finish import Contact, Draft, PartSpec
 from .parts import Placement
 from .roller_charts import charts as _charts
@@ -78,11 +78,12 @@ def _toothed_body(osc: RB.Oscillation, p: RollerBodyParams) -> dict:
         raise DesignError(f"teeth.roller_count = {z_r}: the roller radius it needs ({r:.4f} R) breaks the contour")
     module = 2 * r * p.scale / z_r
     check_teeth_work([(z_b, module), (3 * z_r, module)], p.output.tolerance, keys="teeth.roller_count / body.scale")
+    check_backlash(p.backlash, module, "teeth.backlash")
     frame = ParametricFrame(RB.contour(osc, -u, r=r) * p.scale)
     if not math.isclose(frame.perimeter, z_b * math.pi * module, rel_tol=1e-9):
         raise DesignError("the body's perimeter does not fit its teeth (the contour is not a parallel of its path)")
     fine = budget(p.output.tolerance).fine
-    rack = Rack.from_params(RackParams(module=module, pressure_angle=p.pressure_angle))
+    rack = Rack.from_params(RackParams(module=module, pressure_angle=p.pressure_angle, thinning=p.backlash / 2))
     resize = "a larger teeth.roller_count (smaller teeth)"
     body = cut_teeth(frame, rack, z_b, rack.pitch / 2, tolerance=fine, resize=resize)
     roller = cut_teeth(arc_frame(shapes.circle(r * p.scale)), rack, z_r, rack.pitch / 2, tolerance=fine, resize=resize)
@@ -102,6 +103,7 @@ def _toothed_body(osc: RB.Oscillation, p: RollerBodyParams) -> dict:
         "body_teeth": z_b,
         "roller_teeth": z_r,
         "module": module,
+        "backlash": p.backlash,
         "roller_radius": r,
         "requested_roller_radius": p.roller_radius,
         "body_undercut": body.undercut,

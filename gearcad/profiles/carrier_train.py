@@ -12,6 +12,7 @@ from .process import ProcessParams
 from .values import (
     FASTEST,
     SMALLEST_LENGTH,
+    LengthOrZero,
     Must,
     PartName,
     Problems,
@@ -92,6 +93,10 @@ class TrainParams(ParamsModel):
     """Angular acceleration of the carrier, rad/s²."""
     pressure_angle_deg: StandardRackPressureAngleDeg = 20.0
     """Pressure angle of the rack, degrees."""
+    backlash: LengthOrZero = 0.0
+    """Backlash of every mesh on the pitch circles, mm: each gear's teeth are cut half of it
+    thinner (a ring's spaces half of it wider). Default 0; left out with a [process] named,
+    gearcad chooses the smallest that keeps every mesh's worst case free."""
     compound: CompoundParams | None = None
     """One gear with external and internal teeth (seed 001's second scheme)."""
 
@@ -253,6 +258,11 @@ class CarrierTrainParams(ParamsModel):
     def pressure_angle(self) -> float:
         """The pressure angle in radians."""
         return math.radians(self.train.pressure_angle_deg)
+
+    @property
+    def backlash(self) -> float:
+        """Backlash of every mesh on the pitch circles, mm."""
+        return self.train.backlash
 
     @property
     def compound(self) -> int | None:

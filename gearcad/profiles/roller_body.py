@@ -10,6 +10,7 @@ from .process import ProcessParams
 from .values import (
     LARGEST_LENGTH,
     SMALLEST_LENGTH,
+    LengthOrZero,
     PartName,
     Speed,
     StandardRackPressureAngleDeg,
@@ -66,6 +67,10 @@ class RollerTeethParams(ParamsModel):
     """Teeth on each roller (the roller radius is nudged so that they fit)."""
     pressure_angle_deg: StandardRackPressureAngleDeg = 20.0
     """Pressure angle of the rack, degrees."""
+    backlash: LengthOrZero = 0.0
+    """Backlash of each roller on the body, mm on the pitch curve: the body's and the rollers'
+    teeth are cut half of it thinner. Default 0; left out with a [process] named, gearcad
+    chooses the smallest that keeps every roller's worst case free."""
 
 
 class RollerBodyParams(ParamsModel):
@@ -121,6 +126,11 @@ class RollerBodyParams(ParamsModel):
     def roller_teeth(self) -> int | None:
         """Teeth on each roller, None for smooth rollers."""
         return self.teeth.roller_count if self.teeth is not None else None
+
+    @property
+    def backlash(self) -> float:
+        """Backlash of each roller on the body, mm on the pitch curve (0 for smooth rollers)."""
+        return self.teeth.backlash if self.teeth is not None else 0.0
 
     @property
     def pressure_angle(self) -> float:
