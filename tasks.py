@@ -13,8 +13,9 @@ profiles/walker.toml --out /tmp/x`` or ``python3 tasks.py test -k walker``.
 tests/test_consumers.py drives — OpenSCAD, LibreCAD, Inkscape (with the Python modules its DXF
 import needs), PrusaSlicer, lib3mf, poppler-utils (pdftoppm, pdftocairo), Chromium (the HTML
 report's browser test) and FreeCAD (the STEP files) — printing each command before it runs it,
-then runs that test file on every part of every profile (``GEARCAD_CONSUMERS=all``).  ``consumers --install-only`` stops
-after installing; ``consumers --no-install`` only runs the checks.
+then runs that test file, FreeCAD's DXF import and the STEP read-back on every part of every
+profile (``GEARCAD_CONSUMERS=all``).  ``consumers --install-only`` stops after installing;
+``consumers --no-install`` only runs the checks.
 """
 
 from __future__ import annotations
@@ -69,7 +70,7 @@ CONSUMER_PACKAGES = (
     "lib3mf1",
     "poppler-utils",
     "chromium",
-    "freecad",  # the STEP solids (tests/test_step.py) and the DXF import's settings (tests/test_freecad_dxf.py)
+    "freecad",  # the STEP solids (tests/test_consumers.py) and the DXF import's settings (tests/test_freecad_dxf.py)
 )
 
 
@@ -101,7 +102,16 @@ def consumers(args: list[str]) -> int:
     os.chdir(ROOT)
     rest = [a for a in args if a not in {"--no-install", "--install-only"}]
     env = dict(os.environ, GEARCAD_CONSUMERS="all")
-    command = [str(PYTHON), "-m", "pytest", "-q", "tests/test_consumers.py", "tests/test_freecad_dxf.py", *rest]
+    command = [
+        str(PYTHON),
+        "-m",
+        "pytest",
+        "-q",
+        "tests/test_consumers.py",
+        "tests/test_freecad_dxf.py",
+        "tests/test_step_profiles.py",
+        *rest,
+    ]
     _say("running: GEARCAD_CONSUMERS=all " + " ".join(command))
     return subprocess.run(command, env=env).returncode
 
