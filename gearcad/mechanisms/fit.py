@@ -25,7 +25,8 @@ from .parts import Part
 
 __all__ = [
     "assembly_marks",
-    "backlash_takes",
+    "sliver",
+    "smallest_fit",
     "chose_backlash",
     "chosen",
     "made",
@@ -70,12 +71,11 @@ def chose_backlash(params) -> bool:
     return params.mechanism == "gear-pair" and teeth is not None and "backlash" not in teeth.model_fields_set
 
 
-def backlash_takes(params) -> bool:
-    """Whether the teeth keep over half their thickness (a quarter pitch) at the backlash: where
-    the band asks for more, the tips reach the mate's roots and no backlash frees them."""
-    teeth = params.teeth
-    module = teeth.module or 0.0
-    return not module or teeth.backlash < 0.8 * math.pi * module / 2
+def sliver(module: float | None) -> float:
+    """The backlash (mm) at which teeth of ``module`` keep under half their thickness (a quarter
+    pitch less 80 % of it): the band asking for more means the tips reach the mate's roots, and
+    no backlash frees them.  Infinite for teeth given by count (no module yet)."""
+    return 0.8 * math.pi * module / 2 if module else math.inf
 
 
 def made(params, backlash: float | None = None):
@@ -120,33 +120,51 @@ def chosen(given, design_of, *, designs: int = 4):
     exact = _process(given) is None or _process(given).kind == "none"
     if not bands or not chose_backlash(given) or exact:  # exact parts: the closed form, never a cure
         return draft, bands
-    tol = given.output.tolerance
-    tries = [(params.teeth.backlash, _excess(params, bands[0]), draft, bands)]
+
+    def cut(backlash: float):
+        retry = made(given, backlash)
+        d = design_of(retry)
+        found = pair_bands(d)
+        return retry.teeth.backlash, _excess(retry, found[0]), (d, found)
+
+    first = (params.teeth.backlash, _excess(params, bands[0]), (draft, bands))
+    limit = sliver(params.teeth.module)  # a jam's shortfall: a shrink of the flanks, ~0.9 of the backlash
+    return smallest_fit(first, cut, given.output.tolerance, limit=limit, gain=1.1, designs=designs)
+
+
+def smallest_fit(first, cut, tol: float, *, limit: float, gain: float = 1.0, designs: int = 4):
+    """What ``cut`` made of the smallest backlash that keeps the worst case free, by a
+    bracketing search over at most ``designs`` cuts (``first`` is the first, already made).
+
+    A cut is (backlash as cut, excess, what was made): ``excess`` the worst case's play above
+    its margin (negative: short).  While the cuts are short the next adds ``gain`` × what the
+    shortest lacks; one that fits by more than the resolution (a tolerance, or 1 % of the
+    backlash) is cut again with the excess taken off; between a backlash that jams and one that
+    fits the next lies where the jam's shortfall runs out (kept a tenth of the gap from each).
+    No cut at ``limit`` mm or more (the teeth would be slivers).  Returns the smallest cut that
+    fits, else the last."""
+    tries = [first]
     for _ in range(designs - 1):
         fits = [t for t in tries if t[1] >= 0]
         jams = [t for t in tries if t[1] < 0]
         best = min(fits, key=lambda t: t[0]) if fits else None
         short = max(jams, key=lambda t: t[0]) if jams else None
-        if best is not None and best[1] <= max(tol, 0.01 * best[0]):
-            break
-        if best is not None and short is not None and best[0] - short[0] <= max(tol, 0.01 * best[0]):
-            break
+        if best is not None:
+            resolution = max(tol, 0.01 * best[0])
+            if best[1] <= resolution or (short is not None and best[0] - short[0] <= resolution):
+                break
         if short is None:  # fits by too much: take the excess off (the play grows at least as fast)
             guess = best[0] - best[1]
-        else:  # short: add what it lacks, a tenth more (a jam's shortfall is a shrink, ~0.9 of it)
-            guess = short[0] - 1.1 * short[1] + 0.25 * tol
+        else:
+            guess = short[0] - gain * short[1] + 0.25 * tol
             if best is not None:
                 width = best[0] - short[0]
                 guess = min(max(guess, short[0] + 0.1 * width), best[0] - 0.1 * width)
-        retry = made(given, max(guess, 0.0))
-        if not backlash_takes(retry):  # the tips reach the roots: no backlash frees them
+        if guess >= limit:
             break
-        draft = design_of(retry)
-        bands = pair_bands(draft)
-        tries.append((retry.teeth.backlash, _excess(retry, bands[0]), draft, bands))
+        tries.append(cut(max(guess, 0.0)))
     fits = [t for t in tries if t[1] >= 0]
-    _, _, draft, bands = min(fits, key=lambda t: t[0]) if fits else tries[-1]
-    return draft, bands
+    return (min(fits, key=lambda t: t[0]) if fits else tries[-1])[2]
 
 
 def pair_geometry(design: Design, positions: int | None = None) -> PairGeometry | None:

@@ -19,7 +19,7 @@ import math
 
 from . import band_trains
 from .band_trains import KEYS, radial_room
-from .fit import made
+from .fit import made, sliver, smallest_fit
 
 __all__ = ["chooses", "closed_form", "chosen", "with_backlash"]
 
@@ -71,29 +71,16 @@ def chosen(given, design_of):
     if not chooses(given):
         return band_trains.with_mesh_bands(design_of(params))
     tol = params.output.tolerance
-    first = with_backlash(params, closed_form(params))
-    draft = design_of(first)
+    draft = design_of(with_backlash(params, closed_form(params)))
     module = _module(params, draft)
+
+    def cut(backlash: float):
+        d = design_of(with_backlash(params, backlash))
+        found = band_trains.mesh_bands(d)
+        return d.params.backlash, _excess(found), (d, found)
+
     bands = band_trains.mesh_bands(draft)
-    tries = [(first.backlash, _excess(bands), draft, bands)]
+    first = (draft.params.backlash, _excess(bands), (draft, bands))
     if radial_room(params, module) >= 2 * tol:  # else no backlash frees it: the closed form's flanks
-        for _ in range(3):
-            fits = [t for t in tries if t[1] >= 0]
-            jams = [t for t in tries if t[1] < 0]
-            best = min(fits, key=lambda t: t[0]) if fits else None
-            short = max(jams, key=lambda t: t[0]) if jams else None
-            resolution = max(tol, 0.01 * (best or short)[0])
-            if best is not None and (best[1] <= resolution or (short and best[0] - short[0] <= resolution)):
-                break
-            guess = (best or short)[0] - (best or short)[1] + (0.25 * tol if best is None else 0.0)
-            if best is not None and short is not None:  # between the two, the jam's side by the shortfall
-                width = best[0] - short[0]
-                guess = min(max(short[0] - short[1] + 0.25 * tol, short[0] + 0.1 * width), best[0] - 0.1 * width)
-            if guess >= 0.8 * math.pi * module / 2:  # the teeth would be thinner than a sliver
-                break
-            draft = design_of(with_backlash(params, max(guess, 0.0)))
-            bands = band_trains.mesh_bands(draft)
-            tries.append((draft.params.backlash, _excess(bands), draft, bands))
-    fits = [t for t in tries if t[1] >= 0]
-    backlash, _, draft, bands = min(fits, key=lambda t: t[0]) if fits else tries[-1]
+        draft, bands = smallest_fit(first, cut, tol, limit=sliver(module))
     return band_trains.with_mesh_bands(draft, bands, chosen=True)
