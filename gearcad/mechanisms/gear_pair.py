@@ -1,7 +1,5 @@
-"""Gear pairs (seeds 004 and 002): pitch curves that roll and close, teeth, parts and the proof.
-
-profile → :func:`~.pair_pitch.pitch_design` → teeth (:func:`~gearcad.teeth.pair.cut_pair`) → parts → Design.
-"""
+"""Gear pairs (seeds 004 and 002): pitch curves that roll and close, teeth, parts and the proof:
+profile → :func:`~.pair_pitch.pitch_design` → teeth (:func:`~gearcad.teeth.pair.cut_pair`) → parts → Design."""
 
 from __future__ import annotations
 
@@ -291,10 +289,8 @@ def design(params: GearPairParams) -> Draft:
         module = spec.module or pitch.gears[0].perimeter / (math.pi * spec.count)
         check_teeth_work([(g.perimeter / (math.pi * module), module) for g in pitch.gears], out.tolerance)
         alike = pitch.mate_shape_difference is not None and pitch.mate_shape_difference < 1e-6
-        turn = pitch.mate_rotation if alike else None
-        teeth = cut_pair(
-            pitch.pair, pitch.gears, spec, mate_rotation=turn, tol=tol, min_fillet=params.process.tool_radius()
-        )
+        turn, fillet = pitch.mate_rotation if alike else None, params.process.tool_radius()
+        teeth = cut_pair(pitch.pair, pitch.gears, spec, mate_rotation=turn, tol=tol, min_fillet=fillet)
         if beta > 0:
             for i, g in enumerate(pitch.gears):  # the bore first: cheap, where the sections are not
                 check_bore(g.name, teeth.fine[i], params.bore, out.tolerance, teeth.plan.module)
