@@ -33,22 +33,17 @@ from OCP.BRepAdaptor import BRepAdaptor_Curve, BRepAdaptor_Surface  # noqa: E402
 from OCP.BRepAlgoAPI import BRepAlgoAPI_Section  # noqa: E402
 from OCP.BRepCheck import BRepCheck_Analyzer  # noqa: E402
 from OCP.BRepGProp import BRepGProp  # noqa: E402
-from OCP.GeomAbs import GeomAbs_BSplineSurface, GeomAbs_Cone, GeomAbs_Cylinder, GeomAbs_Plane  # noqa: E402
+from OCP.GeomAbs import GeomAbs_BSplineSurface  # noqa: E402
 from OCP.gp import gp_Dir, gp_Pln, gp_Pnt  # noqa: E402
 from OCP.GProp import GProp_GProps  # noqa: E402
-from OCP.IFSelect import IFSelect_RetDone  # noqa: E402
-from OCP.STEPControl import STEPControl_Reader  # noqa: E402
 from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_SHELL, TopAbs_SOLID  # noqa: E402
-from OCP.TopExp import TopExp_Explorer  # noqa: E402
 from OCP.TopoDS import TopoDS  # noqa: E402
 
+from .occ import every as _all  # noqa: E402
+from .occ import face_counts as _faces  # noqa: E402
+from .occ import read_step as _read  # noqa: E402
+
 QUIET = ["output.charts=false", "output.animation=false"]
-SURFACES = {
-    GeomAbs_Plane: "plane",
-    GeomAbs_Cylinder: "cylinder",
-    GeomAbs_Cone: "cone",
-    GeomAbs_BSplineSurface: "bspline",
-}
 
 
 def _written(tmp_path_factory, profile: str, overrides: list[str]):
@@ -72,33 +67,10 @@ def herringbone(tmp_path_factory):
     return _written(tmp_path_factory, "profiles/herringbone_elliptic.toml", overrides)
 
 
-def _read(path):
-    reader = STEPControl_Reader()
-    assert reader.ReadFile(str(path)) == IFSelect_RetDone, path
-    reader.TransferRoots()
-    return reader.OneShape()
-
-
-def _all(shape, kind):
-    found, explorer = [], TopExp_Explorer(shape, kind)
-    while explorer.More():
-        found.append(explorer.Current())
-        explorer.Next()
-    return found
-
-
 def _volume(shape, eps=1e-7) -> float:
     props = GProp_GProps()
     BRepGProp.VolumeProperties_s(shape, props, eps)
     return props.Mass()
-
-
-def _faces(shape) -> dict[str, int]:
-    counts: dict[str, int] = {}
-    for face in _all(shape, TopAbs_FACE):
-        kind = SURFACES.get(BRepAdaptor_Surface(TopoDS.Face(face)).GetType(), "other")
-        counts[kind] = counts.get(kind, 0) + 1
-    return counts
 
 
 def _one_closed_solid(shape, where):

@@ -29,58 +29,25 @@ import trimesh
 from scipy.spatial import cKDTree
 
 OCP = pytest.importorskip("OCP")
-from OCP.BRepAdaptor import BRepAdaptor_Curve, BRepAdaptor_Surface  # noqa: E402
+from OCP.BRepAdaptor import BRepAdaptor_Curve  # noqa: E402
 from OCP.BRepAlgoAPI import BRepAlgoAPI_Section  # noqa: E402
 from OCP.BRepCheck import BRepCheck_Analyzer  # noqa: E402
 from OCP.BRepGProp import BRepGProp  # noqa: E402
 from OCP.GeomAbs import (  # noqa: E402
-    GeomAbs_BSplineSurface,
     GeomAbs_Circle,
-    GeomAbs_Cone,
-    GeomAbs_Cylinder,
     GeomAbs_Line,
-    GeomAbs_Plane,
 )
 from OCP.gp import gp_Dir, gp_Pln, gp_Pnt  # noqa: E402
 from OCP.GProp import GProp_GProps  # noqa: E402
-from OCP.IFSelect import IFSelect_RetDone  # noqa: E402
-from OCP.STEPControl import STEPControl_Reader  # noqa: E402
-from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_SHELL, TopAbs_SOLID  # noqa: E402
-from OCP.TopExp import TopExp_Explorer  # noqa: E402
+from OCP.TopAbs import TopAbs_EDGE, TopAbs_SHELL, TopAbs_SOLID  # noqa: E402
 from OCP.TopoDS import TopoDS  # noqa: E402
 
 from .conftest import STEP_BUILD, STEP_PROFILES  # noqa: E402
+from .occ import every as _all  # noqa: E402
+from .occ import face_counts as _faces  # noqa: E402
+from .occ import read_step as _read  # noqa: E402
 
-SURFACES = {
-    GeomAbs_Plane: "plane",
-    GeomAbs_Cylinder: "cylinder",
-    GeomAbs_Cone: "cone",
-    GeomAbs_BSplineSurface: "bspline",
-}
 TOLERANCE = STEP_BUILD["output.tolerance"]
-
-
-def _read(path):
-    reader = STEPControl_Reader()
-    assert reader.ReadFile(str(path)) == IFSelect_RetDone, path
-    reader.TransferRoots()
-    return reader.OneShape()
-
-
-def _all(shape, kind) -> list:
-    found, explorer = [], TopExp_Explorer(shape, kind)
-    while explorer.More():
-        found.append(explorer.Current())
-        explorer.Next()
-    return found
-
-
-def _faces(shape) -> dict[str, int]:
-    counts: dict[str, int] = {}
-    for face in _all(shape, TopAbs_FACE):
-        kind = SURFACES.get(BRepAdaptor_Surface(TopoDS.Face(face)).GetType(), "other")
-        counts[kind] = counts.get(kind, 0) + 1
-    return counts
 
 
 def _volume(shape) -> float:

@@ -21,7 +21,7 @@ from dataclasses import dataclass
 import numpy as np
 import shapely
 
-__all__ = ["Band", "PairGeometry", "pair_band", "play_along"]
+__all__ = ["Band", "PairGeometry", "band_of", "pair_band", "play_along"]
 
 _WINDOW = 3.0
 """Radius of the window about the contact, modules: contact stays within about one pitch."""
@@ -253,6 +253,14 @@ def pair_band(
                 pool.submit(_play, g, (edge[1], edge[1]), -closer, tol, reach=reach),
             ]
             (nominal, _), tight, (wide, _) = (job.result() for job in jobs)
+    return band_of(name, (nominal, tight, wide), g.teeth, g.phi1, edge=edge, spread=spread, tol=tol, alpha=alpha)
+
+
+def band_of(name: str, plays, teeth, phi1, *, edge, spread: float, tol: float, alpha: float) -> Band:
+    """The :class:`Band` of one mesh from its plays over the cycle (nominal, tight, wide: mm per
+    position, the tight one signed), the tooth and driver angle of each position, its edge
+    offsets and centre spread (mm), the outline tolerance and the pressure angle (rad)."""
+    nominal, tight, wide = plays
     worst = int(np.nanargmin(tight))
     # made parts keep twice the writing tolerance free; exact parts (no process) may bite by what
     # the writing tolerance takes from four flanks, which the mesh proof allows
@@ -262,8 +270,8 @@ def pair_band(
         mesh=name,
         nominal=_span(nominal, tight),
         band=(low, _span(wide, tight)[1]),
-        worst_tooth=int(g.teeth[worst]),
-        worst_phi=float(g.phi1[worst]),
+        worst_tooth=int(teeth[worst]),
+        worst_phi=float(phi1[worst]),
         edge=edge,
         center_spread=spread,
         needed_backlash=max(0.0, margin - low),

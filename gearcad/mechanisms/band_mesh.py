@@ -25,7 +25,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 import shapely
 
-from .band import Band
+from .band import Band, band_of
 
 __all__ = ["MeshGeometry", "clip", "mesh_band", "mesh_play"]
 
@@ -225,18 +225,4 @@ def mesh_band(
         jobs = [pool.submit(_signed_play, g, pieces, e, s, tol, reach=reach) for e, s in cases]
         plays = [job.result() for job in jobs]
     nominal, tight, wide = (plays * 3)[:3] if len(plays) == 1 else plays
-    worst = int(np.nanargmin(tight))
-    margin = 2 * tol if any(edge) or spread else -4 * tol / math.cos(alpha)
-    low = float(tight[worst])
-    return Band(
-        mesh=name,
-        nominal=(float(np.nanmin(nominal)), float(np.nanmax(nominal))),
-        band=(low, float(np.nanmax(wide))),
-        worst_tooth=int(g.teeth[worst]),
-        worst_phi=float(g.phi1[worst]),
-        edge=edge,
-        center_spread=spread,
-        needed_backlash=max(0.0, margin - low),
-        margin=margin,
-        pressure_angle=alpha,
-    )
+    return band_of(name, (nominal, tight, wide), g.teeth, g.phi1, edge=edge, spread=spread, tol=tol, alpha=alpha)
