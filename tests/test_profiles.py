@@ -412,3 +412,16 @@ def test_junk_gives_params_or_a_profile_error(base, mechanism, values):
         assert lines and all(line.strip() and "Input should" not in line for line in lines), lines
     else:
         assert isinstance(params, PARAMS)
+
+
+def test_the_reference_writer_takes_help_as_help_not_as_a_file_name(tmp_path, monkeypatch, capsys):
+    """``python3 -m gearcad.profiles.reference --help`` once wrote the page to a file named
+    ``--help`` (one was committed): it prints usage now, and writes nothing."""
+    from gearcad.profiles.reference import main
+
+    monkeypatch.chdir(tmp_path)
+    with pytest.raises(SystemExit) as stop:
+        main(["--help"])
+    assert stop.value.code == 0 and "usage:" in capsys.readouterr().out
+    assert list(tmp_path.iterdir()) == []
+    assert main(["page.md"]) == 0 and (tmp_path / "page.md").read_text(encoding="utf-8").startswith("# Profile reference")

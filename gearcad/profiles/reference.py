@@ -151,13 +151,19 @@ def reference_markdown(schema: dict | None = None) -> str:
 
 
 def main(argv: list[str] | None = None) -> int:
-    """Write the page to the file given (or print it)."""
-    args = sys.argv[1:] if argv is None else argv
+    """Write the page to the file given (or print it); ``--help`` is help, never a file name."""
+    import argparse
+
+    parser = argparse.ArgumentParser(
+        prog="python3 -m gearcad.profiles.reference", description="Write the profile reference page (Markdown)."
+    )
+    parser.add_argument("page", nargs="?", type=Path, help="the file to write (default: print the page)")
+    page = parser.parse_args(argv).page
     text = reference_markdown()
-    if args:
-        Path(args[0]).write_text(text, encoding="utf-8")
-    else:
+    if page is None:
         sys.stdout.write(text)
+    else:
+        page.write_text(text, encoding="utf-8")
     return 0
 
 
