@@ -8,6 +8,9 @@ import numpy as np
 
 __all__ = ["stability_map"]
 
+_QUICK = {"tolerance": 0.01, "charts": False, "animation": False}
+"""A quick map's designs: where a design breaks down does not hang on the outline's last µm."""
+
 
 def stability_map(quick: bool = False) -> list[dict]:
     """Hard designs and what gearcad does with each: 'ok', a warning code, or a clear error —
@@ -20,7 +23,8 @@ def stability_map(quick: bool = False) -> list[dict]:
         start = time.perf_counter()
         try:
             # large designs need a sheet and a bed to match: the map is about the design
-            data = {**data, "output": {"sheet": [1e5, 1e5], "bed": [1e5, 1e5], **data.get("output", {})}}
+            output = {"sheet": [1e5, 1e5], "bed": [1e5, 1e5], **(_QUICK if quick else {}), **data.get("output", {})}
+            data = {**data, "output": output}
             params = parse_profile(data)
             if not teeth and getattr(params, "teeth", None) is not None:
                 params = parse_profile({k: v for k, v in data.items() if k != "teeth"})
