@@ -14,7 +14,7 @@ from dataclasses import dataclass
 import numpy as np
 import shapely
 
-__all__ = ["Depths", "overlap_depths"]
+__all__ = ["Depths", "overlap_depths", "overlap_areas"]
 
 
 @dataclass(frozen=True)
@@ -26,6 +26,26 @@ class Depths:
     0 where the pair does not overlap."""
     point: np.ndarray
     """(n, 2) that deepest point, mm (NaN where there is no overlap)."""
+    area: np.ndarray
+    """(n,) the overlap's area, mm²."""
+
+
+def _overlaps(first: np.ndarray, second: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(indices, overlaps): the pairs that intersect and their intersections.  The overlay is
+    computed only for them: the predicate is far cheaper, and most pairs of a meshing pair (or of
+    a search for where it turns free) do not touch at all."""
+    hit = np.flatnonzero(shapely.intersects(first, second))
+    return hit, shapely.intersection(first[hit], second[hit])
+
+
+def overlap_areas(first, second) -> np.ndarray:
+    """The area each ``first[k]`` shares with ``second[k]`` (shapely polygons; either may be one
+    polygon for all), mm²: what ``shapely.area(shapely.intersection(first, second))`` gives."""
+    first, second = np.broadcast_arrays(np.asarray(first, dtype=object), np.asarray(second, dtype=object))
+    area = np.zeros(first.shape)
+    hit, overlap = _overlaps(first, second)
+    area[hit] = shapely.area(overlap)
+    return area
 
 
 def overlap_depths(first, second, *, step: float) -> Depths:
@@ -46,13 +66,15 @@ def overlap_depths(first, second, *, step: float) -> Depths:
     first = np.asarray(first, dtype=object)
     second = np.asarray(second, dtype=object)
     n = len(first)
-    depth = np.zeros(n)
+    depth, area = np.zeros(n), np.zeros(n)
     point = np.full((n, 2), np.nan)
-    overlap = shapely.intersection(first, second)
-    hit = np.nonzero(~shapely.is_empty(overlap) & (shapely.area(overlap) > 0))[0]
+    touch, overlap = _overlaps(first, second)
+    area[touch] = shapely.area(overlap)
+    keep = area[touch] > 0
+    hit, overlap = touch[keep], overlap[keep]
     if len(hit) == 0:
-        return Depths(depth, point)
-    rims = shapely.segmentize(shapely.boundary(overlap[hit]), step)
+        return Depths(depth, point, area)
+    rims = shapely.segmentize(shapely.boundary(overlap), step)
     xy, which = shapely.get_coordinates(rims, return_index=True)
     samples = shapely.points(xy)
     inside = np.maximum(
@@ -64,4 +86,4 @@ def overlap_depths(first, second, *, step: float) -> Depths:
     deepest = order[last]
     depth[hit[which[deepest]]] = inside[deepest]
     point[hit[which[deepest]]] = xy[deepest]
-    return Depths(depth, point)
+    return Depths(depth, point, area)

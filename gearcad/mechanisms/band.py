@@ -21,6 +21,8 @@ from dataclasses import dataclass
 import numpy as np
 import shapely
 
+from ..geometry.depth import overlap_areas
+
 __all__ = ["Band", "PairGeometry", "band_of", "pair_band", "play_along"]
 
 _WINDOW = 3.0
@@ -130,7 +132,7 @@ def _least_overlap(w1, place, bound: np.ndarray, iterations: int = 24) -> np.nda
     grown unevenly the follower sits elsewhere in its play, and a pair that overlaps as placed
     may turn free (today's jam at the nominal angle overstated what a noncircular pair needs)."""
     turn = np.zeros_like(bound)
-    stuck = np.flatnonzero(shapely.area(shapely.intersection(w1, place(turn))) > 0)
+    stuck = np.flatnonzero(overlap_areas(w1, place(turn)) > 0)
     if not len(stuck):
         return turn
     golden = (math.sqrt(5) - 1) / 2
@@ -138,7 +140,7 @@ def _least_overlap(w1, place, bound: np.ndarray, iterations: int = 24) -> np.nda
     def area(at: np.ndarray) -> np.ndarray:
         full = np.zeros_like(bound)
         full[stuck] = at
-        return shapely.area(shapely.intersection(w1[stuck], place(full)[stuck]))
+        return overlap_areas(w1[stuck], place(full)[stuck])
 
     lo, hi = -bound[stuck], bound[stuck].copy()
     a, b = hi - golden * (hi - lo), lo + golden * (hi - lo)
@@ -177,7 +179,7 @@ def _play(
     def apart(turn: np.ndarray, at=slice(None)) -> np.ndarray:
         full = start.copy()
         full[at] += turn
-        return shapely.area(shapely.intersection(w1[at], place(full)[at])) <= touching
+        return overlap_areas(w1[at], place(full)[at]) <= touching
 
     free = apart(np.zeros_like(start))
     total = np.zeros_like(g.phi1)

@@ -25,6 +25,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 import shapely
 
+from ..geometry.depth import overlap_areas
 from .band import Band, band_of
 
 __all__ = ["MeshGeometry", "clip", "mesh_band", "mesh_play"]
@@ -123,7 +124,7 @@ def mesh_play(
     limit = min(reach, 1.2 * math.pi * g.module) / arm  # more than a pitch never frees a tooth
     zero = np.zeros_like(g.phi1)
     placed = place(zero)
-    free = shapely.area(shapely.intersection(w1, placed)) <= 1e-9 * g.module**2
+    free = overlap_areas(w1, placed) <= 1e-9 * g.module**2
     if not steps or not free.any():  # only whether they are free: no play to measure
         return np.where(free, 0.0, np.nan)
     gap = shapely.distance(w1, placed)

@@ -12,7 +12,7 @@ from dataclasses import dataclass
 import numpy as np
 import shapely
 
-from ..geometry.depth import Depths, overlap_depths
+from ..geometry.depth import Depths, overlap_areas, overlap_depths
 from ..pitch.pair import PairData
 from ..tolerances import budget
 from .frame import ArcFrame
@@ -89,7 +89,7 @@ def _space_at(frame: ArcFrame, gear: ToothedGear, phi: np.ndarray) -> np.ndarray
 def _overlap_function(pair: PairData, gears, frames, phi1: np.ndarray):
     """overlap(turn) -> (positions,) area of the two placed windows (see :func:`_placing`)."""
     place = placing(pair, gears, frames, phi1)
-    return lambda turn: shapely.area(shapely.intersection(*place(turn)))
+    return lambda turn: overlap_areas(*place(turn))
 
 
 def placing(pair: PairData, gears, frames, phi1: np.ndarray):
@@ -151,9 +151,8 @@ def mesh_check(
     allowed = budget(tolerance).teeth_overlap(m)
     nudge = nudge_arc(module=m, tolerance=tolerance, play=play)
     turns = nudge_turns(pair, phi1[::4], nudge)
-    placed = placing(pair, gears, frames, phi1)(0.0)
-    assembled = shapely.area(shapely.intersection(*placed))
-    depths = overlap_depths(*placed, step=0.1 * m)
+    depths = overlap_depths(*placing(pair, gears, frames, phi1)(0.0), step=0.1 * m)
+    assembled = depths.area
     nudged_at = _overlap_function(pair, gears, frames, phi1[::4])
     nudged = np.maximum(nudged_at(turns), nudged_at(-turns))
     worst = int(np.argmax(assembled))
