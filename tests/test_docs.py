@@ -115,6 +115,7 @@ def test_a_renamed_variant_gets_its_own_title():
 
 def test_a_build_says_when_it_replaces_an_earlier_one(tmp_path, capsys):
     cheap = ["--set", "output.charts=false", "--set", "output.animation=false", "--set", 'output.formats=["dxf"]']
+    cheap += ["--set", "output.tolerance=0.01"]
     argv = ["build", str(ROOT / "profiles" / "spur_pair.toml"), "--out", str(tmp_path), *cheap, "--unset", "teeth"]
     assert main(argv) == 0
     assert "replaces" not in capsys.readouterr().out
