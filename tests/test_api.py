@@ -12,7 +12,7 @@ import gearcad
 from gearcad.cli import main
 from gearcad.mechanisms import MECHANISMS
 
-from .conftest import COARSE, PROFILES, QUICK, ROOT, profile
+from .conftest import COARSE, PROFILES, ROOT, profile
 
 LEAN = ["output.charts=false", "output.animation=false", 'output.formats=["dxf"]', "output.tolerance=0.01"]
 """A build that writes only DXF files at 0.01 mm (the ``built`` fixture writes every file once)."""
@@ -30,14 +30,6 @@ def test_the_readme_example_runs(tmp_path, monkeypatch):
     assert blocks, "the README has a Python section with an example"
     shutil.copytree(ROOT / "profiles", tmp_path / "profiles")
     monkeypatch.chdir(tmp_path)
-    # every call as written, the profiles read without chart data or animation: the test reads
-    # neither (the ``built`` fixture draws every profile's once, through the same gearcad.build)
-    load = gearcad.load_profile
-
-    def quick(path, overrides=None, **kwargs):
-        return load(path, {**QUICK, **(overrides or {})}, **kwargs)
-
-    monkeypatch.setattr(gearcad, "load_profile", quick)
     scope = {"__name__": "readme_example"}
     for block in blocks:
         exec(compile(block, "README.md", "exec"), scope)  # noqa: S102 - our own README
