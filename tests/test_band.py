@@ -86,18 +86,15 @@ def test_a_fixed_backlash_too_small_jams_and_fails_the_check(spur):
     assert b.needed_backlash == pytest.approx(-b.band[0] + b.margin, rel=1e-9)
 
 
-def test_the_page_and_check_show_the_band(tmp_path, capsys):
-    """The HTML page carries the band's table and check prints its line (read back)."""
-    from gearcad.cli import main
+def test_the_page_and_check_show_the_band(tmp_path, spur):
+    """The HTML page carries the band's table and report.json its numbers (read back), as the
+    build's own writer writes them for the laser spur pair above."""
+    from gearcad.export.write import write_design
 
-    spur = str(ROOT / "profiles" / "spur_pair.toml")
-    sets = ["--set", "process.kind=laser", "--set", "output.charts=false", "--set", "output.animation=false"]
-    sets += ["--set", "output.tolerance=0.01"]  # the band's table and verdict, not its outline's fine detail
-    assert main(["build", spur, *sets, "--set", 'output.formats=["svg"]', "--out", str(tmp_path)]) == 0
-    page = (tmp_path / "spur_pair" / "index.html").read_text(encoding="utf-8")
+    write_design(spur, tmp_path)
+    page = (tmp_path / "index.html").read_text(encoding="utf-8")
     assert 'id="fit"' in page and "pinion/gear" in page and "fits" in page
-    report = json.loads((tmp_path / "spur_pair" / "report.json").read_text(encoding="utf-8"))
+    report = json.loads((tmp_path / "report.json").read_text(encoding="utf-8"))
     band = report["bands"][0]
     assert band["verdict"] == "fits" and 0 < band["min"] < band["nominal_min"] < band["max"]
     assert report["output"]["kerf"] == 0.2 and report["process"]["kind"] == "laser"
-    capsys.readouterr()
