@@ -28,10 +28,17 @@ def _alive(pid: int) -> bool:
     return True
 
 
-def test_same_files_whether_drawn_beside_or_in_line(tmp_path, monkeypatch, built):
+@pytest.fixture(scope="module")
+def spur():
+    """The spur pair as written by the suite's build (every output): designed once, drawn by both
+    tests (a design is frozen: writing it changes nothing)."""
+    return design(load_profile(ROOT / "profiles" / "spur_pair.toml"))
+
+
+def test_same_files_whether_drawn_beside_or_in_line(tmp_path, monkeypatch, built, spur):
     """Drawn beside (charts and animation forked), the files are those the suite's own build
     wrote (``built``: in line, or beside on another machine), byte for byte."""
-    d = design(load_profile(ROOT / "profiles" / "spur_pair.toml"))
+    d = spur
     assert can_fork()  # else the build would draw in line and the test would prove nothing
     started = []
     monkeypatch.setattr("gearcad.export.write.Beside", lambda work: started.append(1) or Beside(work))
@@ -88,10 +95,10 @@ def test_a_child_killed_outright_is_one_clear_error():
         Beside(killed).result()
 
 
-def test_no_process_to_spare_draws_in_line(tmp_path, monkeypatch):
+def test_no_process_to_spare_draws_in_line(tmp_path, monkeypatch, spur):
     """A second fork that fails (EAGAIN) leaves the first child to finish and draws the rest
     here: the same files, and no child left running."""
-    d = design(load_profile(ROOT / "profiles" / "spur_pair.toml"))
+    d = spur
     real_fork, forks, children = os.fork, [], []
 
     def fork():

@@ -8,7 +8,6 @@ from __future__ import annotations
 
 import math
 
-import ezdxf
 import numpy as np
 import pytest
 import shapely
@@ -18,8 +17,11 @@ import gearcad
 from gearcad.cli import main
 from gearcad.mechanisms.coupon import STEPS, coupon_data
 
+from .conftest import read_dxf
+
 SPUR = "profiles/spur_pair.toml"
-COARSE = ["output.tolerance=0.01"]
+COARSE = ["output.tolerance=0.01", "output.charts=false", "output.animation=false"]
+"""At 0.01 mm without chart data or animation: the coupon reads the parts and the play, not these."""
 
 
 @pytest.fixture(scope="module")
@@ -41,7 +43,7 @@ def printed():
 
 def _cut_polygons(path) -> list[shapely.Polygon]:
     """The CUT layer's closed rings read back, holes put into the ring that holds them."""
-    doc = ezdxf.readfile(path)
+    doc = read_dxf(path)  # read once: both helpers only look
     rings = [
         shapely.Polygon([p[:2] for p in e.get_points("xy")])
         for e in doc.modelspace().query("LWPOLYLINE")
@@ -52,7 +54,7 @@ def _cut_polygons(path) -> list[shapely.Polygon]:
 
 
 def _mark_strokes(path) -> list[np.ndarray]:
-    doc = ezdxf.readfile(path)
+    doc = read_dxf(path)  # read once: both helpers only look
     return [
         np.array([tuple(v.dxf.location)[:2] for v in e.vertices])
         for e in doc.modelspace().query("POLYLINE")
