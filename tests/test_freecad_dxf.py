@@ -66,21 +66,19 @@ def freecad_reads(built, tmp_path_factory):
     return {key: found[path] for key, path in zip(PARTS, paths)}
 
 
-@pytest.mark.parametrize("profile,part", PARTS)
-def test_freecad_default_import_splits_the_part_and_drops_its_layers(freecad_reads, built, profile, part):
-    default = freecad_reads[(profile, part)]["False"]["objects"]
-    assert len(default) > 100  # one object per polyline segment
-    assert "CUT" not in default and "MARK" not in default
-
-
-@pytest.mark.parametrize("profile,part", PARTS)
-def test_freecad_with_group_layers_gets_one_closed_ring_per_outline_at_the_designed_area(
-    freecad_reads, built, profile, part
-):
-    report = json.loads((built / profile / "report.json").read_text(encoding="utf-8"))
-    entry = next(p for p in report["parts"] if p["name"] == part)
-    grouped = freecad_reads[(profile, part)]["True"]
-    assert grouped["objects"] == ["CUT", "MARK"]
-    assert grouped["rings"] == [True] * (entry["holes"] + 1)  # the outline and each hole, closed
-    assert grouped["area"] == pytest.approx(entry["area"], rel=5e-4)  # the face with its holes
-    assert grouped["mark_edges"] > 0  # the engraving kept, on its own layer
+def test_freecad_default_import_splits_each_part_and_groups_its_layers_into_closed_rings(freecad_reads, built):
+    """Both parts read in one test (one FreeCAD run, also under pytest-xdist): by default one
+    object per polyline segment and no layers; with *Group layers into blocks* ``CUT`` and
+    ``MARK``, one closed ring per outline and hole, the face at the designed area."""
+    for profile, part in PARTS:
+        where = f"{profile}/{part}"
+        default = freecad_reads[(profile, part)]["False"]["objects"]
+        assert len(default) > 100, where  # one object per polyline segment
+        assert "CUT" not in default and "MARK" not in default, where
+        report = json.loads((built / profile / "report.json").read_text(encoding="utf-8"))
+        entry = next(p for p in report["parts"] if p["name"] == part)
+        grouped = freecad_reads[(profile, part)]["True"]
+        assert grouped["objects"] == ["CUT", "MARK"], where
+        assert grouped["rings"] == [True] * (entry["holes"] + 1), where  # the outline and each hole, closed
+        assert grouped["area"] == pytest.approx(entry["area"], rel=5e-4), where  # the face with its holes
+        assert grouped["mark_edges"] > 0, where  # the engraving kept, on its own layer

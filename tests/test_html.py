@@ -19,7 +19,7 @@ from gearcad.export.html import pivot_marking
 from gearcad.export.html_index import index_entry, write_index
 from gearcad.export.write import write_design
 
-from .conftest import ROOT
+from .conftest import PROFILES, ROOT
 
 CHROMIUM = shutil.which("chromium") or "/usr/bin/chromium"
 SVG_NS = "http://www.w3.org/2000/svg"
@@ -37,10 +37,14 @@ def profile(name: str, **output):
 @pytest.fixture(scope="module")
 def site(tmp_path_factory):
     """Two profiles written as a build writes them, and the page over both: the rolling wheels
-    (findings, a chart) and the body on three rollers (a bore, a part placed three times)."""
+    and the body on three rollers (a bore, a part placed three times).  No charts: the pages
+    of every profile with every output (charts, animation) are read from the session's build
+    (``built``)."""
     out = tmp_path_factory.mktemp("html") / "out"
     designs = {
-        "rolling_wheel": gearcad.design(profile("rolling_wheel", tolerance=0.01, formats=["dxf", "svg", "3mf"])),
+        "rolling_wheel": gearcad.design(
+            profile("rolling_wheel", tolerance=0.01, charts=False, animation=False, formats=["dxf", "svg", "3mf"])
+        ),
         "roller_body_m3": gearcad.design(
             profile("roller_body_m3", tolerance=0.02, charts=False, animation=False, formats=["svg", "stl", "3mf"])
         ),
@@ -107,19 +111,27 @@ def check_page(path: Path) -> Checker:
     return checker
 
 
-def test_profile_pages_link_every_file_and_name_every_finding(site):
-    out, designs = site
-    for name, d in designs.items():
-        page = out / name / "index.html"
-        checker = check_page(page)
-        written = {p.name for p in (out / name).iterdir()} - {"index.html"}
-        assert {unquote(link) for link in checker.links if "/" not in link} >= written
+def test_profile_pages_link_every_file_and_name_every_finding(built, site):
+    """Every profile's page as the build writes it beside every output (charts, animation,
+    STEP), and the two pages of :func:`site`: each links every file beside it and names every
+    finding and part its report gives."""
+    folders = [p.parent for p in sorted(built.glob("*/index.html"))] + [site[0] / name for name in site[1]]
+    assert len(folders) == len(PROFILES) + 2
+    for folder in folders:
+        checker = check_page(folder / "index.html")
+        written = {p.name for p in folder.iterdir()} - {"index.html"}
+        assert {unquote(link) for link in checker.links if "/" not in link} >= written, folder
         text = unescape(" ".join(checker.text))
-        for f in d.findings:
-            assert f.code in text and f.message in text
-        for part in d.parts():
-            assert part.name in text
-    assert designs["rolling_wheel"].findings  # the page shows some findings, not only "none"
+        report = json.loads((folder / "report.json").read_text(encoding="utf-8"))
+        for f in report["warnings"]:
+            assert f["code"] in text and f["message"] in text, (folder, f)
+        for part in report["parts"]:
+            assert part["name"] in text, folder
+    # the page shows some findings, not only "none"
+    assert json.loads((built / "rolling_wheel" / "report.json").read_text(encoding="utf-8"))["warnings"]
+    for name, d in site[1].items():  # the report's findings are the design's
+        report = json.loads((site[0] / name / "report.json").read_text(encoding="utf-8"))
+        assert [(f["code"], f["message"]) for f in report["warnings"]] == [(f.code, f.message) for f in d.findings]
 
 
 def test_profile_page_says_what_marks_each_pivot(site):
@@ -184,10 +196,10 @@ def chromium(url: str, png: Path, tmp: Path, size=(1200, 1600)) -> str:
     not Path(CHROMIUM).is_file(), reason="no chromium: install it with `apt-get install -y chromium` (Debian)"
 )
 @pytest.mark.parametrize("page", ["rolling_wheel/index.html", "index.html"])
-def test_pages_render_in_a_headless_browser(site, tmp_path, page):
-    out, _ = site
+def test_pages_render_in_a_headless_browser(built, tmp_path, page):
+    """The pages as the build writes them, with every chart and picture."""
     png = tmp_path / "page.png"
-    log = chromium((out / page).as_uri(), png, tmp_path)
+    log = chromium((built / page).as_uri(), png, tmp_path)
     # the page has no script, so any console message (chromium logs them as CONSOLE) is a fault
     assert not [line for line in log.splitlines() if "CONSOLE" in line or "Uncaught" in line]
     image = Image.open(png).convert("RGB")

@@ -14,7 +14,7 @@ import gearcad
 from gearcad.errors import DesignError, ProfileError
 from gearcad.trains import compound as CP
 
-from .conftest import ROOT
+from .conftest import COARSE, ROOT
 
 PROFILE = ROOT / "profiles" / "compound_ring.toml"
 TOL = 0.001  # the profile's output.tolerance, mm
@@ -129,8 +129,9 @@ def test_the_assembly_fits_and_bites_when_turned(design):
 
 
 def test_an_inner_module_of_its_own():
-    """Internal teeth of module 1 (44 teeth): gear 3 is cut with that module too."""
-    p = gearcad.load_profile(PROFILE, {"train.compound.inner_module": 1.0, "train.compound.inner_teeth": 44})
+    """Internal teeth of module 1 (44 teeth): gear 3 is cut with that module too.  Closed forms
+    only (speeds, module, wall), so at :data:`COARSE` (0.01 mm outlines, no chart data)."""
+    p = gearcad.load_profile(PROFILE, {**COARSE, "train.compound.inner_module": 1.0, "train.compound.inner_teeth": 44})
     d = gearcad.design(p)
     r2_in, r3 = 1.0 * 44 / 2, 1.0 * Z3 / 2
     assert d.data["gears"][2]["omega"] == pytest.approx(_omega3(W1, W, R1, R2_OUT, r2_in, r3), rel=1e-12)

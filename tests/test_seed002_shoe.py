@@ -114,14 +114,14 @@ def test_speed_with_round_gears_the_papers_pair_and_the_rolling_pair():
     assert 0.03 < blended["rolling"]["variation"] < 0.032  # the README's 3.08 % for a 12° blend
 
 
-def test_walker_charts(tmp_path):
-    from gearcad.export.charts import papers
+def test_walker_charts(built):
+    """The paper's pitch curves against the pair that rolls, and the three charts the walker's
+    build draws of them (speed, pitch curves, the shoe standing), read back from the session's
+    build of profiles/walker.toml (this geometry: L, a, b, c as in :data:`G`)."""
     from gearcad.pitch import walker_polar
     from gearcad.pitch.pair import conjugate_pair
 
     i_paper = 3.207678
-    law = W.ratio_law(G)
-    papers.walker_speed_chart(S.speed_comparison(G, i_paper=i_paper, law=law), tmp_path / "speed.png")
     paper = walker_polar.paper_polar(G, i_paper)
     # the paper's wheel is four copies of its quarter law: largest radius at 0°, 90°, …
     r = np.array(paper["wheel_r"])
@@ -133,11 +133,6 @@ def test_walker_charts(tmp_path):
     rolling = walker_polar.pair_polar(pair)
     # at the start the wheel's largest radius meets the pinion's smallest: they sum to L
     assert rolling["wheel_r"][0] + rolling["pinion_r"][360] == pytest.approx(G.L, abs=1e-9)
-    papers.walker_pitch_chart(paper, rolling, tmp_path / "pitch.png")
-    ring = S.shoe_ring(G, tolerance=0.01)
-    hubs = np.radians([-45, -20, 0, 20, 45])
-    poses = [(p, p, tuple(S.crank_pin(G, p)[0])) for p in hubs]
-    papers.shoe_chart(ring, poses, K, tmp_path / "shoe.png")
-    for name in ("speed.png", "pitch.png", "shoe.png"):
-        data = (tmp_path / name).read_bytes()
+    for name in ("vehicle_speed.png", "paper_pitch_curves.png", "shoe.png"):
+        data = (built / "walker" / name).read_bytes()
         assert data[:8] == b"\x89PNG\r\n\x1a\n" and len(data) > 20000, name

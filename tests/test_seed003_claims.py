@@ -3,6 +3,7 @@ each against an independent computation — symbolic differentiation of eq. 6 (s
 differences of the centre's path, closed-form curvature limits, and polygon tests of the contour
 written out here from the corrected eq. 3."""
 
+import json
 import math
 
 import numpy as np
@@ -281,11 +282,15 @@ def _png_size(path):
         return im.size
 
 
-def test_charts_of_the_limits_against_r_and_the_shape_families(table, tmp_path):
-    from gearcad.export.charts import papers
-
-    papers.limits_vs_r_chart(table.as_dict(), tmp_path / "limits_r.png", paper_by_eye=C.PAPER_BY_EYE)
-    family = LM.shape_family("vertical", 3, [0.1, 0.2], [0.0, 0.4], samples=181)
-    papers.shape_family_chart(family, tmp_path / "family.png", title="m = 3")
-    assert _png_size(tmp_path / "limits_r.png")[0] > 1000
-    assert _png_size(tmp_path / "family.png") == (528, 528)  # 2 × 2.4 in at 110 dpi
+def test_charts_of_the_limits_against_r_and_the_shape_families(built):
+    """The charts the roller body's build draws (profiles/roller_body_m3.toml, read back from the
+    session's build), at the sizes their layouts give at 110 dpi: the limits against r one
+    6.5 × 5 in panel per direction written (here one) and 2.4 in of legend; the paper's Figs. 1–2
+    one 2.4 in square per roller radius (columns) and amplitude (rows)."""
+    folder = built / "roller_body_m3"
+    table = json.loads((folder / "report.json").read_text(encoding="utf-8"))["limits_vs_r"]
+    assert list(table["convex"]) == ["vertical"]  # the profile's direction: one panel
+    assert _png_size(folder / "limits_vs_r.png") == (979, 550)  # (6.5 + 2.4) × 5 in
+    # Figs. 1 (m = 3) and 2 (m = 6): three amplitudes each, the paper's five radii 0, 0.1, … 0.4
+    for m in (3, 6):
+        assert _png_size(folder / f"shape_family_m{m}.png") == (1320, 792), m  # 5 × 2.4 by 3 × 2.4 in
