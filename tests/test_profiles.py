@@ -356,12 +356,18 @@ def test_schema_knows_every_key(path):
     assert _schema_keys(schema, schema, tomllib.loads(path.read_text(encoding="utf-8")), "") == []
 
 
-@pytest.mark.parametrize("path", PROFILES, ids=lambda p: p.stem)
-def test_profiles_validate_against_the_schema(path):
+@pytest.fixture(scope="module")
+def schema_validator():
+    """The committed schema, itself checked against the 2020-12 meta-schema once, as a validator."""
     jsonschema = pytest.importorskip("jsonschema", reason="pip install jsonschema to check profiles against the schema")
     schema = json.loads(SCHEMA.read_text(encoding="utf-8"))
     jsonschema.Draft202012Validator.check_schema(schema)
-    jsonschema.Draft202012Validator(schema).validate(tomllib.loads(path.read_text(encoding="utf-8")))
+    return jsonschema.Draft202012Validator(schema)
+
+
+@pytest.mark.parametrize("path", PROFILES, ids=lambda p: p.stem)
+def test_profiles_validate_against_the_schema(schema_validator, path):
+    schema_validator.validate(tomllib.loads(path.read_text(encoding="utf-8")))
 
 
 def _known_keys() -> list[str]:
