@@ -85,7 +85,9 @@ def build(
     )
     folder = tmp_path / name / "small"
     folder.mkdir(parents=True)
-    write_design(gearcad.design(load_profile(path)), folder)
+    design = gearcad.design(load_profile(path))
+    assert design.ok, design.failures()  # what ``gearcad build`` asks before it writes (exit 3 if not)
+    write_design(design, folder)
     _BUILT[key] = folder, json.loads((folder / "report.json").read_text())
     return _BUILT[key]
 

@@ -32,6 +32,7 @@ def spur():
 
 def test_the_assembly_is_drawn_without_kerf_and_the_cut_files_with_it(tmp_path, spur):
     d = spur
+    assert d.ok, d.failures()
     files = write_design(d, tmp_path)  # the build's own writer (a build is this call, then publish)
     assert {"assembly.svg", "pinion.svg"} <= set(files)
     assert "no kerf" in (tmp_path / "assembly.svg").read_text(encoding="utf-8")

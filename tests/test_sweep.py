@@ -93,16 +93,14 @@ def test_files_read_back(table, tmp_path):
 
 
 def test_cluster_and_pool_give_the_same_rows(table):
-    """A real LocalCluster (a scheduler, two worker processes, every chunk pickled there and
-    back), its workers forked from this process rather than spawned: each would otherwise
-    import Python, dask and gearcad afresh (3 of the test's 3.8 CPU-s)."""
+    """A real LocalCluster (a scheduler and a worker process started afresh, as a cluster's are:
+    every chunk pickled there and back, nothing inherited from this process; one worker, since
+    each imports Python, dask and gearcad anew)."""
     distributed = pytest.importorskip("distributed")
-    import dask
 
     pooled = gearcad.sweep(FOCUS, VARY, stage="teeth", workers=2, **GOALS)
     with (
-        dask.config.set({"distributed.worker.multiprocessing-method": "fork"}),
-        distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster,
+        distributed.LocalCluster(n_workers=1, threads_per_worker=1, processes=True, dashboard_address=None) as cluster,
         distributed.Client(cluster) as client,
     ):
         remote = gearcad.sweep(FOCUS, VARY, stage="teeth", client=client, **GOALS)
