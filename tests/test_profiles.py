@@ -430,5 +430,7 @@ def test_the_reference_writer_takes_help_as_help_not_as_a_file_name(tmp_path, mo
         main(["--help"])
     assert stop.value.code == 0 and "usage:" in capsys.readouterr().out
     assert list(tmp_path.iterdir()) == []
+    assert main([str(tmp_path)]) == 2  # a folder: one line, nothing written
+    assert capsys.readouterr().err.count("\n") == 1 and list(tmp_path.iterdir()) == []
     assert main(["page.md"]) == 0
     assert (tmp_path / "page.md").read_text(encoding="utf-8").startswith("# Profile reference")

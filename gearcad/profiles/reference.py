@@ -163,7 +163,11 @@ def main(argv: list[str] | None = None) -> int:
     if page is None:
         sys.stdout.write(text)
     else:
-        page.write_text(text, encoding="utf-8")
+        try:
+            page.write_text(text, encoding="utf-8")
+        except OSError as exc:  # a folder, a missing folder, no permission: one line, exit 2
+            sys.stderr.write(f"{parser.prog}: error: cannot write {page}: {exc.strerror or exc}\n")
+            return 2
     return 0
 
 
