@@ -2,6 +2,7 @@ import fcntl
 import functools
 import json
 import logging
+import math
 import os
 from pathlib import Path
 
@@ -50,6 +51,18 @@ def tooth_angle(ring: np.ndarray, placement, toward: float, pitch: float, *, spa
     t = toward + np.linspace(-pitch / 2, pitch / 2, 4001)
     r = reach(ring, placement, t) * (-1 if space else 1)
     return float(np.mean(t[r >= r.max() - 0.01 * (r.max() - r.min())]))
+
+
+def bulge_arc(a: np.ndarray, b: np.ndarray, bulge: float) -> tuple[np.ndarray, float, float]:
+    """The circle of a DXF bulge segment from ``a`` to ``b``, worked out by hand (not with
+    gearcad's own bulge code): (centre, radius, sweep), sweep = 4·atan(bulge) (rad, positive
+    counter-clockwise), radius = chord / (2·|sin(sweep/2)|)."""
+    chord = float(np.hypot(*(b - a)))
+    sweep = 4 * math.atan(bulge)
+    radius = chord / (2 * abs(math.sin(sweep / 2)))
+    left = np.array([a[1] - b[1], b[0] - a[0]]) / chord
+    centre = (a + b) / 2 + left * radius * math.cos(sweep / 2) * math.copysign(1, sweep)
+    return centre, radius, sweep
 
 
 @functools.cache

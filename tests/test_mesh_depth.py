@@ -9,8 +9,26 @@ import numpy as np
 import pytest
 import shapely
 
-from gearcad.geometry.depth import overlap_depths
+from gearcad.geometry.depth import overlap_areas, overlap_depths
 from gearcad.teeth.mesh import MeshData
+
+
+def test_overlap_areas_are_the_boxes_shared_areas_and_zero_where_they_only_touch():
+    """Unit square against boxes: overlapping (0.5 × 0.25), inside (a 0.2 square), touching
+    along an edge and at a corner (0: no area), apart (0); one polygon broadcast against many,
+    and the depths' areas the same."""
+    square = shapely.box(0, 0, 1, 1)
+    others = [
+        shapely.box(0.5, 0.75, 2, 2),
+        shapely.box(0.4, 0.4, 0.6, 0.6),
+        shapely.box(1, 0, 2, 1),
+        shapely.box(1, 1, 2, 2),
+        shapely.box(3, 3, 4, 4),
+    ]
+    expected = [0.5 * 0.25, 0.04, 0.0, 0.0, 0.0]
+    np.testing.assert_allclose(overlap_areas(square, others), expected, atol=1e-15)
+    np.testing.assert_allclose(overlap_areas([square] * 5, others), expected, atol=1e-15)
+    np.testing.assert_allclose(overlap_depths([square] * 5, others, step=0.05).area, expected, atol=1e-15)
 
 
 def test_depth_sees_a_sliver_that_the_area_test_passes():

@@ -39,6 +39,7 @@ from OCP.GProp import GProp_GProps  # noqa: E402
 from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_SHELL, TopAbs_SOLID  # noqa: E402
 from OCP.TopoDS import TopoDS  # noqa: E402
 
+from .conftest import bulge_arc  # noqa: E402
 from .occ import every as _all  # noqa: E402
 from .occ import face_counts as _faces  # noqa: E402
 from .occ import read_step as _read  # noqa: E402
@@ -118,15 +119,11 @@ def _arcs_exactly(v: np.ndarray, bulges: np.ndarray, step: float = math.radians(
     from its centre: no Bézier in between, as ezdxf's flattening has) and its length, closed form."""
     points, length = [], 0.0
     for a, b, bulge in zip(v, np.roll(v, -1, axis=0), bulges):
-        chord = float(np.hypot(*(b - a)))
         if bulge == 0:
             points.append(a[None])
-            length += chord
+            length += float(np.hypot(*(b - a)))
             continue
-        sweep = 4 * math.atan(bulge)
-        radius = chord / (2 * abs(math.sin(sweep / 2)))
-        left = np.array([a[1] - b[1], b[0] - a[0]]) / chord
-        centre = (a + b) / 2 + left * radius * math.cos(sweep / 2) * math.copysign(1, sweep)
+        centre, radius, sweep = bulge_arc(a, b, bulge)
         start = math.atan2(*(a - centre)[::-1])
         t = start + np.linspace(0, sweep, max(2, math.ceil(abs(sweep) / step)), endpoint=False)
         points.append(centre + radius * np.column_stack([np.cos(t), np.sin(t)]))

@@ -42,7 +42,7 @@ from OCP.GProp import GProp_GProps  # noqa: E402
 from OCP.TopAbs import TopAbs_EDGE, TopAbs_SHELL, TopAbs_SOLID  # noqa: E402
 from OCP.TopoDS import TopoDS  # noqa: E402
 
-from .conftest import STEP_BUILD, STEP_PROFILES  # noqa: E402
+from .conftest import STEP_BUILD, STEP_PROFILES, bulge_arc  # noqa: E402
 from .occ import every as _all  # noqa: E402
 from .occ import face_counts as _faces  # noqa: E402
 from .occ import read_step as _read  # noqa: E402
@@ -82,14 +82,10 @@ def _runs(rings: list[np.ndarray]) -> tuple[np.ndarray, np.ndarray, float]:
     for xyb in rings:
         for a, b, bulge in zip(xyb[:, :2], np.roll(xyb[:, :2], -1, axis=0), xyb[:, 2]):
             vertices.append(a)
-            chord = float(np.hypot(*(b - a)))
             if bulge == 0:
-                length += chord
+                length += float(np.hypot(*(b - a)))
                 continue
-            theta = 4 * math.atan(bulge)
-            radius = chord / (2 * abs(math.sin(theta / 2)))
-            left = np.array([a[1] - b[1], b[0] - a[0]]) / chord
-            centre = (a + b) / 2 + left * radius * math.cos(theta / 2) * math.copysign(1, theta)
+            centre, radius, theta = bulge_arc(a, b, bulge)
             circles.append((*centre, radius))
             length += radius * abs(theta)
     return np.array(vertices), np.array(circles), length
