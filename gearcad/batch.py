@@ -27,6 +27,7 @@ from .interrupts import Interrupted, held_signals, interrupt_guard
 from .mechanisms import Design, design
 from .profiles import ProfileParams
 from .publish import Publisher, _shown, check_out, out_lock
+from .threads import cores, set_threads
 
 __all__ = ["BuildResult", "build", "design_all"]
 
@@ -92,10 +93,12 @@ def _write(d: Design, folder: Path, beside: bool) -> dict[str, dict]:
         raise OutputError(f"{where}: cannot write ({exc.strerror or exc}); nothing was published") from None
 
 
-def _worker_init() -> None:
+def _worker_init(busy: bool) -> None:
     # the parent handles Ctrl-C and SIGTERM for the whole build and ends the workers
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     signal.signal(signal.SIGTERM, signal.SIG_DFL)
+    if busy:  # a worker on every core: threads beside a design would only add CPU time
+        set_threads(1)
 
 
 def _in_order(futures: list, jobs: list) -> Iterator[BuildResult]:
@@ -128,8 +131,7 @@ def _stop(pool: ProcessPoolExecutor) -> None:
 
 
 def _workers(count: int) -> int:
-    cores = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else (os.cpu_count() or 1)
-    return max(1, min(count, cores))
+    return max(1, min(count, cores()))
 
 
 def build(
@@ -162,7 +164,9 @@ def build(
             else:
                 # an executor, not Pool: a worker killed (OOM killer, kill -9) breaks it, never hangs it
                 context = multiprocessing.get_context("fork")
-                pool = ProcessPoolExecutor(count, mp_context=context, initializer=_worker_init)
+                pool = ProcessPoolExecutor(
+                    count, mp_context=context, initializer=_worker_init, initargs=(count >= cores(),)
+                )
                 with held_signals():  # every worker forked and recorded before an interrupt lands
                     futures = [pool.submit(_build_one, job) for job in jobs]
                 built = _in_order(futures, jobs)

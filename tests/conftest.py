@@ -9,6 +9,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+if os.environ.get("PYTEST_XDIST_WORKER"):  # a test process on every core: designs run no threads beside
+    os.environ.setdefault("GEARCAD_THREADS", "1")  # (gearcad.threads; tests/test_threads.py runs both ways)
+
 DATA = Path(__file__).parent / "data"
 ROOT = Path(__file__).parent.parent
 EXAMPLES = ROOT / "profiles"

@@ -15,13 +15,13 @@ Only a window of each gear around the contact (three modules) is offset and inte
 from __future__ import annotations
 
 import math
-from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 
 import numpy as np
 import shapely
 
 from ..geometry.depth import overlap_areas
+from ..threads import side_by_side
 
 __all__ = ["Band", "PairGeometry", "band_of", "pair_band", "play_along"]
 
@@ -248,7 +248,7 @@ def pair_band(
     if edge[0] == edge[1] == edge[2] and not spread:  # no stack (no process): one case, not three alike
         nominal = tight = wide = _signed_play(g, (edge[0], edge[0]), 0.0, tol, reach=reach)
     else:
-        with ThreadPoolExecutor(max_workers=2) as pool:  # GEOS releases the GIL: the cases side by side
+        with side_by_side() as pool:  # GEOS releases the GIL: the cases side by side
             jobs = [
                 pool.submit(_play, g, (edge[0], edge[0]), 0.0, tol, reach=reach),
                 pool.submit(_signed_play, g, (edge[2], edge[2]), closer, tol, reach=reach),

@@ -19,13 +19,13 @@ frees them counts −4ε/cos α.  Only a window of three modules about the conta
 from __future__ import annotations
 
 import math
-from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, replace
 
 import numpy as np
 import shapely
 
 from ..geometry.depth import overlap_areas
+from ..threads import side_by_side
 from .band import Band, band_of
 
 __all__ = ["MeshGeometry", "clip", "mesh_band", "mesh_play"]
@@ -222,7 +222,7 @@ def mesh_band(
     if not any(edge) and not spread:  # exact parts: the three cases are one
         cases = cases[:1]
     pieces = clip(g, max(abs(e) for e in edge) + 0.5 * g.module)  # the bisection shrinks up to half a module
-    with ThreadPoolExecutor(max_workers=2) as pool:  # GEOS releases the GIL: the cases side by side
+    with side_by_side() as pool:  # GEOS releases the GIL: the cases side by side
         jobs = [pool.submit(_signed_play, g, pieces, e, s, tol, reach=reach) for e, s in cases]
         plays = [job.result() for job in jobs]
     nominal, tight, wide = (plays * 3)[:3] if len(plays) == 1 else plays

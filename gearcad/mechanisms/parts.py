@@ -7,7 +7,6 @@ and then verified: every cut ring is simple and within the tolerance of the exac
 
 from __future__ import annotations
 
-from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 from typing import Protocol
 
@@ -20,6 +19,7 @@ from ..geometry.kerf import kerf_fault, kerf_path
 from ..geometry.outline import Outline, ring_area
 from ..geometry.rings import bore_ring
 from ..geometry.verify import is_simple, max_distance, thin
+from ..threads import side_by_side
 from ..tolerances import budget
 from .budget import FINEST_TOLERANCE
 
@@ -255,7 +255,7 @@ def cut_paths(parts: tuple[Blank, ...], output: CutSpec, *, router: bool = False
     # budget of both, as the difference is a billionth of the tolerance
     same = [next((j for j in range(i) if _alike(kerfed[j], kerfed[i], 1e-9 * tol)), i) for i in range(len(parts))]
     # fitting is numpy work on large arrays, which releases the GIL: the parts go side by side
-    with ThreadPoolExecutor(max_workers=2) as pool:
+    with side_by_side() as pool:
         cuts = {
             i: pool.submit(lambda p=p, k=k: tuple(_cut_ring(r, tol, fine_tol, flat=flat, part=p.name) for r in k.rings))
             for i, (p, k) in enumerate(zip(parts, kerfed))

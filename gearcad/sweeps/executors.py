@@ -8,11 +8,11 @@ rows come back in the sweep's order whichever finishes first.
 from __future__ import annotations
 
 import math
-import os
 from collections.abc import Callable
 from concurrent.futures import ProcessPoolExecutor, as_completed
 from typing import Any
 
+from ..threads import cores, set_threads
 from .evaluate import evaluate_chunk
 
 __all__ = ["chunks", "run_chunks"]
@@ -33,9 +33,7 @@ def chunks(items: list, stage: str, workers: int) -> list[list]:
 
 
 def _worker_count(workers: int | None) -> int:
-    return (
-        workers if workers else (len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count())
-    )
+    return workers if workers else cores()
 
 
 def run_chunks(
@@ -81,7 +79,10 @@ def run_chunks(
             for task in tasks:
                 collect(evaluate_chunk(data, name, stage, task))
         else:
-            with ProcessPoolExecutor(max_workers=min(count, len(tasks))) as pool:
+            busy = min(count, len(tasks)) >= cores()  # a process on every core: no threads beside its designs
+            with ProcessPoolExecutor(
+                min(count, len(tasks)), initializer=set_threads, initargs=(1 if busy else None,)
+            ) as pool:
                 for job in as_completed([pool.submit(evaluate_chunk, data, name, stage, t) for t in tasks]):
                     collect(job.result())
     return sorted(rows, key=lambda r: r["index"])

@@ -5,7 +5,6 @@ from __future__ import annotations
 import math
 import threading
 from collections.abc import Sequence
-from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, replace
 from typing import Protocol
 
@@ -18,6 +17,7 @@ from ..geometry.outline import Outline, arc_steps, rotate
 from ..geometry.verify import nearest, thin
 from ..pitch.gear import GearData
 from ..pitch.pair import PairData
+from ..threads import side_by_side
 from ..tolerances import DEFAULT, Budget, Tolerances, designed_play
 from .contact import ContactData, contact_along
 from .frame import ArcFrame, arc_frame
@@ -205,7 +205,7 @@ def cut_pair(
             stop.set()
             raise
 
-    with ThreadPoolExecutor(max_workers=2) as pool:  # the two gears side by side
+    with side_by_side() as pool:  # the two gears side by side
         jobs = [pool.submit(cut, *job) for job in zip(frames, plan.teeth, plan.phases, shifts)]
         failed = [e for e in (job.exception() for job in jobs) if e is not None and not isinstance(e, Stopped)]
         if failed:
@@ -265,7 +265,7 @@ def _prove(pair, toothed, frames, params, module: float, tolerance: float) -> tu
     play = designed_play(backlash=params.backlash, clearance=params.clearance, pressure_angle=params.pressure_angle)
     # the mesh proof and the play measurement are independent, and shapely's vectorised GEOS
     # calls release the GIL: run them side by side on the machine's two cores
-    with ThreadPoolExecutor(max_workers=2) as pool:
+    with side_by_side() as pool:
         mesh_job = pool.submit(mesh_check, pair, toothed, frames, tolerance=tolerance, play=play)
         limit = 2 * nudge_arc(module=module, tolerance=tolerance, play=play)
         play_job = pool.submit(backlash_range, pair, toothed, frames, limit=limit)
