@@ -21,6 +21,7 @@ import numpy as np
 import shapely
 
 from ..geometry.depth import overlap_areas
+from ..geometry.outline import place_each
 from ..threads import side_by_side
 
 __all__ = ["Band", "PairGeometry", "band_of", "pair_band", "play_along"]
@@ -112,13 +113,22 @@ def _placer(g: PairGeometry, offsets, spread: float, tol: float):
     coords, which = shapely.get_coordinates(w2, return_index=True)
     far = np.zeros(len(g.phi1))
     np.maximum.at(far, which, np.hypot(coords[:, 0], coords[:, 1]))
+    counts = np.bincount(which, minlength=len(g.phi1))
+    first = np.cumsum(counts) - counts  # each window's first row of ``coords``
+    centre = e * np.column_stack([np.cos(g.phi1), np.sin(g.phi1)])  # gear 2's pivot in gear 1's frame
 
-    def place(turn: np.ndarray) -> np.ndarray:
-        a2, a1 = (g.phi2 + turn)[which], g.phi1[which]
-        x = np.cos(a2) * coords[:, 0] - np.sin(a2) * coords[:, 1] + e
-        y = np.sin(a2) * coords[:, 0] + np.cos(a2) * coords[:, 1]
-        xy = np.column_stack([np.cos(a1) * x - np.sin(a1) * y, np.sin(a1) * x + np.cos(a1) * y])
-        return shapely.set_coordinates(w2.copy(), xy)
+    def place(turn: np.ndarray, at=None) -> np.ndarray:
+        """Gear 2's windows turned ``turn`` (per position); ``at`` (indices): only those windows,
+        ``turn`` given for them alone."""
+        if at is None:
+            at, rows = slice(None), slice(None)
+            owner = which
+        else:
+            n = counts[at]  # the rows of the chosen windows, in order: a run per window
+            owner = np.repeat(np.arange(len(n)), n)
+            rows = np.repeat(first[at] - np.cumsum(n) + n, n) + np.arange(int(n.sum()))
+        xy = place_each(coords[rows], owner, g.phi1[at] + g.phi2[at] + turn, centre[at])
+        return shapely.set_coordinates(w2[at].copy(), xy)
 
     return w1, place, far
 
@@ -138,9 +148,7 @@ def _least_overlap(w1, place, bound: np.ndarray, iterations: int = 24) -> np.nda
     golden = (math.sqrt(5) - 1) / 2
 
     def area(at: np.ndarray) -> np.ndarray:
-        full = np.zeros_like(bound)
-        full[stuck] = at
-        return overlap_areas(w1[stuck], place(full)[stuck])
+        return overlap_areas(w1[stuck], place(at, stuck))
 
     lo, hi = -bound[stuck], bound[stuck].copy()
     a, b = hi - golden * (hi - lo), lo + golden * (hi - lo)
@@ -176,10 +184,10 @@ def _play(
     if start is None:  # the follower's play lies within a quarter pitch of the rolling angle
         start = _least_overlap(w1, place, np.minimum(limit, 0.25 * math.pi * g.module / arm))
 
-    def apart(turn: np.ndarray, at=slice(None)) -> np.ndarray:
-        full = start.copy()
-        full[at] += turn
-        return overlap_areas(w1[at], place(full)[at]) <= touching
+    def apart(turn: np.ndarray, at=None) -> np.ndarray:
+        if at is None:
+            return overlap_areas(w1, place(start + turn)) <= touching
+        return overlap_areas(w1[at], place(start[at] + turn, at)) <= touching
 
     free = apart(np.zeros_like(start))
     total = np.zeros_like(g.phi1)

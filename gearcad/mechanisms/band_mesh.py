@@ -25,6 +25,7 @@ import numpy as np
 import shapely
 
 from ..geometry.depth import overlap_areas
+from ..geometry.outline import place_each
 from ..threads import side_by_side
 from .band import Band, band_of
 
@@ -117,7 +118,7 @@ def mesh_play(
     centre = g.centre2 + shift * g.tighter
 
     def place(turn: np.ndarray) -> np.ndarray:
-        xy = _rotate(coords, (g.angle2 + turn)[which]) + centre[which]
+        xy = place_each(coords, which, g.angle2 + turn, centre)
         return shapely.set_coordinates(w2.copy(), xy)
 
     arm = np.hypot(*(g.contact - g.centre2).T)  # gear 2's pitch radius at the contact

@@ -13,6 +13,7 @@ import numpy as np
 import shapely
 
 from ..geometry.depth import Depths, overlap_areas, overlap_depths
+from ..geometry.outline import place_each
 from ..pitch.pair import PairData
 from ..tolerances import budget
 from .frame import ArcFrame
@@ -108,12 +109,10 @@ def placing(pair: PairData, gears, frames, phi1: np.ndarray):
     which = np.repeat(np.arange(len(phi1)), [len(w2[k]) for k in pick])
     shapely.prepare(g1)
 
+    centre = e * np.column_stack([np.cos(phi1), np.sin(phi1)])  # (E, 0) turned back by φ1
+
     def place(turn):
-        a2 = (phi2 + turn * np.ones_like(phi2))[which]
-        x = np.cos(a2) * coords[:, 0] - np.sin(a2) * coords[:, 1] + e
-        y = np.sin(a2) * coords[:, 0] + np.cos(a2) * coords[:, 1]
-        a1 = phi1[which]
-        xy = np.column_stack([np.cos(a1) * x - np.sin(a1) * y, np.sin(a1) * x + np.cos(a1) * y])
+        xy = place_each(coords, which, phi1 + phi2 + turn, centre)
         return g1, shapely.polygons(shapely.linearrings(xy, indices=which))
 
     return place
