@@ -71,11 +71,17 @@ def _arcs(a: np.ndarray, b: np.ndarray, bulge: float) -> list[str]:
     """
     theta = float(B.sweep(bulge))
     centres, radii = B.centres(a[None], b[None], np.array([theta]))
-    radius = _num(float(radii[0]))
+    return _arc_pieces(a, b, bulge, theta, centres[0], float(radii[0]))
+
+
+def _arc_pieces(
+    a: np.ndarray, b: np.ndarray, bulge: float, theta: float, centre: np.ndarray, radius: float
+) -> list[str]:
+    """:func:`_arcs` with the arc's sweep ``theta``, centre and radius already worked out."""
+    radius = _num(radius)
     pieces = max(1, math.ceil(abs(theta) / (math.pi / 2) * (1 - 1e-12)))
     ends = [b]
     if pieces > 1:  # here |bulge| > tan(π/8): the centre is well defined
-        centre = centres[0]
         turns = theta * np.arange(1, pieces) / pieces
         c, s = np.cos(turns), np.sin(turns)
         r = a - centre
@@ -87,16 +93,21 @@ def _ring_path(ring) -> tuple[str, int]:
     """Path data of one closed ring and its segment count (lines, arc pieces, closing line)."""
     v, bulges = B.segments(ring)
     n = len(v)
+    ends = np.roll(v, -1, axis=0)
+    sweeps = B.sweep(bulges)
+    # an arc whose sagitta is below the written resolution is a line at that resolution
+    curved = (np.hypot(*(ends - v).T) * np.abs(bulges) / 2 >= 0.5 * 10.0**-_DECIMALS) & (np.abs(sweeps) >= _MIN_SWEEP)
+    arcs = np.flatnonzero(curved)
+    centres, radii = B.centres(v[arcs], ends[arcs], sweeps[arcs])  # every arc's at once
+    circle = dict(zip(arcs.tolist(), range(len(arcs))))
     commands = [f"M {_xy(v[0])}"]
     closing_line = 0
     for k in range(n):
-        a, b, bulge = v[k], v[(k + 1) % n], float(bulges[k])
-        sagitta = math.hypot(*(b - a)) * abs(bulge) / 2
-        # an arc whose sagitta is below the written resolution is a line at that resolution
-        if sagitta >= 0.5 * 10.0**-_DECIMALS and abs(float(B.sweep(bulge))) >= _MIN_SWEEP:
-            commands += _arcs(a, b, bulge)
+        if k in circle:
+            j = circle[k]
+            commands += _arc_pieces(v[k], ends[k], float(bulges[k]), float(sweeps[k]), centres[j], float(radii[j]))
         elif k < n - 1:
-            commands.append(f"L {_xy(b)}")
+            commands.append(f"L {_xy(ends[k])}")
         else:
             closing_line = 1  # drawn by the Z
     return " ".join([*commands, "Z"]), len(commands) - 1 + closing_line
