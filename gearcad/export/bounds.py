@@ -22,5 +22,12 @@ def drawing_bounds(drawing: Drawing) -> tuple[float, float, float, float]:
     items += [s for strokes in drawing.strokes.values() for s in strokes]
     if not items:
         raise ValueError("the drawing is empty: no closed rings and no strokes to bound")
-    boxes = np.array([ring_bounds(item) for item in items])
-    return (float(boxes[:, 0].min()), float(boxes[:, 1].min()), float(boxes[:, 2].max()), float(boxes[:, 3].max()))
+    # arcs reach past their vertices (ring_bounds); plain rings and strokes end at theirs: one
+    # array for all of them (a sheet's lettering is hundreds of strokes)
+    boxes = [ring_bounds(item) for item in items if getattr(item, "bulges", None) is not None]
+    plain = [np.asarray(item, dtype=float) for item in items if getattr(item, "bulges", None) is None]
+    if plain:
+        points = np.concatenate(plain)
+        boxes.append(np.concatenate([points.min(axis=0), points.max(axis=0)]) + 0.0)  # + 0.0: no -0.0
+    box = np.array(boxes)
+    return (float(box[:, 0].min()), float(box[:, 1].min()), float(box[:, 2].max()), float(box[:, 3].max()))
