@@ -85,16 +85,23 @@ def _charts(design: Design, folder: Path) -> dict[str, dict]:
     return files
 
 
-def _pieces(fmt: Format, design: Design, solids: dict) -> list[tuple[str, str | None, object]]:
+def _drawings(design: Design, wholes) -> dict[str, object]:
+    """Each part's drawing (by its name) and the ``wholes`` asked for ("assembly", "sheet"; by
+    ``(whole,)``), made once for every drawing format (the sheet places and letters every part's
+    name)."""
+    from .drawing import assembly_drawing, part_drawing
+    from .sheet import sheet_drawing
+
+    made = {"assembly": assembly_drawing, "sheet": sheet_drawing}
+    return {**{p.name: part_drawing(design, p) for p in design.parts()}, **{(w,): made[w](design) for w in wholes}}
+
+
+def _pieces(fmt: Format, design: Design, solids: dict, drawings: dict) -> list[tuple[str, str | None, object]]:
     """What a format's writer is handed, file by file: (file stem, whole or None, drawing or
     solids) for every part, then for each of the format's wholes."""
     if fmt.takes == "drawing":
-        from .drawing import assembly_drawing, part_drawing
-        from .sheet import sheet_drawing
-
-        wholes = {"assembly": assembly_drawing, "sheet": sheet_drawing}
-        pieces = [(p.name, None, part_drawing(design, p)) for p in design.parts()]
-        return pieces + [(w, w, wholes[w](design)) for w in fmt.wholes]
+        pieces = [(p.name, None, drawings[p.name]) for p in design.parts()]
+        return pieces + [(w, w, drawings[(w,)]) for w in fmt.wholes]
     from .mesh import SolidItem
 
     where = {"assembly": design.placements, "plate": design.plate}
@@ -122,14 +129,14 @@ def _solids(design: Design) -> dict:
     return {p.name: solid(p) for p in design.parts()}
 
 
-def _write_format(fmt: Format, design: Design, folder: Path, solids: dict) -> dict[str, dict]:
+def _write_format(fmt: Format, design: Design, folder: Path, solids: dict, drawings: dict) -> dict[str, dict]:
     """Every file of one format, through the writer the format table names."""
     module, function = fmt.writer.split(":")
     writer = getattr(import_module(f".{module}", __package__), function)
     if fmt.takes == "design":  # the writer makes its own solids from the design
         return writer(design, folder)
     files = {}
-    for stem, whole, what in _pieces(fmt, design, solids):
+    for stem, whole, what in _pieces(fmt, design, solids, drawings):
         path = folder / f"{stem}.{fmt.extension}"
         entry = writer(path, what, design=design, whole=whole)
         files[path.name] = _entry(path, kind=fmt.name, part=stem, **entry)
@@ -164,8 +171,10 @@ def _write(design: Design, folder: Path, drawing: dict) -> dict[str, dict]:
     files: dict[str, dict] = {}
     chosen = [f for f in TABLE if f.name in formats]
     solids = _solids(design) if any(f.takes == "solid" for f in chosen) else {}
+    drawn = [f for f in chosen if f.takes == "drawing"]
+    drawings = _drawings(design, {w for f in drawn for w in f.wholes}) if drawn else {}
     for fmt in chosen:
-        files.update(_write_format(fmt, design, folder, solids))
+        files.update(_write_format(fmt, design, folder, solids, drawings))
     for table in design.tables:
         path = folder / table.file
         _write_table(path, table)
