@@ -8,7 +8,7 @@ import pytest
 
 from gearcad.geometry import bulge as B
 from gearcad.geometry.arcfit import ArcRing
-from gearcad.geometry.outline import Outline, place
+from gearcad.geometry.outline import Outline, place, place_each
 
 SQUARE = np.array([[0.0, 0.0], [2.0, 0.0], [2.0, 2.0], [0.0, 2.0]])
 HOLE = np.array([[0.5, 0.5], [0.5, 1.5], [1.5, 1.5], [1.5, 0.5]])
@@ -30,6 +30,17 @@ def test_place_turns_about_the_pivot_then_moves():
     # a quarter turn takes (1, 0) to (0, 1), then the offset moves it
     np.testing.assert_allclose(place(np.array([[1.0, 0.0]]), math.pi / 2, (3.0, 4.0)), [[3.0, 5.0]], atol=1e-15)
     np.testing.assert_array_equal(place(SQUARE), SQUARE)
+
+
+def test_many_placements_at_once_turn_each_point_by_its_owners_angle():
+    # points on circles (radius r, polar angle a), each owned by one of three placements: turned
+    # by θ and moved by (ox, oy), a point lands at (ox + r·cos(a + θ), oy + r·sin(a + θ))
+    r, a = np.array([1.0, 2.0, 0.5, 3.0, 1.5]), np.array([0.0, 1.0, 2.0, -1.0, 3.0])
+    owner = np.array([0, 0, 2, 1, 2])
+    theta, offset = np.array([0.3, -2.0, math.pi]), np.array([[1.0, 0.0], [0.0, -5.0], [10.0, 10.0]])
+    points = np.column_stack([r * np.cos(a), r * np.sin(a)])
+    expected = offset[owner] + np.column_stack([r * np.cos(a + theta[owner]), r * np.sin(a + theta[owner])])
+    np.testing.assert_allclose(place_each(points, owner, theta, offset), expected, atol=1e-14)
 
 
 def test_the_polygon_is_the_outline_placed():
