@@ -39,42 +39,46 @@ def _runs_fit(pts: np.ndarray, starts: np.ndarray, lengths: np.ndarray, tol: flo
     (its own chord sag d²/8R): the curve the vertices stand for follows their chords.
 
     The runs' vertices are laid end to end in one flat array (no run padded to the longest),
-    each run's maxima taken by ``reduceat`` over its own slice.
+    each run's maxima taken by ``reduceat`` over its own slice; so there must be at least one
+    run, each of at least one segment, ending at or before the array's last point.
     """
     width = lengths + 1
     first = np.cumsum(width) - width  # each run's slice of the flat arrays
-    row = np.repeat(np.arange(len(starts)), width)
-    col = np.arange(len(row)) - first[row]
-    flat = pts[np.minimum(starts[row] + col, len(pts) - 1)]
+    last = first + lengths
+    flat = pts[np.arange(last[-1] + 1) + np.repeat(starts - first, width)]
+    inside = np.ones(len(flat), dtype=bool)
+    inside[first], inside[last] = False, False
     a = pts[starts]
-    b = pts[np.minimum(starts + lengths, len(pts) - 1)]
-    chord = b - a
+    chord = pts[starts + lengths] - a
     length = np.hypot(chord[:, 0], chord[:, 1])
     safe = np.where(length > 0, length, 1.0)
-    normal = np.column_stack([-chord[:, 1], chord[:, 0]]) / safe[:, None]
-    rx, ry = flat[:, 0] - a[row, 0], flat[:, 1] - a[row, 1]
-    off = rx * normal[row, 0] + ry * normal[row, 1]
-    along = (rx * chord[row, 0] + ry * chord[row, 1]) / safe[row]
-    inside = (col > 0) & (col < lengths[row])
+    nx, ny = -chord[:, 1] / safe, chord[:, 0] / safe
+    rx, ry = flat[:, 0] - np.repeat(a[:, 0], width), flat[:, 1] - np.repeat(a[:, 1], width)
+    off = rx * np.repeat(nx, width) + ry * np.repeat(ny, width)
+    along = (rx * np.repeat(chord[:, 0], width) + ry * np.repeat(chord[:, 1], width)) / np.repeat(safe, width)
     abs_off = np.where(inside, np.abs(off), 0.0)
     peak = np.maximum.reduceat(abs_off, first)
     line_ok = (peak <= tol) & (length > 0)
     if not arcs:
         return line_ok, np.zeros(len(starts))
-    step = np.zeros(len(row))
+    step = np.empty(len(flat))
     step[1:] = np.hypot(flat[1:, 0] - flat[:-1, 0], flat[1:, 1] - flat[:-1, 1])
-    max_gap = np.maximum.reduceat(np.where(col > 0, step, 0.0), first)
-    k = np.minimum.reduceat(np.where(abs_off == peak[row], np.arange(len(row)), len(row)), first)  # first farthest
-    x = along[k] - length / 2
+    step[first] = 0.0
+    max_gap = np.maximum.reduceat(step, first)
+    k = np.minimum.reduceat(np.where(abs_off == np.repeat(peak, width), np.arange(len(flat)), len(flat)), first)
+    x = along[k] - length / 2  # the farthest vertex (the first, if several)
     y = off[k]
+    rising = np.empty(len(flat), dtype=bool)
+    rising[0] = True
+    rising[1:] = along[1:] > along[:-1]
     with np.errstate(divide="ignore", invalid="ignore"):
         c = -(length * length / 4 - x * x - y * y) / (2 * y)  # centre's offset from the chord
         radius = np.hypot(length / 2, c)
         h = c + np.sign(y) * radius  # signed sagitta
-        dist = np.hypot(along - (length / 2)[row], off - c[row])
-        miss = np.maximum.reduceat(np.where(inside, np.abs(dist - radius[row]), 0.0), first) + max_gap**2 / (8 * radius)
-        prev = np.append(-np.inf, along[:-1])
-        ordered = np.minimum.reduceat(~inside | ((along > 0) & (along < length[row]) & (along > prev)), first)
+        dist = np.hypot(along - np.repeat(length / 2, width), off - np.repeat(c, width))
+        miss = np.maximum.reduceat(np.where(inside, np.abs(dist - np.repeat(radius, width)), 0.0), first)
+        miss += max_gap**2 / (8 * radius)
+        ordered = np.minimum.reduceat(~inside | ((along > 0) & (along < np.repeat(length, width)) & rising), first)
         arc_ok = ordered & np.isfinite(miss) & (miss <= tol) & (np.abs(h) < length / 2) & (length > 0)
         bulge = np.where(line_ok, 0.0, -2 * h / safe)
     return line_ok | arc_ok, bulge
@@ -123,13 +127,11 @@ def _reach_ahead(pts: np.ndarray, starts: np.ndarray, limits: np.ndarray, tol: f
         tries = tries[tries <= _LONGEST]
         lengths = np.minimum(tries[None, :], limits[idx, None])
         ok, _ = _runs_fit(pts, np.repeat(starts[idx], len(tries)), lengths.ravel(), tol, arcs)
-        ok = ok.reshape(lengths.shape)
-        for j in range(len(tries)):
-            live = alive[idx]
-            take = live & ok[:, j] & (lengths[:, j] > good[idx])
-            good[idx[take]] = lengths[take, j]
-            alive[idx[live & ~take]] = False
-            alive[idx] &= lengths[:, j] < limits[idx]
+        before = np.column_stack([good[idx], lengths[:, :-1]])
+        taken = np.cumprod(ok.reshape(lengths.shape) & (lengths > before), axis=1, dtype=bool)  # up to the first miss
+        count = taken.sum(axis=1)
+        good[idx] = np.where(count > 0, lengths[np.arange(len(idx)), count - 1], good[idx])
+        alive[idx] = (count == len(tries)) & (lengths[:, -1] < limits[idx])
         length = int(tries[-1]) * 2
     lo, hi = good.copy(), np.minimum(2 * good, limits)
     nodes = 2 ** _AHEAD[1] - 1  # the next levels of the bisection as a tree: node i has children 2i+1, 2i+2
