@@ -55,12 +55,12 @@ def _runs_fit(pts: np.ndarray, starts: np.ndarray, lengths: np.ndarray, tol: flo
     nx, ny = -chord[:, 1] / safe, chord[:, 0] / safe
     rx, ry = flat[:, 0] - np.repeat(a[:, 0], width), flat[:, 1] - np.repeat(a[:, 1], width)
     off = rx * np.repeat(nx, width) + ry * np.repeat(ny, width)
-    along = (rx * np.repeat(chord[:, 0], width) + ry * np.repeat(chord[:, 1], width)) / np.repeat(safe, width)
     abs_off = np.where(inside, np.abs(off), 0.0)
     peak = np.maximum.reduceat(abs_off, first)
     line_ok = (peak <= tol) & (length > 0)
     if not arcs:
         return line_ok, np.zeros(len(starts))
+    along = (rx * np.repeat(chord[:, 0], width) + ry * np.repeat(chord[:, 1], width)) / np.repeat(safe, width)
     step = np.empty(len(flat))
     step[1:] = np.hypot(flat[1:, 0] - flat[:-1, 0], flat[1:, 1] - flat[:-1, 1])
     step[first] = 0.0
@@ -217,10 +217,10 @@ def _walk(pts: np.ndarray, n: int, tol: float, arcs: bool) -> np.ndarray:
     if typical < _LONG_RUN:
         every = np.arange(n)
         reach = _chained(pts, n, tol) if arcs else _reach_at(pts, every, n - every, tol, False)
-        i, out = 0, []
+        steps, i, out = reach.tolist(), 0, []  # Python ints: a thousand steps cost no array lookups
         while i < n:
             out.append(i)
-            i += int(reach[i])
+            i += steps[i]
         return np.array(out)
     block = int(16 * typical)
     turn = _turns(pts[:n])
