@@ -95,7 +95,7 @@ def test_reach_ahead_and_the_chained_walk_measure_what_every_vertex_would(arcs):
     the ring's end)."""
     from gearcad.geometry import arcfit
 
-    phi = np.linspace(0, 2 * math.pi, 3000, endpoint=False)
+    phi = np.linspace(0, 2 * math.pi, 1200, endpoint=False)
     wavy = (20 + 0.5 * np.cos(7 * phi) + 0.3 * np.abs(np.sin(3 * phi)))[:, None] * np.column_stack(
         [np.cos(phi), np.sin(phi)]
     )
@@ -106,7 +106,7 @@ def test_reach_ahead_and_the_chained_walk_measure_what_every_vertex_would(arcs):
         reach = arcfit._reach_at(pts, every, n - every, tol, arcs)
         assert reach.min() >= 1 and reach.max() > 8
         rng = np.random.default_rng(5)
-        for size in (1, 9, 200, n):
+        for size in (1, 9, 200):
             starts = np.sort(rng.choice(n, size, replace=False))
             assert np.array_equal(arcfit._reach_ahead(pts, starts, n - starts, tol, arcs), reach[starts])
         if arcs:

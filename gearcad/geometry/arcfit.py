@@ -127,8 +127,8 @@ def _reach_ahead(pts: np.ndarray, starts: np.ndarray, limits: np.ndarray, tol: f
         tries = tries[tries <= _LONGEST]
         lengths = np.minimum(tries[None, :], limits[idx, None])
         ok, _ = _runs_fit(pts, np.repeat(starts[idx], len(tries)), lengths.ravel(), tol, arcs)
-        before = np.column_stack([good[idx], lengths[:, :-1]])
-        taken = np.cumprod(ok.reshape(lengths.shape) & (lengths > before), axis=1, dtype=bool)  # up to the first miss
+        # taken up to the first miss; past its limit a run's tries repeat one length, taken alike
+        taken = np.cumprod(ok.reshape(lengths.shape), axis=1, dtype=bool)
         count = taken.sum(axis=1)
         good[idx] = np.where(count > 0, lengths[np.arange(len(idx)), count - 1], good[idx])
         alive[idx] = (count == len(tries)) & (lengths[:, -1] < limits[idx])
