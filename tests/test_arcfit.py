@@ -85,3 +85,33 @@ def test_a_large_ring_is_walked_in_blocks_within_tolerance(monkeypatch):
     whole = fit_arcs(wavy, 1e-3)
     cuts = len(wavy) // (16 * arcfit._LONG_RUN)  # at most one cut per 16 runs of the shortest length walked so
     assert len(whole.vertices) <= len(blocks.vertices) <= len(whole.vertices) + cuts
+
+
+@pytest.mark.parametrize("arcs", [True, False])
+def test_reach_ahead_and_the_chained_walk_measure_what_every_vertex_would(arcs):
+    """The reach tried several lengths ahead equals the doubling-then-bisection reach at any
+    starts; and the arc runs found by walks stopping where they meet are the walk's runs from
+    every vertex's reach: on a wavy ring with a corner (runs of many lengths, some cut short by
+    the ring's end)."""
+    from gearcad.geometry import arcfit
+
+    phi = np.linspace(0, 2 * math.pi, 1200, endpoint=False)
+    wavy = (20 + 0.5 * np.cos(7 * phi) + 0.3 * np.abs(np.sin(3 * phi)))[:, None] * np.column_stack(
+        [np.cos(phi), np.sin(phi)]
+    )
+    pts, _ = arcfit._rolled(wavy)
+    n = len(wavy)
+    every = np.arange(n)
+    for tol in (1e-4, 1e-3, 1e-2):
+        reach = arcfit._reach_at(pts, every, n - every, tol, arcs)
+        assert reach.min() >= 1 and reach.max() > 8
+        rng = np.random.default_rng(5)
+        for size in (1, 9, 200):
+            starts = np.sort(rng.choice(n, size, replace=False))
+            assert np.array_equal(arcfit._reach_ahead(pts, starts, n - starts, tol, arcs), reach[starts])
+        if arcs:
+            walked = arcfit._chained(pts, n, tol)
+            i = 0
+            while i < n:
+                assert walked[i] == reach[i]
+                i += reach[i]
