@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 import shapely
+from scipy.spatial import cKDTree
 
 from .arcfit import decimate
 
@@ -39,13 +40,52 @@ def nearest(points: np.ndarray, vertices: np.ndarray) -> tuple[np.ndarray, np.nd
 
 
 def max_distance(points: np.ndarray, ring: np.ndarray, *, limit: float = 0.0) -> float:
-    """The largest distance from ``points`` to the closed polyline ``ring`` (mm), exact.
+    """The largest distance from ``points`` to the closed polyline ``ring`` (mm), exact: the
+    number GEOS gives (:func:`_to_segments` is its point-to-segment distance, operation for
+    operation).
 
-    The segments sit in an R-tree and each point is measured against its nearest one by GEOS:
-    O(n log m).  (``limit`` is accepted for callers that only need to know whether it exceeds it.)
+    The ring is sampled at least every h mm (its vertices, and points between them on the
+    longer segments; h the median segment) into a k-d tree.  The nearest sample bounds each
+    point's distance, r; its nearest segment comes within r, so a sample of it (or its end)
+    lies within r + h/2, and the segments either side of every sample that near are measured.
+    Where some point lies far off the ring (r ≫ h), GEOS measures against an R-tree instead.
+    (``limit`` is accepted for callers that only need to know whether it exceeds it.)
     """
     if not len(points):
         return 0.0
-    segments = shapely.linestrings(np.stack([ring, np.roll(ring, -1, axis=0)], axis=1))
-    _, d = shapely.STRtree(segments).query_nearest(shapely.points(points), return_distance=True, all_matches=False)
+    ring = np.asarray(ring, dtype=float)
+    ahead = np.roll(ring, -1, axis=0)
+    length = np.hypot(*(ahead - ring).T)
+    h = max(float(np.median(length)), 1e-12)
+    count = np.maximum(np.ceil(length / h).astype(int), 1)
+    owner = np.repeat(np.arange(len(ring)), count)  # each sample's segment
+    t = (np.arange(len(owner)) - np.repeat(np.cumsum(count) - count, count)) / count[owner]
+    samples = ring[owner] + t[:, None] * (ahead - ring)[owner]
+    tree = cKDTree(samples)
+    r = tree.query(points)[0]  # each point's nearest sample: a bound on its distance
+    reach = (float(r.max()) + h / 2) * (1 + 1e-9) + 1e-12  # with room for the tree's rounding
+    if reach > 16 * h:  # points far off the ring would pair with most of it: GEOS's R-tree instead
+        segments = shapely.linestrings(np.stack([ring, ahead], axis=1))
+        tree = shapely.STRtree(segments)
+        _, far = tree.query_nearest(shapely.points(points), return_distance=True, all_matches=False)
+        return float(far.max())
+    pairs = cKDTree(points).sparse_distance_matrix(tree, reach, output_type="ndarray")
+    i, j = pairs["i"], pairs["j"]
+    d = np.full(len(points), np.inf)
+    for seg in (owner[j], (owner[j] - 1) % len(ring)):  # the segments either side of the sample
+        np.minimum.at(d, i, _to_segments(points[i], ring[seg], ahead[seg]))
     return float(d.max())
+
+
+def _to_segments(p: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Distance from points ``p`` to segments ``a``–``b`` (broadcast (..., 2) arrays, mm), in
+    GEOS's operations and order (``Distance::pointToSegment``), so the numbers are its own."""
+    bx, by = b[..., 0] - a[..., 0], b[..., 1] - a[..., 1]
+    len2 = bx * bx + by * by
+    with np.errstate(divide="ignore", invalid="ignore"):
+        r = ((p[..., 0] - a[..., 0]) * bx + (p[..., 1] - a[..., 1]) * by) / len2
+        s = ((a[..., 1] - p[..., 1]) * bx - (a[..., 0] - p[..., 0]) * by) / len2
+    to_a = np.sqrt((p[..., 0] - a[..., 0]) ** 2 + (p[..., 1] - a[..., 1]) ** 2)
+    to_b = np.sqrt((p[..., 0] - b[..., 0]) ** 2 + (p[..., 1] - b[..., 1]) ** 2)
+    # a zero-length segment is its point (GEOS: A == B), as r is NaN there
+    return np.where((len2 == 0) | (r <= 0), to_a, np.where(r >= 1, to_b, np.abs(s) * np.sqrt(len2)))
