@@ -9,7 +9,7 @@ from scipy.spatial import cKDTree
 
 from .arcfit import decimate
 
-__all__ = ["is_simple", "max_distance", "nearest", "thin"]
+__all__ = ["distances", "is_simple", "max_distance", "nearest", "thin"]
 
 
 def is_simple(ring: np.ndarray) -> bool:
@@ -40,41 +40,55 @@ def nearest(points: np.ndarray, vertices: np.ndarray) -> tuple[np.ndarray, np.nd
 
 
 def max_distance(points: np.ndarray, ring: np.ndarray, *, limit: float = 0.0) -> float:
-    """The largest distance from ``points`` to the closed polyline ``ring`` (mm), exact: the
-    number GEOS gives (:func:`_to_segments` is its point-to-segment distance, operation for
-    operation).
+    """The largest distance from ``points`` to the closed polyline ``ring`` (mm), exact
+    (:func:`distances`).  (``limit`` is accepted for callers that only need to know whether it
+    exceeds it.)"""
+    return float(distances(points, [ring]).max()) if len(points) else 0.0
 
-    The ring is sampled at least every h mm (its vertices, and points between them on the
-    longer segments; h the median segment) into a k-d tree.  The nearest sample bounds each
-    point's distance, r; its nearest segment comes within r, so a sample of it (or its end)
-    lies within r + h/2, and the segments either side of every sample that near are measured.
-    Where some point lies far off the ring (r ≫ h), GEOS measures against an R-tree instead.
-    (``limit`` is accepted for callers that only need to know whether it exceeds it.)
+
+def distances(points: np.ndarray, rings) -> np.ndarray:
+    """Each point's distance to the nearest of the closed polylines ``rings`` ((n, 2) arrays,
+    mm), exact: the numbers GEOS gives (:func:`_to_segments` is its point-to-segment distance,
+    operation for operation).
+
+    The rings are sampled at least every h mm (their vertices, and points between them on the
+    longer segments; h twice the median segment: fewer samples for a few more pairs) into a k-d
+    tree.  The nearest sample bounds each point's distance, r; its nearest segment comes within
+    r, so a sample of it (or its end) lies within r + h/2, and the segments either side of every
+    sample that near are measured.  Points farther off than ``_FAR`` samples (rare: the pairs
+    would grow with r) are measured by GEOS against an R-tree of the segments.
     """
-    if not len(points):
-        return 0.0
-    ring = np.asarray(ring, dtype=float)
-    ahead = np.roll(ring, -1, axis=0)
-    length = np.hypot(*(ahead - ring).T)
-    h = max(float(np.median(length)), 1e-12)
+    points = np.asarray(points, dtype=float).reshape(-1, 2)
+    rings = [np.asarray(r, dtype=float) for r in rings]
+    start = np.cumsum([0] + [len(r) for r in rings])
+    a = np.concatenate(rings)
+    b = np.concatenate([np.roll(r, -1, axis=0) for r in rings])
+    before = np.concatenate([s + (np.arange(len(r)) - 1) % len(r) for s, r in zip(start, rings)])
+    length = np.hypot(*(b - a).T)
+    h = max(2 * float(np.median(length)), 1e-12)
     count = np.maximum(np.ceil(length / h).astype(int), 1)
-    owner = np.repeat(np.arange(len(ring)), count)  # each sample's segment
+    owner = np.repeat(np.arange(len(a)), count)  # each sample's segment
     t = (np.arange(len(owner)) - np.repeat(np.cumsum(count) - count, count)) / count[owner]
-    samples = ring[owner] + t[:, None] * (ahead - ring)[owner]
-    tree = cKDTree(samples)
+    tree = cKDTree(a[owner] + t[:, None] * (b - a)[owner])
     r = tree.query(points)[0]  # each point's nearest sample: a bound on its distance
-    reach = (float(r.max()) + h / 2) * (1 + 1e-9) + 1e-12  # with room for the tree's rounding
-    if reach > 16 * h:  # points far off the ring would pair with most of it: GEOS's R-tree instead
-        segments = shapely.linestrings(np.stack([ring, ahead], axis=1))
-        tree = shapely.STRtree(segments)
-        _, far = tree.query_nearest(shapely.points(points), return_distance=True, all_matches=False)
-        return float(far.max())
-    pairs = cKDTree(points).sparse_distance_matrix(tree, reach, output_type="ndarray")
-    i, j = pairs["i"], pairs["j"]
+    bound = min(float(r.max(initial=0.0)), _FAR * h)
+    near = np.flatnonzero(r <= bound)
+    reach = (bound + h / 2) * (1 + 1e-9) + 1e-12  # with room for the tree's rounding
+    pairs = cKDTree(points[near]).sparse_distance_matrix(tree, reach, output_type="ndarray")
+    i, j = near[pairs["i"]], owner[pairs["j"]]
     d = np.full(len(points), np.inf)
-    for seg in (owner[j], (owner[j] - 1) % len(ring)):  # the segments either side of the sample
-        np.minimum.at(d, i, _to_segments(points[i], ring[seg], ahead[seg]))
-    return float(d.max())
+    for seg in (j, before[j]):  # the segments either side of the sample
+        np.minimum.at(d, i, _to_segments(points[i], a[seg], b[seg]))
+    far = np.flatnonzero(r > bound)
+    if len(far):
+        segments = shapely.STRtree(shapely.linestrings(np.stack([a, b], axis=1)))
+        (k, _), measured = segments.query_nearest(shapely.points(points[far]), return_distance=True, all_matches=False)
+        d[far[k]] = measured
+    return d
+
+
+_FAR = 64
+"""Samples' spacings beyond which a point is left to GEOS."""
 
 
 def _to_segments(p: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
