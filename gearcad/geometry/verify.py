@@ -31,11 +31,20 @@ def thin(ring: np.ndarray, tolerance: float) -> np.ndarray:
 
 
 def nearest(points: np.ndarray, vertices: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """For each point, the index of the nearest of ``vertices`` and the distance to it."""
-    tree = shapely.STRtree(shapely.points(vertices))
-    (i, j), d = tree.query_nearest(shapely.points(points), return_distance=True, all_matches=False)
-    index, distance = np.empty(len(points), dtype=int), np.empty(len(points))
-    index[i], distance[i] = j, d
+    """For each point, the index of the nearest of ``vertices`` and the distance to it.
+
+    A k-d tree finds the two nearest (its distance is GEOS's, √(dx² + dy²)); where they tie, the
+    R-tree of GEOS picks, as it always has (a point on a symmetric gear's axis)."""
+    points, vertices = np.asarray(points, dtype=float), np.asarray(vertices, dtype=float)
+    k = min(2, len(vertices))
+    distance, index = cKDTree(vertices).query(points, k=k)
+    distance, index = distance.reshape(len(points), k), index.reshape(len(points), k)
+    tied = np.flatnonzero(distance[:, 0] == distance[:, -1]) if k > 1 else []
+    distance, index = distance[:, 0], index[:, 0]
+    if len(tied):
+        tree = shapely.STRtree(shapely.points(vertices))
+        (i, j), d = tree.query_nearest(shapely.points(points[tied]), return_distance=True, all_matches=False)
+        index[tied[i]], distance[tied[i]] = j, d
     return index, distance
 
 
