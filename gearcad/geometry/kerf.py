@@ -22,6 +22,7 @@ import shapely
 from ..errors import DesignError
 from .outline import Outline, arc_steps
 from .rings import offset_outline
+from .verify import distances
 
 __all__ = ["CORNER", "KerfFault", "kerf_path", "kerf_fault"]
 
@@ -65,11 +66,9 @@ def kerf_fault(fine: Outline, path: Outline | None, offset: float, tolerance: fl
     sampling of both rings).  ``path`` None (the offset changed the topology) always spoils something."""
     reach = abs(offset)
     rings = path.rings if path is not None else _raw_rings(fine, offset, tolerance)
-    segments = shapely.linestrings(np.concatenate([np.stack([r, np.roll(r, -1, axis=0)], axis=1) for r in rings]))
-    tree = shapely.STRtree(segments)
     faults = []
     for index, ring in enumerate(fine.rings):
-        _, d = tree.query_nearest(shapely.points(ring), return_distance=True, all_matches=False)
+        d = distances(ring, rings)
         k = int(np.argmax(d))
         left, point = float(d[k]) - reach, ring[k]
         if left <= CORNER * reach + 2 * tolerance:

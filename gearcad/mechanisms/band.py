@@ -190,12 +190,22 @@ def _play(
         return overlap_areas(w1[at], place(start[at] + turn, at)) <= touching
 
     free = apart(np.zeros_like(start))
+    live = None if free.all() else np.flatnonzero(free)  # overlapping: the play is NaN, no gap to close
+
+    def gap(turn: np.ndarray) -> np.ndarray:
+        """The gap at the free positions, gear 2 turned ``turn`` (rad, one per free position)."""
+        if live is None:
+            return shapely.distance(w1, place(start + turn))
+        return shapely.distance(w1[live], place(start[live] + turn, live))
+
+    at = slice(None) if live is None else live
+    first = gap(np.zeros_like(start[at])) if steps and free.any() else None  # the same either way
     total = np.zeros_like(g.phi1)
     for sign in (1.0, -1.0):
-        turn = np.zeros_like(g.phi1)
-        for _ in range(steps):
-            gap = shapely.distance(w1, place(start + sign * turn))
-            turn = np.minimum(turn + gap / far, limit)
+        turn, ahead = np.zeros_like(g.phi1), np.zeros_like(start[at])
+        for step in range(steps if free.any() else 0):
+            ahead = np.minimum(ahead + (first if step == 0 else gap(sign * ahead)) / far[at], limit[at])
+        turn[at] = ahead
         if steps:  # the gap is the nearest flank's, which may be the one turning away: bisect there
             nudge = 1e-4 * g.module / arm
             stalled = np.flatnonzero(free & (turn + nudge < limit))

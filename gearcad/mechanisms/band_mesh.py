@@ -128,10 +128,21 @@ def mesh_play(
     free = overlap_areas(w1, placed) <= 1e-9 * g.module**2
     if not steps or not free.any():  # only whether they are free: no play to measure
         return np.where(free, 0.0, np.nan)
+    if not free.all():  # where they overlap the play is NaN: only the free positions are turned
+        live = np.flatnonzero(free)
+        w1, placed, far, centre, limit = w1[live], placed[live], far[live], centre[live], limit[live]
+        w2, angle2 = w2[live], g.angle2[live]
+        coords, which = shapely.get_coordinates(w2, return_index=True)
+    else:
+        live, angle2 = slice(None), g.angle2
+
+    def turned(turn: np.ndarray) -> np.ndarray:
+        return shapely.set_coordinates(w2.copy(), place_each(coords, which, angle2 + turn, centre))
+
     gap = shapely.distance(w1, placed)
     total = np.zeros_like(g.phi1)
     for sign in (1.0, -1.0):
-        total += _turn_to_touch(w1, lambda turn: place(sign * turn), gap, far, limit, steps, 1e-6 * g.module)
+        total[live] += _turn_to_touch(w1, lambda turn: turned(sign * turn), gap, far, limit, steps, 1e-6 * g.module)
     return np.where(free, total * arm, np.nan)
 
 
