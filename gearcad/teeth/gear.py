@@ -27,6 +27,7 @@ import shapely
 from ..errors import DesignError
 from ..geometry.outline import Outline, ring_area
 from .frame import ArcFrame
+from .loops import remove_loops, remove_loops_each
 from .rack import Rack
 from .sampling import sample_curves
 
@@ -109,12 +110,11 @@ class _Generator:
         for _ in range(iterations):
             u = self.U[ids] + side * (k.half_width + v * k.tan_a)
             star = u + side * v * k.cot_a
-            c, t, n = self.f.frame(star)
+            c, t, n, kappa = self.f.frame_curvature(star)
             p = c + (u - star)[:, None] * t + v[:, None] * n
-            kappa = self.f.curvature(star)
             dp = side * (k.tan_a + v * kappa / (sa * ca))[:, None] * t + (1 + v * kappa / sa**2)[:, None] * n
-            cq, tq, nq = self.f.frame(s)
-            dq = (1 + k.v_tip * self.f.curvature(s))[:, None] * tq
+            cq, tq, nq, kq = self.f.frame_curvature(s)
+            dq = (1 + k.v_tip * kq)[:, None] * tq
             f = p - (cq + k.v_tip * nq)
             det = dp[:, 0] * (-dq[:, 1]) - dp[:, 1] * (-dq[:, 0])
             dv = (f[:, 0] * (-dq[:, 1]) - f[:, 1] * (-dq[:, 0])) / det
@@ -138,52 +138,6 @@ def _newton2(residual, x, y, *, h=1e-7, iterations=30):
         if np.max(np.abs(dx) + np.abs(dy)) < 1e-12:
             break
     return x, y
-
-
-def _crossings(a: np.ndarray, d: np.ndarray):
-    """Pairs (i, j), j ≥ i + 2, of segments a[i]→a[i]+d[i] that cross, with their parameters.
-
-    Candidate pairs come from an R-tree of the segments' boxes (O(n log n) for a polyline that
-    crosses itself a few times), never from all pairs."""
-    segments = shapely.linestrings(np.stack([a, a + d], axis=1))
-    i, j = shapely.STRtree(segments).query(segments, predicate="intersects")
-    keep = j >= i + 2
-    i, j = i[keep], j[keep]
-    denom = d[i, 0] * d[j, 1] - d[i, 1] * d[j, 0]
-    w = a[j] - a[i]
-    with np.errstate(divide="ignore", invalid="ignore"):
-        t = (w[:, 0] * d[j, 1] - w[:, 1] * d[j, 0]) / denom
-        u = (w[:, 0] * d[i, 1] - w[:, 1] * d[i, 0]) / denom
-    hit = (denom != 0) & (t > 0) & (t < 1) & (u > 0) & (u < 1)
-    return i[hit], j[hit], t[hit]
-
-
-def remove_loops(points: np.ndarray) -> tuple[np.ndarray, int]:
-    """Cut self-intersection loops out of an open polyline: (points, loops removed).
-
-    Where segment i crosses a later segment j, the vertices between them form a loop that
-    both sides of the rack removed; the polyline goes straight through the crossing instead.
-    Every outermost loop found in one pass is cut at once (a loop starts after the previous
-    one ends); passes repeat until no crossing is left.
-    """
-    removed = 0
-    while len(points) > 3:
-        a = points[:-1]
-        d = points[1:] - a
-        i, j, t = _crossings(a, d)
-        if not len(i):
-            break
-        order = np.lexsort((-j, i))  # by first segment, the outermost loop first
-        keep, start, after = [], 0, -1
-        for k in order:
-            if i[k] <= after:
-                continue  # inside (or overlapping) a loop already cut
-            keep += [points[start : i[k] + 1], (a[i[k]] + t[k] * d[i[k]])[None, :]]
-            start, after = j[k] + 1, j[k]
-            removed += 1
-        keep.append(points[start:])
-        points = np.vstack(keep)
-    return points, removed
 
 
 RESIZE = "a smaller teeth.module or a larger teeth.count"
@@ -252,9 +206,11 @@ def cut_teeth(
     root_centre = gen.root(ids, centres)
     parts, start, space_root = [], 0, np.empty(teeth, dtype=int)
     loops = np.zeros(teeth, dtype=int)
-    for k in range(teeth):
-        space = np.vstack([left[k], lfil[k][1:], root[k][1:], rfil[k][1:], right[k][1:]])
-        space, loops[k] = remove_loops(space)
+    spaces = remove_loops_each(
+        [np.vstack([left[k], lfil[k][1:], root[k][1:], rfil[k][1:], right[k][1:]]) for k in range(teeth)]
+    )
+    for k, (space, removed) in enumerate(spaces):
+        loops[k] = removed
         parts.append(space[:-1])
         space_root[k] = start + int(np.argmin(np.hypot(*(space[:-1] - root_centre[k]).T)))
         start += len(space) - 1
