@@ -69,6 +69,10 @@ class ToothedGear:
         return np.nonzero(self.tip_thickness <= 0)[0]
 
 
+PARTS = ("left flank", "left fillet", "root", "right fillet", "right flank", "tip")
+"""The rack's parts in the order the outline runs through a space and on over the next tooth."""
+
+
 class _Generator:
     """Closed-form gear points of each part of every rack tooth."""
 
@@ -79,21 +83,35 @@ class _Generator:
         c, t, n = self.f.frame(s)
         return c + (u - s)[..., None] * t + v[..., None] * n
 
+    def _rack(self, part: int, ids, x):
+        """(u, v, s*) of rack ``part`` (see :data:`PARTS`) of space (or tooth) ``ids`` at its
+        parameter x: v on a flank, the normal's angle β on a fillet, u on the root, s on the tip."""
+        k = self.k
+        side = -1 if part < 2 else 1
+        if part in (0, 4):  # flank: s* = u ± v·cot α
+            u = self.U[ids] + side * (k.half_width + x * k.tan_a)
+            return u, x, u + side * x * k.cot_a
+        if part in (1, 3):  # fillet: s* = u_c − v_c·cot β
+            uc = self.U[ids] + side * k.fillet_u
+            u = uc + side * k.radius * np.cos(x)
+            return u, k.fillet_v + k.radius * np.sin(x), uc - side * k.fillet_v / np.tan(x)
+        return x, np.full_like(x, k.v_root if part == 2 else k.v_tip), x  # root, tip: s* = u
+
+    def parts(self, part, ids, x):
+        """Gear points of rack parts ``part`` (an array of :data:`PARTS` indices) of spaces
+        ``ids`` at parameters x, the frame evaluated once for all of them."""
+        u, v, s = np.empty_like(x), np.empty_like(x), np.empty_like(x)
+        for j in np.unique(part):
+            at = part == j
+            u[at], v[at], s[at] = self._rack(int(j), ids[at], x[at])
+        return self._point(u, v, s)
+
     def flank(self, ids, v, side):
         """side −1: the left flank of space ``ids`` (u < U), +1: the right flank."""
-        k = self.k
-        u = self.U[ids] + side * (k.half_width + v * k.tan_a)
-        return self._point(u, v, u + side * v * k.cot_a)
-
-    def fillet(self, ids, beta, side):
-        k = self.k
-        uc = self.U[ids] + side * k.fillet_u
-        u = uc + side * k.radius * np.cos(beta)
-        v = k.fillet_v + k.radius * np.sin(beta)
-        return self._point(u, v, uc - side * k.fillet_v / np.tan(beta))
+        return self._point(*self._rack(0 if side < 0 else 4, ids, v))
 
     def root(self, ids, u):
-        return self._point(u, np.full_like(u, self.k.v_root), u)
+        return self._point(*self._rack(2, ids, u))
 
     def tip(self, ids, s):
         c, _, n = self.f.frame(s)
@@ -182,26 +200,34 @@ def cut_teeth(
 
         v1, v2 = _newton2(crossing, v_start[pointed] * 0.5, v_end[pointed] * 0.5)
         v_start[pointed], v_end[pointed] = v1, v2
-    prev = (ids - 1) % teeth
-    left_top = v_end[prev]  # space k's left flank starts where tooth k−1 ends
+    left_top = v_end[(ids - 1) % teeth]
 
-    tol = tolerance
-    b0 = rack.fillet_start
-    left = sample_curves(lambda i, v: gen.flank(i, v, -1), left_top, np.full(teeth, rack.v_low), tol, stop=stop)
-    lfil = sample_curves(
-        lambda i, b: gen.fillet(i, b, -1), np.full(teeth, b0), np.full(teeth, -np.pi / 2), tol, stop=stop
+    # Every part of every space and tooth sampled together: (part, space, from, to) per curve.
+    land = np.nonzero(~pointed)[0]
+    b0, quarter, v_low = np.full(teeth, rack.fillet_start), np.full(teeth, -np.pi / 2), np.full(teeth, rack.v_low)
+    curves = [
+        (0, ids, left_top, v_low),  # space k's left flank starts where tooth k−1 ends
+        (1, ids, b0, quarter),
+        (2, ids, centres - rack.fillet_u, centres + rack.fillet_u),
+        (3, ids, quarter, b0),
+        (4, ids, v_low, v_start),
+        (5, land, s_start[land], s_end[land]),
+    ]
+    if rack.fillet_u <= 0:
+        del curves[2]
+    part = np.concatenate([np.full(len(c[1]), c[0]) for c in curves])
+    space = np.concatenate([c[1] for c in curves])
+    sampled = sample_curves(
+        lambda c, x: gen.parts(part[c], space[c], x),
+        np.concatenate([c[2] for c in curves]),
+        np.concatenate([c[3] for c in curves]),
+        tolerance,
+        stop=stop,
     )
-    if rack.fillet_u > 0:
-        root = sample_curves(gen.root, centres - rack.fillet_u, centres + rack.fillet_u, tol, stop=stop)
-    else:
-        root = [np.empty((0, 2))] * teeth
-    rfil = sample_curves(
-        lambda i, b: gen.fillet(i, b, +1), np.full(teeth, -np.pi / 2), np.full(teeth, b0), tol, stop=stop
-    )
-    right = sample_curves(lambda i, v: gen.flank(i, v, +1), np.full(teeth, rack.v_low), v_start, tol, stop=stop)
-    land = ~pointed
-    tips = sample_curves(gen.tip, s_start[land], s_end[land], tol, stop=stop)
-    tip_of = dict(zip(np.nonzero(land)[0], tips))
+    of = {c[0]: sampled[sum(len(d[1]) for d in curves[:j]) :][: len(c[1])] for j, c in enumerate(curves)}
+    left, lfil, rfil, right = of[0], of[1], of[3], of[4]
+    root = of.get(2, [np.empty((0, 2))] * teeth)
+    tip_of = dict(zip(land, of[5]))
 
     root_centre = gen.root(ids, centres)
     parts, start, space_root = [], 0, np.empty(teeth, dtype=int)
