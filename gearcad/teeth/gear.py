@@ -106,49 +106,55 @@ class _Generator:
             u[at], v[at], s[at] = self._rack(int(j), ids[at], x[at])
         return self._point(u, v, s)
 
-    def flank(self, ids, v, side):
-        """side −1: the left flank of space ``ids`` (u < U), +1: the right flank."""
-        return self._point(*self._rack(0 if side < 0 else 4, ids, v))
-
-    def root(self, ids, u):
-        return self._point(*self._rack(2, ids, u))
-
-    def tip(self, ids, s):
+    def tip(self, s):
         c, _, n = self.f.frame(s)
         return c + self.k.v_tip * n
 
     def meet_tip(self, ids, side, iterations: int = 12):
-        """(v, s) where each flank crosses the tip curve: Newton with the envelope's exact
-        derivative dP/dv = side·(tan α + vκ/(sin α cos α))·T + (1 + vκ/sin²α)·N and
-        dQ/ds = (1 + h·κ)·T for the tip curve Q = C + h·N."""
+        """(v, s) where each flank crosses the tip curve (``side`` per element: −1 the left
+        flank of space ``ids``, +1 the right): Newton with the envelope's exact derivative
+        dP/dv = side·(tan α + vκ/(sin α cos α))·T + (1 + vκ/sin²α)·N and dQ/ds = (1 + h·κ)·T
+        for the tip curve Q = C + h·N, one frame evaluation a step for both curves; each side
+        stops once all of its steps are below 1e-12."""
         k = self.k
         sa, ca = math.sin(k.params.pressure_angle), math.cos(k.params.pressure_angle)
         v = np.full(len(ids), k.v_tip)
         s = self.U[ids] + side * (k.half_width + k.v_tip * k.tan_a)
+        live = np.arange(len(ids))
         for _ in range(iterations):
-            u = self.U[ids] + side * (k.half_width + v * k.tan_a)
-            star = u + side * v * k.cot_a
-            c, t, n, kappa = self.f.frame_curvature(star)
-            p = c + (u - star)[:, None] * t + v[:, None] * n
-            dp = side * (k.tan_a + v * kappa / (sa * ca))[:, None] * t + (1 + v * kappa / sa**2)[:, None] * n
-            cq, tq, nq, kq = self.f.frame_curvature(s)
+            i, g, m = ids[live], side[live], len(live)
+            u = self.U[i] + g * (k.half_width + v[live] * k.tan_a)
+            star = u + g * v[live] * k.cot_a
+            c, t, n, kappa = self.f.frame_curvature(np.concatenate([star, s[live]]))
+            (c, cq), (t, tq), (n, nq), (kappa, kq) = (np.split(x, [m]) for x in (c, t, n, kappa))
+            vl = v[live]
+            p = c + (u - star)[:, None] * t + vl[:, None] * n
+            dp = (g * (k.tan_a + vl * kappa / (sa * ca)))[:, None] * t + (1 + vl * kappa / sa**2)[:, None] * n
             dq = (1 + k.v_tip * kq)[:, None] * tq
             f = p - (cq + k.v_tip * nq)
             det = dp[:, 0] * (-dq[:, 1]) - dp[:, 1] * (-dq[:, 0])
             dv = (f[:, 0] * (-dq[:, 1]) - f[:, 1] * (-dq[:, 0])) / det
             ds = (dp[:, 0] * f[:, 1] - dp[:, 1] * f[:, 0]) / det
-            v, s = v - dv, s - ds
-            if np.max(np.abs(dv) + np.abs(ds)) < 1e-12:
+            v[live], s[live] = vl - dv, s[live] - ds
+            step = np.abs(dv) + np.abs(ds)
+            done = [h for h in np.unique(g) if np.max(step[g == h]) < 1e-12]
+            live = live[~np.isin(g, done)]
+            if not len(live):
                 break
         return v, s
 
 
 def _newton2(residual, x, y, *, h=1e-7, iterations=30):
-    """Solve residual(x, y) = 0 (a 2-vector per element) by Newton with finite differences."""
+    """Solve residual(x, y) = 0 (a 2-vector per element) by Newton with finite differences.
+
+    ``residual`` is asked once a step, of the point and its four neighbours stacked: element
+    i of arrays five times as long is element i mod len(x) of the problem."""
+    m = len(x)
     for _ in range(iterations):
-        f = residual(x, y)
-        fx = (residual(x + h, y) - residual(x - h, y)) / (2 * h)
-        fy = (residual(x, y + h) - residual(x, y - h)) / (2 * h)
+        r = residual(np.concatenate([x, x + h, x - h, x, x]), np.concatenate([y, y, y, y + h, y - h]))
+        f, xp, xm, yp, ym = (r[j * m : (j + 1) * m] for j in range(5))
+        fx = (xp - xm) / (2 * h)
+        fy = (yp - ym) / (2 * h)
         det = fx[:, 0] * fy[:, 1] - fx[:, 1] * fy[:, 0]
         dx = (f[:, 0] * fy[:, 1] - f[:, 1] * fy[:, 0]) / det
         dy = (fx[:, 0] * f[:, 1] - fx[:, 1] * f[:, 0]) / det
@@ -186,17 +192,21 @@ def cut_teeth(
     nxt = (ids + 1) % teeth
     wrap = np.where(nxt == 0, frame.perimeter, 0.0)  # space k+1 seen from tooth k, unwrapped
 
-    # Where each tooth's flanks meet its tip curve.
-    v_start, s_start = gen.meet_tip(ids, +1)  # tooth k begins on space k's right flank
-    v_end, s_end = gen.meet_tip(nxt, -1)  # and ends on space k+1's left flank
-    s_end = s_end + wrap
-    a_pt, b_pt = gen.tip(ids, s_start), gen.tip(ids, s_end)
+    # Where each tooth's flanks meet its tip curve: tooth k begins on space k's right flank
+    # and ends on space k+1's left flank.
+    v_meet, s_meet = gen.meet_tip(np.concatenate([ids, nxt]), np.repeat([1.0, -1.0], teeth))
+    v_start, v_end = v_meet[:teeth], v_meet[teeth:]
+    s_start, s_end = s_meet[:teeth], s_meet[teeth:] + wrap
+    a_pt, b_pt = np.split(gen.tip(np.concatenate([s_start, s_end])), [teeth])
     thickness = np.hypot(*(b_pt - a_pt).T) * np.sign(s_end - s_start)
     pointed = thickness <= 0
     if np.any(pointed):  # flanks cross below the tip: the tooth ends in their crossing
 
-        def crossing(v1, v2):
-            return gen.flank(ids[pointed], v1, +1) - gen.flank(nxt[pointed], v2, -1)
+        def crossing(v1, v2):  # tooth k's right flank (space k) less its left (space k+1)
+            n = len(v1)
+            at = np.concatenate([np.resize(ids[pointed], n), np.resize(nxt[pointed], n)])
+            p = gen.parts(np.repeat([4, 0], n), at, np.concatenate([v1, v2]))
+            return p[:n] - p[n:]
 
         v1, v2 = _newton2(crossing, v_start[pointed] * 0.5, v_end[pointed] * 0.5)
         v_start[pointed], v_end[pointed] = v1, v2
@@ -229,7 +239,9 @@ def cut_teeth(
     root = of.get(2, [np.empty((0, 2))] * teeth)
     tip_of = dict(zip(land, of[5]))
 
-    root_centre = gen.root(ids, centres)
+    both = np.concatenate([centres, centres])  # each space's root centre and a module below it
+    v_root = np.repeat([rack.v_root, rack.v_root - rack.params.module], teeth)
+    root_centre, under_root = np.split(gen._point(both, v_root, both), [teeth])
     parts, start, space_root = [], 0, np.empty(teeth, dtype=int)
     loops = np.zeros(teeth, dtype=int)
     spaces = remove_loops_each(
@@ -269,7 +281,7 @@ def cut_teeth(
         tooth_phi=frame.angle(centres + p / 2) % (2 * np.pi),
         space_loops=loops,
         space_root=space_root,
-        under_root=gen._point(centres, np.full(teeth, rack.v_root - rack.params.module), centres),
+        under_root=under_root,
     )
 
 
