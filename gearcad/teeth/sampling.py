@@ -27,10 +27,11 @@ class Stopped(Exception):
 
 
 def _distance_to_chord(p, a, b):
+    """Distances (k, n) of points p (k, n, 2) from the chords a → b (n, 2)."""
     d = b - a
     length = np.hypot(d[:, 0], d[:, 1])
-    cross = np.abs(d[:, 0] * (p[:, 1] - a[:, 1]) - d[:, 1] * (p[:, 0] - a[:, 0]))
-    far = np.hypot(p[:, 0] - a[:, 0], p[:, 1] - a[:, 1])
+    cross = np.abs(d[:, 0] * (p[..., 1] - a[:, 1]) - d[:, 1] * (p[..., 0] - a[:, 0]))
+    far = np.hypot(p[..., 0] - a[:, 0], p[..., 1] - a[:, 1])
     return np.where(length > 1e-300, cross / np.where(length > 1e-300, length, 1.0), far)
 
 
@@ -77,7 +78,7 @@ def sample_curves(
         pq = func(np.tile(ids, len(ask)), np.concatenate(ask)).reshape(len(ask), len(a), 2)
         p1, p3 = pq[0], pq[1]
         pm = pq[2] if pm is None else pm
-        dev = np.max([_distance_to_chord(q, pa, pb) for q in (p1, pm, p3)], axis=0)
+        dev = np.max(_distance_to_chord(np.stack([p1, pm, p3]), pa, pb), axis=0)
         ok = dev <= tolerance
         kept_ids.append(ids[ok])
         kept_t.append(a[ok])
@@ -104,4 +105,5 @@ def sample_curves(
     ids, p = ids[order], p[order]
     ends = func(np.arange(n), t1)
     cuts = np.searchsorted(ids, np.arange(n + 1))
-    return [np.vstack([p[cuts[i] : cuts[i + 1]], ends[i : i + 1]]) for i in range(n)]
+    # each curve's end after its last point, then one view per curve
+    return np.split(np.insert(p, cuts[1:], ends, axis=0), cuts[1:-1] + np.arange(1, n))
