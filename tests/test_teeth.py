@@ -16,6 +16,7 @@ from gearcad.pitch import shapes
 from gearcad.pitch.pair import conjugate_pair
 from gearcad.teeth.frame import arc_frame
 from gearcad.teeth.gear import cut_teeth, remove_loops
+from gearcad.teeth.loops import remove_loops_each
 from gearcad.teeth.mesh import mesh_check
 from gearcad.teeth.pair import undercut_free_module
 from gearcad.teeth.plan import plan_teeth
@@ -137,6 +138,18 @@ def test_remove_loops_cuts_a_figure_of_eight():
     out, n = remove_loops(pts)
     assert n == 1
     np.testing.assert_allclose(out, [[0, 0], [1.5, 0], [1, -1], [1, -2], [3, -2]])
+
+
+def test_remove_loops_each_cuts_each_line_as_alone():
+    """Lines that cross each other but not themselves keep every vertex; each line's own
+    loops are cut as :func:`remove_loops` cuts them."""
+    eight = np.array([[0, 0], [2, 0], [2, 1], [1, -1], [1, -2], [3, -2]], dtype=float)
+    across = np.array([[1, 2], [1, -3], [1.2, -3], [1.2, 2]], dtype=float)
+    out = remove_loops_each([eight, across, eight[:3], eight + 10])
+    assert [n for _, n in out] == [1, 0, 0, 1]
+    np.testing.assert_array_equal(out[0][0], remove_loops(eight)[0])
+    np.testing.assert_array_equal(out[1][0], across)
+    np.testing.assert_array_equal(out[3][0], remove_loops(eight + 10)[0])
 
 
 def _pair_and_plan(curve, mate_lobes, **kw):

@@ -8,7 +8,7 @@ import numpy as np
 
 from ..pitch import chebyshev
 from ..pitch.chebyshev import Piecewise
-from ..pitch.curve import TWO_PI, PitchCurve, arc_length_map, curvature
+from ..pitch.curve import TWO_PI, PitchCurve, arc_length_map
 from ..tolerances import DEFAULT, Tolerances
 
 __all__ = ["ArcFrame", "arc_frame", "ParametricFrame"]
@@ -38,7 +38,9 @@ class ArcFrame:
     def frame(self, s) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Point C, unit tangent T (increasing s) and outward unit normal N at s: (…, 2) each."""
         phi = self.angle(s)
-        r, dr = self.curve.r(phi), self.curve.dr(phi)
+        return self._frame(phi, self.curve.r(phi), self.curve.dr(phi))
+
+    def _frame(self, phi, r, dr):
         c, si = np.cos(phi), np.sin(phi)
         point = np.stack([r * c, r * si], axis=-1)
         d = np.stack([dr * c - r * si, dr * si + r * c], axis=-1)
@@ -48,7 +50,19 @@ class ArcFrame:
 
     def curvature(self, s) -> np.ndarray:
         """Signed curvature at s, 1/mm (positive where convex)."""
-        return curvature(self.curve, self.angle(s))
+        phi = self.angle(s)
+        return _curvature(self.curve.r(phi), self.curve.dr(phi), self.curve.d2r(phi))
+
+    def frame_curvature(self, s) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """:meth:`frame` and :meth:`curvature` at s, each of φ(s), r, r′ and r″ evaluated once."""
+        phi = self.angle(s)
+        r, dr = self.curve.r(phi), self.curve.dr(phi)
+        return (*self._frame(phi, r, dr), _curvature(r, dr, self.curve.d2r(phi)))
+
+
+def _curvature(r, dr, d2r):
+    """Signed curvature of a polar curve from r, r′ and r″ (as :func:`~..pitch.curve.curvature`)."""
+    return (r * r + 2 * dr * dr - r * d2r) / (r * r + dr * dr) ** 1.5
 
 
 def arc_frame(curve: PitchCurve, *, tol: Tolerances = DEFAULT) -> ArcFrame:
@@ -102,6 +116,14 @@ class ParametricFrame:
         u = self._param(s)
         (x1, y1), (x2, y2) = self._derivative(u, 1), self._derivative(u, 2)
         return (x1 * y2 - y1 * x2) / np.hypot(x1, y1) ** 3
+
+    def frame_curvature(self, s):
+        u = self._param(s)
+        (x0, y0), (x1, y1), (x2, y2) = (self._derivative(u, k) for k in range(3))
+        t = np.stack([x1, y1], axis=-1)
+        t = t / np.linalg.norm(t, axis=-1, keepdims=True)
+        kappa = (x1 * y2 - y1 * x2) / np.hypot(x1, y1) ** 3
+        return np.stack([x0, y0], axis=-1), t, np.stack([t[..., 1], -t[..., 0]], axis=-1), kappa
 
     def angle(self, s) -> np.ndarray:
         """Polar angle of the curve point at s about the origin (for reports)."""

@@ -27,6 +27,7 @@ import shapely
 from ..errors import DesignError
 from ..geometry.outline import Outline, ring_area
 from .frame import ArcFrame
+from .loops import remove_loops, remove_loops_each
 from .rack import Rack
 from .sampling import sample_curves
 
@@ -68,6 +69,10 @@ class ToothedGear:
         return np.nonzero(self.tip_thickness <= 0)[0]
 
 
+PARTS = ("left flank", "left fillet", "root", "right fillet", "right flank", "tip")
+"""The rack's parts in the order the outline runs through a space and on over the next tooth."""
+
+
 class _Generator:
     """Closed-form gear points of each part of every rack tooth."""
 
@@ -78,59 +83,78 @@ class _Generator:
         c, t, n = self.f.frame(s)
         return c + (u - s)[..., None] * t + v[..., None] * n
 
-    def flank(self, ids, v, side):
-        """side −1: the left flank of space ``ids`` (u < U), +1: the right flank."""
+    def _rack(self, part: int, ids, x):
+        """(u, v, s*) of rack ``part`` (see :data:`PARTS`) of space (or tooth) ``ids`` at its
+        parameter x: v on a flank, the normal's angle β on a fillet, u on the root, s on the tip."""
         k = self.k
-        u = self.U[ids] + side * (k.half_width + v * k.tan_a)
-        return self._point(u, v, u + side * v * k.cot_a)
+        side = -1 if part < 2 else 1
+        if part in (0, 4):  # flank: s* = u ± v·cot α
+            u = self.U[ids] + side * (k.half_width + x * k.tan_a)
+            return u, x, u + side * x * k.cot_a
+        if part in (1, 3):  # fillet: s* = u_c − v_c·cot β
+            uc = self.U[ids] + side * k.fillet_u
+            u = uc + side * k.radius * np.cos(x)
+            return u, k.fillet_v + k.radius * np.sin(x), uc - side * k.fillet_v / np.tan(x)
+        return x, np.full_like(x, k.v_root if part == 2 else k.v_tip), x  # root, tip: s* = u
 
-    def fillet(self, ids, beta, side):
-        k = self.k
-        uc = self.U[ids] + side * k.fillet_u
-        u = uc + side * k.radius * np.cos(beta)
-        v = k.fillet_v + k.radius * np.sin(beta)
-        return self._point(u, v, uc - side * k.fillet_v / np.tan(beta))
+    def parts(self, part, ids, x):
+        """Gear points of rack parts ``part`` (an array of :data:`PARTS` indices) of spaces
+        ``ids`` at parameters x, the frame evaluated once for all of them."""
+        u, v, s = np.empty_like(x), np.empty_like(x), np.empty_like(x)
+        for j in np.unique(part):
+            at = part == j
+            u[at], v[at], s[at] = self._rack(int(j), ids[at], x[at])
+        return self._point(u, v, s)
 
-    def root(self, ids, u):
-        return self._point(u, np.full_like(u, self.k.v_root), u)
-
-    def tip(self, ids, s):
+    def tip(self, s):
         c, _, n = self.f.frame(s)
         return c + self.k.v_tip * n
 
     def meet_tip(self, ids, side, iterations: int = 12):
-        """(v, s) where each flank crosses the tip curve: Newton with the envelope's exact
-        derivative dP/dv = side·(tan α + vκ/(sin α cos α))·T + (1 + vκ/sin²α)·N and
-        dQ/ds = (1 + h·κ)·T for the tip curve Q = C + h·N."""
+        """(v, s) where each flank crosses the tip curve (``side`` per element: −1 the left
+        flank of space ``ids``, +1 the right): Newton with the envelope's exact derivative
+        dP/dv = side·(tan α + vκ/(sin α cos α))·T + (1 + vκ/sin²α)·N and dQ/ds = (1 + h·κ)·T
+        for the tip curve Q = C + h·N, one frame evaluation a step for both curves; each side
+        stops once all of its steps are below 1e-12."""
         k = self.k
         sa, ca = math.sin(k.params.pressure_angle), math.cos(k.params.pressure_angle)
         v = np.full(len(ids), k.v_tip)
         s = self.U[ids] + side * (k.half_width + k.v_tip * k.tan_a)
+        live = np.arange(len(ids))
         for _ in range(iterations):
-            u = self.U[ids] + side * (k.half_width + v * k.tan_a)
-            star = u + side * v * k.cot_a
-            c, t, n = self.f.frame(star)
-            p = c + (u - star)[:, None] * t + v[:, None] * n
-            kappa = self.f.curvature(star)
-            dp = side * (k.tan_a + v * kappa / (sa * ca))[:, None] * t + (1 + v * kappa / sa**2)[:, None] * n
-            cq, tq, nq = self.f.frame(s)
-            dq = (1 + k.v_tip * self.f.curvature(s))[:, None] * tq
+            i, g, m = ids[live], side[live], len(live)
+            u = self.U[i] + g * (k.half_width + v[live] * k.tan_a)
+            star = u + g * v[live] * k.cot_a
+            c, t, n, kappa = self.f.frame_curvature(np.concatenate([star, s[live]]))
+            (c, cq), (t, tq), (n, nq), (kappa, kq) = (np.split(x, [m]) for x in (c, t, n, kappa))
+            vl = v[live]
+            p = c + (u - star)[:, None] * t + vl[:, None] * n
+            dp = (g * (k.tan_a + vl * kappa / (sa * ca)))[:, None] * t + (1 + vl * kappa / sa**2)[:, None] * n
+            dq = (1 + k.v_tip * kq)[:, None] * tq
             f = p - (cq + k.v_tip * nq)
             det = dp[:, 0] * (-dq[:, 1]) - dp[:, 1] * (-dq[:, 0])
             dv = (f[:, 0] * (-dq[:, 1]) - f[:, 1] * (-dq[:, 0])) / det
             ds = (dp[:, 0] * f[:, 1] - dp[:, 1] * f[:, 0]) / det
-            v, s = v - dv, s - ds
-            if np.max(np.abs(dv) + np.abs(ds)) < 1e-12:
+            v[live], s[live] = vl - dv, s[live] - ds
+            step = np.abs(dv) + np.abs(ds)
+            done = [h for h in np.unique(g) if np.max(step[g == h]) < 1e-12]
+            live = live[~np.isin(g, done)]
+            if not len(live):
                 break
         return v, s
 
 
 def _newton2(residual, x, y, *, h=1e-7, iterations=30):
-    """Solve residual(x, y) = 0 (a 2-vector per element) by Newton with finite differences."""
+    """Solve residual(x, y) = 0 (a 2-vector per element) by Newton with finite differences.
+
+    ``residual`` is asked once a step, of the point and its four neighbours stacked: element
+    i of arrays five times as long is element i mod len(x) of the problem."""
+    m = len(x)
     for _ in range(iterations):
-        f = residual(x, y)
-        fx = (residual(x + h, y) - residual(x - h, y)) / (2 * h)
-        fy = (residual(x, y + h) - residual(x, y - h)) / (2 * h)
+        r = residual(np.concatenate([x, x + h, x - h, x, x]), np.concatenate([y, y, y, y + h, y - h]))
+        f, xp, xm, yp, ym = (r[j * m : (j + 1) * m] for j in range(5))
+        fx = (xp - xm) / (2 * h)
+        fy = (yp - ym) / (2 * h)
         det = fx[:, 0] * fy[:, 1] - fx[:, 1] * fy[:, 0]
         dx = (f[:, 0] * fy[:, 1] - f[:, 1] * fy[:, 0]) / det
         dy = (fx[:, 0] * f[:, 1] - fx[:, 1] * f[:, 0]) / det
@@ -138,52 +162,6 @@ def _newton2(residual, x, y, *, h=1e-7, iterations=30):
         if np.max(np.abs(dx) + np.abs(dy)) < 1e-12:
             break
     return x, y
-
-
-def _crossings(a: np.ndarray, d: np.ndarray):
-    """Pairs (i, j), j ≥ i + 2, of segments a[i]→a[i]+d[i] that cross, with their parameters.
-
-    Candidate pairs come from an R-tree of the segments' boxes (O(n log n) for a polyline that
-    crosses itself a few times), never from all pairs."""
-    segments = shapely.linestrings(np.stack([a, a + d], axis=1))
-    i, j = shapely.STRtree(segments).query(segments, predicate="intersects")
-    keep = j >= i + 2
-    i, j = i[keep], j[keep]
-    denom = d[i, 0] * d[j, 1] - d[i, 1] * d[j, 0]
-    w = a[j] - a[i]
-    with np.errstate(divide="ignore", invalid="ignore"):
-        t = (w[:, 0] * d[j, 1] - w[:, 1] * d[j, 0]) / denom
-        u = (w[:, 0] * d[i, 1] - w[:, 1] * d[i, 0]) / denom
-    hit = (denom != 0) & (t > 0) & (t < 1) & (u > 0) & (u < 1)
-    return i[hit], j[hit], t[hit]
-
-
-def remove_loops(points: np.ndarray) -> tuple[np.ndarray, int]:
-    """Cut self-intersection loops out of an open polyline: (points, loops removed).
-
-    Where segment i crosses a later segment j, the vertices between them form a loop that
-    both sides of the rack removed; the polyline goes straight through the crossing instead.
-    Every outermost loop found in one pass is cut at once (a loop starts after the previous
-    one ends); passes repeat until no crossing is left.
-    """
-    removed = 0
-    while len(points) > 3:
-        a = points[:-1]
-        d = points[1:] - a
-        i, j, t = _crossings(a, d)
-        if not len(i):
-            break
-        order = np.lexsort((-j, i))  # by first segment, the outermost loop first
-        keep, start, after = [], 0, -1
-        for k in order:
-            if i[k] <= after:
-                continue  # inside (or overlapping) a loop already cut
-            keep += [points[start : i[k] + 1], (a[i[k]] + t[k] * d[i[k]])[None, :]]
-            start, after = j[k] + 1, j[k]
-            removed += 1
-        keep.append(points[start:])
-        points = np.vstack(keep)
-    return points, removed
 
 
 RESIZE = "a smaller teeth.module or a larger teeth.count"
@@ -214,47 +192,63 @@ def cut_teeth(
     nxt = (ids + 1) % teeth
     wrap = np.where(nxt == 0, frame.perimeter, 0.0)  # space k+1 seen from tooth k, unwrapped
 
-    # Where each tooth's flanks meet its tip curve.
-    v_start, s_start = gen.meet_tip(ids, +1)  # tooth k begins on space k's right flank
-    v_end, s_end = gen.meet_tip(nxt, -1)  # and ends on space k+1's left flank
-    s_end = s_end + wrap
-    a_pt, b_pt = gen.tip(ids, s_start), gen.tip(ids, s_end)
+    # Where each tooth's flanks meet its tip curve: tooth k begins on space k's right flank
+    # and ends on space k+1's left flank.
+    v_meet, s_meet = gen.meet_tip(np.concatenate([ids, nxt]), np.repeat([1.0, -1.0], teeth))
+    v_start, v_end = v_meet[:teeth], v_meet[teeth:]
+    s_start, s_end = s_meet[:teeth], s_meet[teeth:] + wrap
+    a_pt, b_pt = np.split(gen.tip(np.concatenate([s_start, s_end])), [teeth])
     thickness = np.hypot(*(b_pt - a_pt).T) * np.sign(s_end - s_start)
     pointed = thickness <= 0
     if np.any(pointed):  # flanks cross below the tip: the tooth ends in their crossing
 
-        def crossing(v1, v2):
-            return gen.flank(ids[pointed], v1, +1) - gen.flank(nxt[pointed], v2, -1)
+        def crossing(v1, v2):  # tooth k's right flank (space k) less its left (space k+1)
+            n = len(v1)
+            at = np.concatenate([np.resize(ids[pointed], n), np.resize(nxt[pointed], n)])
+            p = gen.parts(np.repeat([4, 0], n), at, np.concatenate([v1, v2]))
+            return p[:n] - p[n:]
 
         v1, v2 = _newton2(crossing, v_start[pointed] * 0.5, v_end[pointed] * 0.5)
         v_start[pointed], v_end[pointed] = v1, v2
-    prev = (ids - 1) % teeth
-    left_top = v_end[prev]  # space k's left flank starts where tooth k−1 ends
+    left_top = v_end[(ids - 1) % teeth]
 
-    tol = tolerance
-    b0 = rack.fillet_start
-    left = sample_curves(lambda i, v: gen.flank(i, v, -1), left_top, np.full(teeth, rack.v_low), tol, stop=stop)
-    lfil = sample_curves(
-        lambda i, b: gen.fillet(i, b, -1), np.full(teeth, b0), np.full(teeth, -np.pi / 2), tol, stop=stop
+    # Every part of every space and tooth sampled together: (part, space, from, to) per curve.
+    land = np.nonzero(~pointed)[0]
+    b0, quarter, v_low = np.full(teeth, rack.fillet_start), np.full(teeth, -np.pi / 2), np.full(teeth, rack.v_low)
+    curves = [
+        (0, ids, left_top, v_low),  # space k's left flank starts where tooth k−1 ends
+        (1, ids, b0, quarter),
+        (2, ids, centres - rack.fillet_u, centres + rack.fillet_u),
+        (3, ids, quarter, b0),
+        (4, ids, v_low, v_start),
+        (5, land, s_start[land], s_end[land]),
+    ]
+    if rack.fillet_u <= 0:
+        del curves[2]
+    part = np.concatenate([np.full(len(c[1]), c[0]) for c in curves])
+    space = np.concatenate([c[1] for c in curves])
+    sampled = sample_curves(
+        lambda c, x: gen.parts(part[c], space[c], x),
+        np.concatenate([c[2] for c in curves]),
+        np.concatenate([c[3] for c in curves]),
+        tolerance,
+        stop=stop,
     )
-    if rack.fillet_u > 0:
-        root = sample_curves(gen.root, centres - rack.fillet_u, centres + rack.fillet_u, tol, stop=stop)
-    else:
-        root = [np.empty((0, 2))] * teeth
-    rfil = sample_curves(
-        lambda i, b: gen.fillet(i, b, +1), np.full(teeth, -np.pi / 2), np.full(teeth, b0), tol, stop=stop
-    )
-    right = sample_curves(lambda i, v: gen.flank(i, v, +1), np.full(teeth, rack.v_low), v_start, tol, stop=stop)
-    land = ~pointed
-    tips = sample_curves(gen.tip, s_start[land], s_end[land], tol, stop=stop)
-    tip_of = dict(zip(np.nonzero(land)[0], tips))
+    of = {c[0]: sampled[sum(len(d[1]) for d in curves[:j]) :][: len(c[1])] for j, c in enumerate(curves)}
+    left, lfil, rfil, right = of[0], of[1], of[3], of[4]
+    root = of.get(2, [np.empty((0, 2))] * teeth)
+    tip_of = dict(zip(land, of[5]))
 
-    root_centre = gen.root(ids, centres)
+    both = np.concatenate([centres, centres])  # each space's root centre and a module below it
+    v_root = np.repeat([rack.v_root, rack.v_root - rack.params.module], teeth)
+    root_centre, under_root = np.split(gen._point(both, v_root, both), [teeth])
     parts, start, space_root = [], 0, np.empty(teeth, dtype=int)
     loops = np.zeros(teeth, dtype=int)
-    for k in range(teeth):
-        space = np.vstack([left[k], lfil[k][1:], root[k][1:], rfil[k][1:], right[k][1:]])
-        space, loops[k] = remove_loops(space)
+    spaces = remove_loops_each(
+        [np.vstack([left[k], lfil[k][1:], root[k][1:], rfil[k][1:], right[k][1:]]) for k in range(teeth)]
+    )
+    for k, (space, removed) in enumerate(spaces):
+        loops[k] = removed
         parts.append(space[:-1])
         space_root[k] = start + int(np.argmin(np.hypot(*(space[:-1] - root_centre[k]).T)))
         start += len(space) - 1
@@ -287,7 +281,7 @@ def cut_teeth(
         tooth_phi=frame.angle(centres + p / 2) % (2 * np.pi),
         space_loops=loops,
         space_root=space_root,
-        under_root=gen._point(centres, np.full(teeth, rack.v_root - rack.params.module), centres),
+        under_root=under_root,
     )
 
 

@@ -1,8 +1,10 @@
 """Adaptive sampling of many parametric curves at once, from one tolerance.
 
-Every curve is split into a few intervals; each round evaluates all midpoints in one call,
-keeps the intervals whose midpoint lies within the tolerance of their chord and halves the
-rest.  The result has no more vertices than the tolerance needs, wherever the curvature is.
+Every curve is split into a few intervals; each round evaluates the quarter points of all of
+them in one call, keeps the intervals whose midpoint and quarter points lie within the
+tolerance of their chord and halves the rest, whose halves' midpoints are those quarter points
+(so a later round evaluates two new points per interval, not three).  The result has no more
+vertices than the tolerance needs, wherever the curvature is.
 """
 
 from __future__ import annotations
@@ -25,10 +27,11 @@ class Stopped(Exception):
 
 
 def _distance_to_chord(p, a, b):
+    """Distances (k, n) of points p (k, n, 2) from the chords a → b (n, 2)."""
     d = b - a
     length = np.hypot(d[:, 0], d[:, 1])
-    cross = np.abs(d[:, 0] * (p[:, 1] - a[:, 1]) - d[:, 1] * (p[:, 0] - a[:, 0]))
-    far = np.hypot(p[:, 0] - a[:, 0], p[:, 1] - a[:, 1])
+    cross = np.abs(d[:, 0] * (p[..., 1] - a[:, 1]) - d[:, 1] * (p[..., 0] - a[:, 0]))
+    far = np.hypot(p[..., 0] - a[:, 0], p[..., 1] - a[:, 1])
     return np.where(length > 1e-300, cross / np.where(length > 1e-300, length, 1.0), far)
 
 
@@ -66,12 +69,16 @@ def sample_curves(
     b = (t0[:, None] + (t1 - t0)[:, None] * frac[None, 1:]).ravel()
     pa, pb = func(ids, a), func(ids, b)
     kept_ids, kept_t, kept_p = [], [], []
+    pm = None  # the points at the midpoints, once known (a half's midpoint is a quarter point)
     for _ in range(max_rounds):
         if stop is not None and stop.is_set():
             raise Stopped
-        quarter = np.concatenate([0.75 * a + 0.25 * b, 0.5 * (a + b), 0.25 * a + 0.75 * b])
-        pq = func(np.tile(ids, 3), quarter).reshape(3, len(a), 2)
-        dev = np.max([_distance_to_chord(pq[k], pa, pb) for k in range(3)], axis=0)
+        m = 0.5 * (a + b)
+        ask = [0.5 * (a + m), 0.5 * (m + b)] + ([m] if pm is None else [])
+        pq = func(np.tile(ids, len(ask)), np.concatenate(ask)).reshape(len(ask), len(a), 2)
+        p1, p3 = pq[0], pq[1]
+        pm = pq[2] if pm is None else pm
+        dev = np.max(_distance_to_chord(np.stack([p1, pm, p3]), pa, pb), axis=0)
         ok = dev <= tolerance
         kept_ids.append(ids[ok])
         kept_t.append(a[ok])
@@ -85,10 +92,10 @@ def sample_curves(
                 "curve bends too sharply for these teeth; use a coarser output.tolerance, or smaller or fewer teeth "
                 "(teeth.module / teeth.count)"
             )
-        m, pm = 0.5 * (a[bad] + b[bad]), pq[1][bad]
         ids = np.concatenate([ids[bad], ids[bad]])
-        a, b = np.concatenate([a[bad], m]), np.concatenate([m, b[bad]])
-        pa, pb = np.concatenate([pa[bad], pm]), np.concatenate([pm, pb[bad]])
+        a, b = np.concatenate([a[bad], m[bad]]), np.concatenate([m[bad], b[bad]])
+        pa, pb = np.concatenate([pa[bad], pm[bad]]), np.concatenate([pm[bad], pb[bad]])
+        pm = np.concatenate([p1[bad], p3[bad]])
     else:  # the round limit: keep what is left rather than loop forever
         kept_ids.append(ids)
         kept_t.append(a)
@@ -98,4 +105,5 @@ def sample_curves(
     ids, p = ids[order], p[order]
     ends = func(np.arange(n), t1)
     cuts = np.searchsorted(ids, np.arange(n + 1))
-    return [np.vstack([p[cuts[i] : cuts[i + 1]], ends[i : i + 1]]) for i in range(n)]
+    # each curve's end after its last point, then one view per curve
+    return np.split(np.insert(p, cuts[1:], ends, axis=0), cuts[1:-1] + np.arange(1, n))
