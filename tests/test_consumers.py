@@ -421,8 +421,8 @@ FREECAD_SUBSET = {
     ("herringbone_elliptic", "driver"),  # twisted teeth: B-spline flanks, a chamfered bore
     ("rolling_wheel", "assembly"),  # an assembly (the smallest)
 }
-"""What FreeCAD reads by default (a FreeCAD process reads ~1 MB of STEP a second); all of them
-with ``GEARCAD_CONSUMERS=all``."""
+"""What FreeCAD reads by default (a FreeCAD process reads ~1 MB of STEP a second) of what
+``built_step`` wrote (the herringbone's only with ``GEARCAD_CONSUMERS=all``, which reads all)."""
 FREECAD_SCRIPT = """
 import json, sys
 import FreeCAD, Import, Part

@@ -2,11 +2,12 @@
 valid closed solid of the right faces, its volume the 3MF's with the arcs' difference, its
 section at half thickness the DXF's cut outline; every assembly naming its parts.
 
-One build at 0.01 mm of a profile of each kind of part — every profile with
-``GEARCAD_CONSUMERS=all`` (``built_step``, tests/conftest.py) — read by one test so
-that pytest-xdist reads it in one worker.  The fine checks (the assembly read back and placed,
-byte-identical rewrites, the twisted flank between sections, the chamfer's closed form) are in
-tests/test_step.py on two small builds.
+One build at 0.01 mm of a profile of each kind of straight part — every profile, the
+herringbone's twisted teeth among them, with ``GEARCAD_CONSUMERS=all`` (``built_step``,
+tests/conftest.py) — read by one test so that pytest-xdist reads it in one worker.  The fine
+checks (the assembly read back and placed, byte-identical rewrites, the twisted flank between
+sections, the chamfer's closed form) are in tests/test_step.py on two small builds, the
+herringbone profile's one of them.
 
 The expected volume difference to the 3MF: the 3MF is the part's polygon (``parts[].area`` of
 the report) extruded, the STEP solid its lines and arcs (the DXF's) extruded, so
