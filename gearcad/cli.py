@@ -223,7 +223,9 @@ def _main(args) -> int:
             from .api import check_out
 
             check_out(args.out)  # before any work: a bad --out is found in a moment
-        return _run(args)
+        code = _run(args)
+        sys.stdout.flush()  # into a pipe stdout is block-buffered: a reader gone shows here, not at exit
+        return code
     except GearcadError as exc:
         code = getattr(exc, "exit_code", EXIT_BAD_INPUT)
         prefix = "gearcad: " if code != EXIT_BAD_INPUT else "gearcad: error: "

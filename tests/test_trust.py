@@ -139,7 +139,10 @@ def test_closed_stdout_is_not_a_traceback():
     before head had gone, so the broken pipe never happened and the test could not fail)."""
     coarse = ["--set", "output.tolerance=0.01", "--set", "output.charts=false"]  # the pipe is the test
     command = [sys.executable, "-m", "gearcad", "check", str(EXAMPLES / "rolling_wheel.toml"), *coarse]
-    with subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE) as run:
+    # stdout block-buffered into the pipe, as from a user's shell (PYTHONUNBUFFERED hid the flush
+    # at exit: "Exception ignored … BrokenPipeError" and exit 120)
+    env = {k: v for k, v in os.environ.items() if k != "PYTHONUNBUFFERED"}
+    with subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE, env=env) as run:
         run.stdout.close()
         stderr = run.stderr.read().decode()
         assert run.wait(timeout=60) == 0 and stderr == ""
