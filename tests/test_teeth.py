@@ -296,3 +296,21 @@ def test_sampling_is_called_off_when_asked():
     stop.set()
     with pytest.raises(Stopped):
         sample_curves(circle, [0.0], [np.pi], 1e-6, stop=stop)
+
+
+def test_the_point_bound_is_each_rack_parts_not_the_gears(monkeypatch):
+    """``sample_curves`` refuses past MAX_POINTS for one curve set; a gear's six rack parts are
+    sampled in one call, so their bound is six times that, as when each part was sampled alone:
+    a 40-tooth spur gear of ~2 000 points is cut with the bound at 600 a part (when the call held
+    the whole gear to one part's bound, it was refused) and refused at 200."""
+    import gearcad.teeth.gear as gear_module
+
+    rack = Rack.from_params(RackParams(module=2.0, pressure_angle=math.radians(20), thinning=0.0))
+    frame = arc_frame(shapes.circle(40.0))
+    whole = len(gear_module.cut_teeth(frame, rack, 40, rack.pitch / 2, tolerance=0.01).outline.outer)
+    assert 1200 < whole < 3000
+    monkeypatch.setattr(gear_module, "MAX_POINTS", 600)
+    assert len(gear_module.cut_teeth(frame, rack, 40, rack.pitch / 2, tolerance=0.01).outline.outer) == whole
+    monkeypatch.setattr(gear_module, "MAX_POINTS", 200)
+    with pytest.raises(DesignError, match="more than"):
+        gear_module.cut_teeth(frame, rack, 40, rack.pitch / 2, tolerance=0.01)

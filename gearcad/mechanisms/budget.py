@@ -34,9 +34,10 @@ POINT_BUDGET = 600_000
 POINTS_PER_TOOTH = 2.0
 """Points per tooth per √(module / fine tolerance): above the largest seen on the profiles."""
 MAX_TEETH = 5000
-"""Most teeth on one gear: beyond the points, each tooth space costs ~4 ms of its own (its loops
-are removed one space at a time), so 5000 teeth take ~25 s on the reference machine (measured
-on roller bodies: 5032 teeth 24 s, 8050 teeth 36 s, 40 252 teeth over 120 s)."""
+"""Most teeth on one gear: beyond the points, each tooth space costs time of its own (its pieces
+joined and its loops cut), so 5000 teeth took ~25 s on the reference machine when the loops were
+removed one space at a time (measured on roller bodies: 5032 teeth 24 s, 8050 teeth 36 s,
+40 252 teeth over 120 s); all spaces' loops are now found with one R-tree."""
 FINEST_TOLERANCE = 1e-4
 """The smallest output.tolerance a profile accepts, mm: never suggest a finer one."""
 COARSEST_TOLERANCE = 0.5

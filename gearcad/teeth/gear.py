@@ -29,7 +29,7 @@ from ..geometry.outline import Outline, ring_area
 from .frame import ArcFrame
 from .loops import remove_loops, remove_loops_each
 from .rack import Rack
-from .sampling import sample_curves
+from .sampling import MAX_POINTS, sample_curves
 
 __all__ = ["ToothedGear", "cut_teeth", "remove_loops"]
 
@@ -232,6 +232,7 @@ def cut_teeth(
         np.concatenate([c[2] for c in curves]),
         np.concatenate([c[3] for c in curves]),
         tolerance,
+        max_points=MAX_POINTS * len(curves),  # each part its own bound, as when sampled one by one
         stop=stop,
     )
     of = {c[0]: sampled[sum(len(d[1]) for d in curves[:j]) :][: len(c[1])] for j, c in enumerate(curves)}

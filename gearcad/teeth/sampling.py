@@ -36,8 +36,9 @@ def _distance_to_chord(p, a, b):
 
 
 MAX_POINTS = 400_000
-"""More points than this for one set of curves means they bend more sharply than any part can
-be made: the work is refused rather than refined without end (bounded time and memory)."""
+"""More points than this for one curve set means it bends more sharply than any part can be
+made: the work is refused rather than refined without end (bounded time and memory).  A caller
+sampling several sets in one call (a gear's six rack parts) passes this times their number."""
 
 
 def sample_curves(
