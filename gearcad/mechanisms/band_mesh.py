@@ -116,11 +116,7 @@ def mesh_play(
     np.maximum.at(far, which, np.hypot(coords[:, 0], coords[:, 1]))
     far = np.maximum(far, 1e-9)
     centre = g.centre2 + shift * g.tighter
-
-    def place(turn: np.ndarray) -> np.ndarray:
-        xy = place_each(coords, which, g.angle2 + turn, centre)
-        return shapely.set_coordinates(w2.copy(), xy)
-
+    place = _placer(w2, coords, which, g.angle2, centre)
     arm = np.hypot(*(g.contact - g.centre2).T)  # gear 2's pitch radius at the contact
     limit = min(reach, 1.2 * math.pi * g.module) / arm  # more than a pitch never frees a tooth
     zero = np.zeros_like(g.phi1)
@@ -128,22 +124,22 @@ def mesh_play(
     free = overlap_areas(w1, placed) <= 1e-9 * g.module**2
     if not steps or not free.any():  # only whether they are free: no play to measure
         return np.where(free, 0.0, np.nan)
+    live = slice(None)
     if not free.all():  # where they overlap the play is NaN: only the free positions are turned
         live = np.flatnonzero(free)
-        w1, placed, far, centre, limit = w1[live], placed[live], far[live], centre[live], limit[live]
-        w2, angle2 = w2[live], g.angle2[live]
-        coords, which = shapely.get_coordinates(w2, return_index=True)
-    else:
-        live, angle2 = slice(None), g.angle2
-
-    def turned(turn: np.ndarray) -> np.ndarray:
-        return shapely.set_coordinates(w2.copy(), place_each(coords, which, angle2 + turn, centre))
-
+        w1, placed, far, limit, w2 = w1[live], placed[live], far[live], limit[live], w2[live]
+        place = _placer(w2, *shapely.get_coordinates(w2, return_index=True), g.angle2[live], centre[live])
     gap = shapely.distance(w1, placed)
     total = np.zeros_like(g.phi1)
     for sign in (1.0, -1.0):
-        total[live] += _turn_to_touch(w1, lambda turn: turned(sign * turn), gap, far, limit, steps, 1e-6 * g.module)
+        total[live] += _turn_to_touch(w1, lambda turn: place(sign * turn), gap, far, limit, steps, 1e-6 * g.module)
     return np.where(free, total * arm, np.nan)
+
+
+def _placer(w2, coords: np.ndarray, which: np.ndarray, angle2: np.ndarray, centre: np.ndarray):
+    """place(turn) -> gear 2's windows ``w2`` (their ``coords`` by window ``which``) turned by
+    ``angle2 + turn`` about ``centre``, one of each per window."""
+    return lambda turn: shapely.set_coordinates(w2.copy(), place_each(coords, which, angle2 + turn, centre))
 
 
 def _turn_to_touch(w1, place, gap: np.ndarray, far: np.ndarray, limit, steps: int, settled: float) -> np.ndarray:
