@@ -22,6 +22,7 @@ __all__ = [
     "points",
     "tangent_angle",
     "curvature",
+    "polar_curvature",
     "segments",
     "arc_length_map",
     "perimeter",
@@ -93,8 +94,12 @@ def _convexity_numerator(curve: PitchCurve, phi) -> np.ndarray:
 def curvature(curve: PitchCurve, phi) -> np.ndarray:
     """Signed curvature (1/mm), positive where the curve bends towards its pivot side."""
     phi = np.asarray(phi, dtype=float)
-    r, dr = curve.r(phi), curve.dr(phi)
-    return _convexity_numerator(curve, phi) / (r * r + dr * dr) ** 1.5
+    return polar_curvature(curve.r(phi), curve.dr(phi), curve.d2r(phi))
+
+
+def polar_curvature(r, dr, d2r) -> np.ndarray:
+    """Signed curvature (1/mm) of a polar curve from r, r′ and r″ at the same angles."""
+    return (r * r + 2 * dr * dr - r * d2r) / (r * r + dr * dr) ** 1.5
 
 
 def arc_length_map(curve: PitchCurve, *, tol: Tolerances = DEFAULT) -> chebyshev.Piecewise:

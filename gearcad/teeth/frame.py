@@ -8,7 +8,7 @@ import numpy as np
 
 from ..pitch import chebyshev
 from ..pitch.chebyshev import Piecewise
-from ..pitch.curve import TWO_PI, PitchCurve, arc_length_map
+from ..pitch.curve import TWO_PI, PitchCurve, arc_length_map, polar_curvature
 from ..tolerances import DEFAULT, Tolerances
 
 __all__ = ["ArcFrame", "arc_frame", "ParametricFrame"]
@@ -51,18 +51,13 @@ class ArcFrame:
     def curvature(self, s) -> np.ndarray:
         """Signed curvature at s, 1/mm (positive where convex)."""
         phi = self.angle(s)
-        return _curvature(self.curve.r(phi), self.curve.dr(phi), self.curve.d2r(phi))
+        return polar_curvature(self.curve.r(phi), self.curve.dr(phi), self.curve.d2r(phi))
 
     def frame_curvature(self, s) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
         """:meth:`frame` and :meth:`curvature` at s, each of φ(s), r, r′ and r″ evaluated once."""
         phi = self.angle(s)
         r, dr = self.curve.r(phi), self.curve.dr(phi)
-        return (*self._frame(phi, r, dr), _curvature(r, dr, self.curve.d2r(phi)))
-
-
-def _curvature(r, dr, d2r):
-    """Signed curvature of a polar curve from r, r′ and r″ (as :func:`~..pitch.curve.curvature`)."""
-    return (r * r + 2 * dr * dr - r * d2r) / (r * r + dr * dr) ** 1.5
+        return (*self._frame(phi, r, dr), polar_curvature(r, dr, self.curve.d2r(phi)))
 
 
 def arc_frame(curve: PitchCurve, *, tol: Tolerances = DEFAULT) -> ArcFrame:
