@@ -142,14 +142,17 @@ def test_remove_loops_cuts_a_figure_of_eight():
 
 def test_remove_loops_each_cuts_each_line_as_alone():
     """Lines that cross each other but not themselves keep every vertex; each line's own
-    loops are cut as :func:`remove_loops` cuts them."""
+    loop is cut at its crossing, worked out by hand."""
     eight = np.array([[0, 0], [2, 0], [2, 1], [1, -1], [1, -2], [3, -2]], dtype=float)
     across = np.array([[1, 2], [1, -3], [1.2, -3], [1.2, 2]], dtype=float)
     out = remove_loops_each([eight, across, eight[:3], eight + 10])
     assert [n for _, n in out] == [1, 0, 0, 1]
-    np.testing.assert_array_equal(out[0][0], remove_loops(eight)[0])
+    # segment 0 (y = 0) meets segment 2 ((2, 1) -> (1, -1)) at (1.5, 0): the loop through (2, 0), (2, 1) goes
+    cut = np.array([[0, 0], [1.5, 0], [1, -1], [1, -2], [3, -2]], dtype=float)
+    np.testing.assert_allclose(out[0][0], cut, atol=1e-15)
     np.testing.assert_array_equal(out[1][0], across)
-    np.testing.assert_array_equal(out[3][0], remove_loops(eight + 10)[0])
+    np.testing.assert_allclose(out[3][0], cut + 10, atol=1e-14)
+    np.testing.assert_array_equal(out[0][0], remove_loops(eight)[0])  # remove_loops: one line alone
 
 
 def _pair_and_plan(curve, mate_lobes, **kw):
