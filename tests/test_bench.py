@@ -13,7 +13,7 @@ import pytest
 from gearcad.bench import stability_map
 from gearcad.bench.commands import gearcad_commands
 from gearcad.bench.goals import GOALS, goal_rows, goals_table
-from gearcad.bench.outlines import deviation
+from gearcad.bench.outlines import deviation, deviations, flattened
 from gearcad.bench.peers import PEER, bench_peers
 from gearcad.bench.process import Measured, ProcessRun
 from gearcad.cli import main
@@ -158,6 +158,29 @@ def test_deviation_is_the_distance_between_curves():
     outer = 10.25 * np.column_stack([np.cos(t[::3] + 0.001), np.sin(t[::3] + 0.001)])
     assert deviation(inner, outer) == pytest.approx(0.25, abs=10.25 * (1 - math.cos(np.pi / 1000)) + 1e-12)
     assert deviation(outer, inner, outer[:, 0] > 0) == pytest.approx(0.25, abs=1e-4)
+
+
+def test_regions_are_measured_as_one_at_a_time():
+    """deviations(): the whole both ways and each region one way, as deviation() gives them."""
+    t = np.linspace(0, 2 * np.pi, 800, endpoint=False)
+    wavy = (10 + 0.01 * np.sin(7 * t))[:, None] * np.column_stack([np.cos(t), np.sin(t)])
+    circle = 10 * np.column_stack([np.cos(t[::2]), np.sin(t[::2])])
+    right = wavy[:, 0] > 0
+    found = deviations(wavy, circle, {"right": right, "none": np.zeros(len(t), bool)})
+    assert found["all"] == deviation(wavy, circle) and found["right"] == deviation(wavy, circle, right)
+    assert math.isnan(found["none"])
+
+
+def test_arcs_are_flattened_on_their_circles_within_the_chord_error():
+    """A circle of radius 10 as two half-turn arcs (bulge 1) and a square's line: every point on
+    the circle, each chord within 1e-6 mm of it (sagitta r(1 − cos(δ/2))), not much finer."""
+    points = flattened(np.array([[10.0, 0.0, 1.0], [-10.0, 0.0, 1.0]]), 1e-6)
+    assert np.allclose(np.hypot(*points.T), 10.0, atol=1e-12, rtol=0)
+    step = np.diff(np.unwrap(np.arctan2(points[:, 1], points[:, 0])))
+    sag = 10 * (1 - np.cos(step / 2))
+    assert np.all(step > 0) and 0.5e-6 < sag.max() <= 1e-6 + 1e-15
+    square = np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]], dtype=float)
+    assert flattened(square).tolist() == square[:, :2].tolist()  # lines: their vertices
 
 
 def _measured(walls, peak):

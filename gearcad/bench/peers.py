@@ -30,7 +30,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from .commands import FOCUS_TEETH
-from .outlines import deviation, largest_outline, signed_depth
+from .outlines import deviation, deviations, largest_outline, signed_depth
 from .process import Command, Measured, measure
 
 if TYPE_CHECKING:
@@ -138,11 +138,8 @@ def _exact_pair(rack_cut_steps: int | None) -> _Pair:
 def _accuracy(points: np.ndarray, pair: _Pair) -> dict:
     """How far a written outline ((n, 2) mm) is from the exact one, whole and by region."""
     root = signed_depth(points, pair.pitch_ring) < pair.rack.v_low
-    out = {
-        "error": deviation(points, pair.envelope),
-        "error_flanks": deviation(points, pair.envelope, ~root),
-        "error_roots": deviation(points, pair.envelope, root),
-    }
+    found = deviations(points, pair.envelope, {"flanks": ~root, "roots": root})  # each point measured once
+    out = {"error": found["all"], "error_flanks": found["flanks"], "error_roots": found["roots"]}
     if pair.rack_cut is not None:
         out["error_rack_cut"] = deviation(points, pair.rack_cut)
     return out
