@@ -11,6 +11,7 @@ import pytest
 import shapely
 
 from gearcad.findings import CODES
+from gearcad.teeth.depth_probe import DepthProbe
 from gearcad.teeth.overcut import generating_window, rack_overcut
 from gearcad.teeth.rack import Rack, RackParams
 
@@ -67,6 +68,31 @@ def test_one_tooth_on_a_concave_arc_sits_x2_over_2rho_deep(rho):
         _Arc(rho, False), rack, 1, 0.0, _root_circle_body(rho, -rack.v_root, False), [(-5.0, 5.0)], tolerance=0.001
     )
     assert convex.tooth.depth < 1e-9 and convex.hob.depth < 1e-9 and convex.cannot == ()
+
+
+def test_depth_probe_passes_over_points_but_never_the_deepest():
+    """The probe's bounds against GEOS's distance of every point: a zigzag cell placed at 200
+    random poses across a wavy ring (a third of the points inside).  Every cap is at least its
+    point's depth, the deepest found is the deepest there is, and a floor above it finds none."""
+    a = np.linspace(0, 2 * np.pi, 360, endpoint=False)
+    ring = (20 + 1.5 * np.sin(9 * a))[:, None] * np.column_stack([np.cos(a), np.sin(a)])
+    probe = DepthProbe(ring, 0.2)
+    rng = np.random.default_rng(25)
+    cell = np.column_stack([np.linspace(-3, 3, 61), 1.5 * np.abs(((np.arange(61) / 10) % 2) - 1)])
+    turn, radius = rng.uniform(0, 2 * np.pi, 200), rng.uniform(17, 23, 200)
+    rotation = np.stack([np.cos(turn), -np.sin(turn), np.sin(turn), np.cos(turn)], axis=-1).reshape(-1, 2, 2)
+    placed = (
+        np.einsum("pij,nj->pni", rotation, cell)
+        + (radius[:, None] * np.column_stack([np.cos(turn), np.sin(turn)]))[:, None]
+    )
+    xy, caps = placed.reshape(-1, 2), probe.caps(placed).ravel()
+    inside = probe.inside(xy)
+    depth = shapely.distance(shapely.points(xy[inside]), shapely.LinearRing(ring))
+    assert len(xy) / 4 < len(inside) < len(xy) / 2 and np.all(caps[inside] >= depth - 1e-12)
+    found, at = probe.deepest(xy, caps)
+    assert found == pytest.approx(depth.max(), abs=1e-12) and at in inside
+    assert shapely.distance(shapely.Point(xy[at]), shapely.LinearRing(ring)) == pytest.approx(depth.max(), abs=1e-12)
+    assert probe.deepest(xy, caps, floor=depth.max() + 1e-6) == (0.0, -1)
 
 
 def _outer(path):

@@ -27,8 +27,8 @@ from dataclasses import dataclass
 
 import numpy as np
 import shapely
-from scipy.spatial import cKDTree
 
+from .depth_probe import DepthProbe
 from .rack import Rack
 
 __all__ = [
@@ -172,42 +172,6 @@ def rack_cell(rack: Rack, *, step: float) -> tuple[np.ndarray, np.ndarray]:
     return points, zone
 
 
-class _Probe:
-    """The deepest of many points inside a ring: a k-d tree of the ring's densified vertices
-    bounds every point's distance from above, and the exact distance (GEOS, to the nearest
-    segment) is taken only for points whose bound beats the deepest found so far."""
-
-    def __init__(self, ring: np.ndarray, spacing: float):
-        self.polygon = shapely.Polygon(ring)
-        shapely.prepare(self.polygon)
-        self.tree = shapely.STRtree(shapely.linestrings(np.stack([ring, np.roll(ring, -1, axis=0)], axis=1)))
-        self.vertices = cKDTree(shapely.get_coordinates(shapely.segmentize(shapely.LinearRing(ring), spacing)))
-
-    def inside(self, xy: np.ndarray) -> np.ndarray:
-        """Indices of the points of ``xy`` (n, 2) inside the ring."""
-        return np.nonzero(shapely.contains_xy(self.polygon, xy[:, 0], xy[:, 1]))[0]
-
-    def deepest(self, xy: np.ndarray, inside: np.ndarray | None = None) -> tuple[float, int]:
-        """(depth, index) of the point of ``xy`` deepest inside the ring, looking only at the
-        indices ``inside`` if given (they must be inside); (0, −1) if none is."""
-        inside = self.inside(xy) if inside is None else inside
-        best, at = 0.0, -1
-        if not len(inside):
-            return best, at
-        bound, _ = self.vertices.query(xy[inside])
-        order = np.argsort(-bound)
-        for start in range(0, len(order), 256):
-            batch = order[start : start + 256]
-            if bound[batch[0]] <= best:
-                break
-            points = shapely.points(xy[inside[batch]])
-            (i, _), d = self.tree.query_nearest(points, return_distance=True, all_matches=False)
-            j = int(np.argmax(d))
-            if d[j] > best:
-                best, at = float(d[j]), int(inside[batch[i[j]]])
-        return best, at
-
-
 def _place(frame, cell: np.ndarray, centre: float, poses: np.ndarray) -> np.ndarray:
     """The cell of the tooth centred at ``centre`` at each pose: (poses, n, 2) in the gear frame."""
     c, t, n = frame.frame(poses)
@@ -242,7 +206,7 @@ def rack_overcut(
     p, perimeter, m = rack.pitch, frame.perimeter, rack.params.module
     w = generating_window(rack)
     coarse, coarse_zone = rack_cell(rack, step=m / 12)
-    probe = _Probe(ring, m / 20)
+    probe = DepthProbe(ring, m / 20)
     reach = min(perimeter / 2, REACH * p)
     spans = [(lo, hi if hi > lo else hi + perimeter) for lo, hi in concave]
     centres = phase + p * np.arange(teeth)
@@ -264,12 +228,10 @@ def rack_overcut(
         if not len(poses):
             continue
         placed = _place(frame, coarse, centre, poses)
-        xy = placed.reshape(-1, 2)
-        inside = probe.inside(xy)
-        pose_of = inside // len(coarse)
+        xy, caps = placed.reshape(-1, 2), probe.caps(placed)
         for key, zones in kinds.items():
-            keep = zones[inside % len(coarse)] & (own[pose_of] if key != "hob" else True)
-            d, i = probe.deepest(xy, inside[keep])
+            keep = zones[None, :] & (own[:, None] if key != "hob" else True)
+            d, i = probe.deepest(xy, np.where(keep, caps, -np.inf).ravel(), _second(found[key]))
             if i >= 0:
                 found[key].append((d, int(k), float(poses[i // len(coarse)])))
     cell, zone = rack_cell(rack, step=m / 50)
@@ -285,7 +247,12 @@ def rack_overcut(
     return RackOvercut(best["tooth"], best["flank"], best["hob"], w, tolerance)
 
 
-def _refine(frame, probe: _Probe, cell, k: int, centre: float, pose: float, step: float, clip: float) -> Overcut:
+def _second(items) -> float:
+    """The second deepest found (0 before two are): a tooth less deep cannot be refined."""
+    return sorted(d for d, _, _ in items)[-2] if len(items) >= 2 else 0.0
+
+
+def _refine(frame, probe: DepthProbe, cell, k: int, centre: float, pose: float, step: float, clip: float) -> Overcut:
     """The deepest point of the rack cell (points, zones) about ``pose``, on a grid of poses
     eight times finer, twice over (within ``clip`` of the contact)."""
     points, zones = cell
@@ -293,7 +260,8 @@ def _refine(frame, probe: _Probe, cell, k: int, centre: float, pose: float, step
     for _ in range(2):
         poses = np.clip(pose + step * np.arange(-8, 9) / 8, centre - clip, centre + clip)
         step /= 8
-        d, i = probe.deepest(_place(frame, points, centre, poses).reshape(-1, 2))
+        placed = _place(frame, points, centre, poses)
+        d, i = probe.deepest(placed.reshape(-1, 2), probe.caps(placed).ravel(), depth)
         if d > depth:
             depth, at, pose = d, i % len(points), float(poses[i // len(points)])
     if at < 0:
