@@ -138,6 +138,23 @@ def test_bounds_use_the_arc_extremes_not_only_the_vertices():
     assert ring_bounds(ring) == pytest.approx(box, abs=1e-8)
 
 
+def test_drawing_bounds_close_each_ring_on_its_own_first_vertex():
+    # all rings are bounded in one pass over their joined vertices: the half circle's closing
+    # arc, (-1, 0) back to (1, 0) through (0, -1), must not run on to the next ring's first
+    # vertex (10, 10), which would reach far past both
+    half = ArcRing(np.array([[1.0, 0.0], [-1.0, 0.0]]), np.array([0.0, 1.0]))
+    triangle = np.array([[10.0, 10.0], [11.0, 10.0], [10.0, 11.0]])
+    dash = ArcRing(np.array([[0.0, 5.0], [2.0, 5.0]]), np.array([-1.0, 0.0]))  # above its chord, to y = 6
+    drawing = Drawing({CUT: [half, triangle]}, {MARK: [dash, cross((20.0, 0.0), 1.0)[0]]}, {})
+    assert drawing_bounds(drawing) == (-1.0, -1.0, 21.0, 11.0)
+    boxes = np.array([ring_bounds(r) for r in (half, triangle, dash)])
+    assert ring_bounds(half).tolist() == [-1.0, -1.0, 1.0, 0.0]
+    assert drawing_bounds(Drawing({CUT: [half, triangle, dash]}, {}, {})) == (
+        *boxes[:, :2].min(axis=0),
+        *boxes[:, 2:].max(axis=0),
+    )
+
+
 def test_circle_of_four_arcs(tmp_path):
     square = 10 * np.array([[1.0, 0.0], [0.0, 1.0], [-1.0, 0.0], [0.0, -1.0]])
     ring = ArcRing(square, np.full(4, math.tan(math.pi / 8)))

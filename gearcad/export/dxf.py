@@ -126,6 +126,8 @@ def _allocate(arcs: list[tuple[float, float]], pieces: list[int], budget: float)
     the piece count, so this reaches the budget with the fewest pieces)."""
     loss = [_chord_loss(r, t, n) for (r, t), n in zip(arcs, pieces)]
     total = sum(loss)
+    if total <= budget:  # within it as they are (a toothed outline at a fine tolerance)
+        return
     heap = [
         (-(loss[i] - _chord_loss(r, t, pieces[i] + 1)), i)
         for i, (r, t) in enumerate(arcs)
@@ -149,6 +151,8 @@ def _balance(arcs: list[tuple[float, float]], pieces: list[int], budget: float) 
     outweighs, where one more piece saves the most."""
     loss = [_chord_loss(r, t, n) for (r, t), n in zip(arcs, pieces)]
     net = sum(math.copysign(x, t) for x, (_, t) in zip(loss, arcs))
+    if abs(net) <= budget:  # most parts: their rings, each within the budget, are within it together
+        return
     heaps: dict[bool, list] = {True: [], False: []}
     for i, (r, t) in enumerate(arcs):
         if abs(t) / (pieces[i] + 1) >= _MIN_SWEEP:
@@ -221,7 +225,7 @@ def limit_sweep(rings: list, *, regions: bool, share: float = CHORD_AREA) -> lis
     for k, ((radius, sweep), area) in enumerate(zip(shapes, areas)):
         arcs = np.nonzero(sweep)[0]
         counts = [1] * len(arcs)
-        _allocate([(float(radius[i]), float(sweep[i])) for i in arcs], counts, share * abs(area))
+        _allocate(list(zip(radius[arcs].tolist(), sweep[arcs].tolist())), counts, share * abs(area))
         pieces[k][arcs] = counts
     if regions:
         outers = [k for k, a in enumerate(areas) if a > 0]
@@ -238,33 +242,33 @@ def limit_sweep(rings: list, *, regions: bool, share: float = CHORD_AREA) -> lis
                 if hosts:
                     groups[min(hosts, key=lambda o: areas[o])].append(k)
         for members in groups.values():
-            index = [(k, i) for k in members for i in np.nonzero(shapes[k][1])[0]]
-            counts = [int(pieces[k][i]) for k, i in index]
-            arcs = [(float(shapes[k][0][i]), float(shapes[k][1][i])) for k, i in index]
+            index = [(k, np.nonzero(shapes[k][1])[0]) for k in members]
+            counts = [m for k, i in index for m in pieces[k][i].tolist()]
+            arcs = [arc for k, i in index for arc in zip(shapes[k][0][i].tolist(), shapes[k][1][i].tolist())]
             _balance(arcs, counts, share * abs(sum(areas[k] for k in members)))
-            for (k, i), m in zip(index, counts):
+            for (k, i), m in zip(index, np.split(np.asarray(counts, dtype=int), np.cumsum([len(i) for _, i in index]))):
                 pieces[k][i] = m
     return [ring if not np.any(p > 1) else _split(v, b, p) for ring, (v, b), p in zip(rings, arrays, pieces)]
 
 
-def _arc_entity(msp, a, b, bulge, layer):
-    """An ARC from a to b with the given bulge (ARCs always run counter-clockwise).  In scalar
-    floats, as written since the first files (:func:`gearcad.geometry.bulge.centres` agrees to
-    the last bit or two, which would change every ARC's digits)."""
-    sweep = 4 * math.atan(bulge)
+def _arcs(a: np.ndarray, b: np.ndarray, bulges: np.ndarray) -> tuple[list, list, list, list]:
+    """Centres, radii and start and end angles (degrees) of the ARCs (always counter-clockwise) from
+    ``a`` to ``b`` ((m, 2) each) with these bulges, as lists for ezdxf: sines, cosines and angles
+    in scalar floats (``math``), the rest element by element, the digits written since the first
+    files (:func:`gearcad.geometry.bulge.centres` differs in the last bit or two)."""
+    sweep = [4 * math.atan(x) for x in bulges.tolist()]
+    sin = np.array([math.sin(t / 2) for t in sweep])
+    cos = np.array([math.cos(t / 2) for t in sweep])
+    sign = np.array([math.copysign(1.0, t) for t in sweep])
     chord = b - a
-    length = float(np.hypot(*chord))
-    radius = length / (2 * abs(math.sin(sweep / 2)))
-    normal = np.array([-chord[1], chord[0]]) / length
-    centre = (a + b) / 2 + normal * radius * math.cos(sweep / 2) * math.copysign(1.0, sweep)
-    start, end = (a, b) if sweep > 0 else (b, a)
-    msp.add_arc(
-        centre.tolist(),
-        radius,
-        math.degrees(math.atan2(start[1] - centre[1], start[0] - centre[0])),
-        math.degrees(math.atan2(end[1] - centre[1], end[0] - centre[0])),
-        dxfattribs={"layer": layer},
-    )
+    length = np.hypot(chord[:, 0], chord[:, 1])
+    radius = length / (2 * np.abs(sin))
+    normal = np.column_stack([-chord[:, 1], chord[:, 0]]) / length[:, None]
+    centre = (a + b) / 2 + normal * radius[:, None] * cos[:, None] * sign[:, None]
+    counter = (np.array(sweep) > 0)[:, None]
+    ends = (np.where(counter, a, b) - centre, np.where(counter, b, a) - centre)  # from the centre
+    start, end = ([math.degrees(math.atan2(y, x)) for x, y in e.tolist()] for e in ends)
+    return centre.tolist(), radius.tolist(), start, end
 
 
 def write_dxf(path: Path, drawing: Drawing, *, flavour: str = "polyline", cut_layer: str | None = None) -> int:
@@ -337,16 +341,20 @@ def _ring(msp, ring, layer: str, flavour: str) -> int:
     v, bulges = B.segments(ring)
     if flavour == "lines-arcs":
         n = len(v)
+        arcs = np.nonzero(bulges)[0]
+        arc = dict(zip(arcs.tolist(), zip(*_arcs(v[arcs], np.roll(v, -1, axis=0)[arcs], bulges[arcs]))))
+        points = v.tolist()
         for k in range(n):
-            a, b = v[k], v[(k + 1) % n]
-            if bulges[k] == 0:
-                msp.add_line(a.tolist(), b.tolist(), dxfattribs={"layer": layer})
+            if k in arc:
+                centre, radius, start, end = arc[k]
+                msp.add_arc(centre, radius, start, end, dxfattribs={"layer": layer})
             else:
-                _arc_entity(msp, a, b, bulges[k], layer)
+                msp.add_line(points[k], points[(k + 1) % n], dxfattribs={"layer": layer})
         return n
-    points = np.column_stack([v, np.zeros(len(v)), np.zeros(len(v)), bulges]).tolist()
+    # (x, y, bulge) rows: the widths are 0 by default, and each column more is work per vertex
+    points = np.column_stack([v, bulges]).tolist()
     if flavour == "engrave":
-        msp.add_polyline2d(points, format="xyseb", close=True, dxfattribs={"layer": layer})
+        msp.add_polyline2d(points, format="xyb", close=True, dxfattribs={"layer": layer})
     else:
-        msp.add_lwpolyline(points, format="xyseb", close=True, dxfattribs={"layer": layer})
+        msp.add_lwpolyline(points, format="xyb", close=True, dxfattribs={"layer": layer})
     return len(v)

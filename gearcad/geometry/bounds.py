@@ -7,7 +7,7 @@ import numpy as np
 from .arcfit import ArcRing  # noqa: F401 - the doctest's
 from .bulge import segments
 
-__all__ = ["ring_bounds"]
+__all__ = ["ring_bounds", "rings_bounds"]
 
 _DIRECTIONS = np.array([[1.0, 0.0], [0.0, 1.0], [-1.0, 0.0], [0.0, -1.0]])  # +x, +y, -x, -y
 
@@ -37,11 +37,34 @@ def ring_bounds(ring) -> np.ndarray:
     >>> ring_bounds(half).tolist()
     [-1.0, 0.0, 1.0, 1.0]
     """
-    v, bulge = segments(ring)
+    return rings_bounds([ring])
+
+
+def rings_bounds(rings) -> np.ndarray:
+    """``(xmin, ymin, xmax, ymax)`` of several closed rings together: :func:`ring_bounds` of all
+    of them in one pass over their joined arrays (a drawing's hundreds of dashes and letters
+    cost one array operation, not one each): the extremes of their boxes, to the last bit.
+
+    Parameters
+    ----------
+    rings : sequence of ArcRing or (n, 2) float, mm; at least one vertex in all
+
+    Returns
+    -------
+    (4,) float, mm
+    """
+    pairs = [segments(ring) for ring in rings]
+    v = np.concatenate([p[0] for p in pairs])
+    bulge = np.concatenate([p[1] for p in pairs])
+    # each vertex's successor on its own ring: the next one, and the ring's first after its last
+    sizes = np.array([len(p[0]) for p in pairs], dtype=int)
+    ends = np.cumsum(sizes)
+    following = np.arange(1, len(v) + 1)
+    following[ends[sizes > 0] - 1] = (ends - sizes)[sizes > 0]
     reach = v @ _DIRECTIONS.T  # (n, 4): every vertex along every direction
     arcs = np.nonzero(bulge)[0]
     if len(arcs):
-        a, b, k = v[arcs], v[(arcs + 1) % len(v)], bulge[arcs]
+        a, b, k = v[arcs], v[following[arcs]], bulge[arcs]
         chord = b - a
         length = np.hypot(chord[:, 0], chord[:, 1])
         left = np.column_stack([-chord[:, 1], chord[:, 0]]) / length[:, None]
