@@ -1,7 +1,7 @@
 """The one PNG writer of the charts: matplotlib's Agg canvas without pyplot, no creation time.
 
-Figures are made on their own Agg canvas (:func:`figure`, :func:`subplots`): no pyplot figure
-manager, no registry of open figures to close.  matplotlib draws the figure at :data:`_DPI`;
+Figures are made on their own Agg canvas at :data:`_DPI` (:func:`figure`, :func:`subplots`): no
+pyplot figure manager, no registry of open figures to close.  matplotlib draws the figure;
 the pixels are written as 8-bit RGB (the charts are opaque: an alpha channel of 255 everywhere
 is a quarter of the pixels' bytes to compress for nothing), every row unfiltered and deflated at
 zlib level 3 (:func:`_png_bytes`).
@@ -36,8 +36,10 @@ _AUDIT = "GEARCAD_CHART_AUDIT"
 
 
 def figure(figsize: tuple[float, float]) -> Figure:
-    """An empty figure of ``figsize`` inches on its own Agg canvas."""
-    fig = Figure(figsize=figsize)
+    """An empty figure of ``figsize`` inches on its own Agg canvas, at the dpi it is written at:
+    ``tight_layout`` measures the text as it will be drawn, and the drawing finds it measured
+    (at another dpi every title and tick label was measured twice, once for each)."""
+    fig = Figure(figsize=figsize, dpi=_DPI)
     FigureCanvasAgg(fig)
     return fig
 
@@ -142,8 +144,8 @@ def _png_bytes(pixels: np.ndarray) -> bytes:
 
 
 def _write_png(fig, path: Path) -> None:
-    """Draw the figure at :data:`_DPI` (it keeps that dpi: the audit measures what was drawn) and
-    write its pixels: RGB where every pixel is opaque (every chart), else RGBA."""
+    """Draw the figure at :data:`_DPI` (the dpi :func:`figure` gives it; the audit measures what
+    was drawn) and write its pixels: RGB where every pixel is opaque (every chart), else RGBA."""
     fig.set_dpi(_DPI)
     fig.canvas.draw()
     pixels = np.asarray(fig.canvas.buffer_rgba())
