@@ -207,7 +207,6 @@ def test_speed_accuracy_ticks_do_not_overlap():
     """The chart of the old circle panel (times 13–800 ms, less than two decades, where
     matplotlib labelled minor ticks into each other), points joined by tolerance."""
     from gearcad.export.charts.bench import speed_accuracy_figure
-    from gearcad.export.charts.png import plt
 
     rows = [
         {"study": "quadrature", "method": "trapezoid", "n": n, "seconds": ms / 1000, "error": err}
@@ -234,4 +233,3 @@ def test_speed_accuracy_ticks_do_not_overlap():
         # the envelope line is drawn coarse to fine, not in the order of its (noisy) times
         if ax.get_title().startswith("envelope"):
             assert list(ax.get_lines()[0].get_ydata()) == [7e-3, 1e-3, 1e-4]
-    plt.close(fig)

@@ -5,7 +5,7 @@ import json
 
 import numpy as np
 
-from gearcad.export.charts.png import layout_problems, plt
+from gearcad.export.charts.png import layout_problems, subplots
 
 
 def test_every_chart_of_every_profile_has_its_titles_and_legends_in_place(built):
@@ -16,18 +16,17 @@ def test_every_chart_of_every_profile_has_its_titles_and_legends_in_place(built)
 
 
 def test_the_audit_finds_a_cut_title_and_a_legend_over_data():
-    fig, ax = plt.subplots(figsize=(3, 2))
+    fig, ax = subplots(figsize=(3, 2))
     x = np.linspace(0, 1, 200)
     ax.plot(x, np.ones_like(x), label="flat line under the legend")
     ax.legend(loc="center")
     fig.suptitle("a title far too long for so small a figure, cut at both of its ends by the canvas")
     fig.canvas.draw()
     problems = layout_problems(fig)
-    plt.close(fig)
     assert any("runs off the canvas" in p for p in problems)
     assert any("covers" in p for p in problems)
     assert sum("has no unit" in p for p in problems) == 2  # neither axis is labelled
-    fig, ax = plt.subplots(figsize=(6, 3))
+    fig, ax = subplots(figsize=(6, 3))
     ax.plot(x, x, label="rising")
     ax.set_xlabel("length")  # a quantity without its unit
     fig.canvas.draw()
@@ -38,4 +37,3 @@ def test_the_audit_finds_a_cut_title_and_a_legend_over_data():
     fig.suptitle("short")
     fig.canvas.draw()
     assert layout_problems(fig) == []
-    plt.close(fig)

@@ -7,7 +7,7 @@ from pathlib import Path
 import numpy as np
 from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
 
-from .png import plt, save_png
+from .png import save_png, subplots
 
 __all__ = ["speed_accuracy", "speed_accuracy_figure", "output_size", "builds", "stability"]
 
@@ -31,7 +31,7 @@ def speed_accuracy_figure(rows: list[dict]):
     """The figure: one panel per study, time (fastest round, and a bar to the median round)
     against error, points joined in the order of their parameter."""
     studies = [s for s in dict.fromkeys(r["study"] for r in rows) if s == "quadrature" or s.startswith("envelope")]
-    fig, axes = plt.subplots(1, len(studies), figsize=(5.4 * len(studies), 4.8))
+    fig, axes = subplots(1, len(studies), figsize=(5.4 * len(studies), 4.8))
     for ax, study in zip(np.atleast_1d(axes), studies):
         chosen = [r for r in rows if r["study"] == study]
         for k, method in enumerate(dict.fromkeys(r["method"] for r in chosen)):
@@ -69,7 +69,7 @@ def speed_accuracy(rows: list[dict], path: Path) -> None:
 
 def output_size(rows: list[dict], path: Path) -> None:
     chosen = [r for r in rows if r["study"] == "output"]
-    fig, (a, b) = plt.subplots(1, 2, figsize=(11, 4.4))
+    fig, (a, b) = subplots(1, 2, figsize=(11, 4.4))
     for k, method in enumerate(dict.fromkeys(r["method"] for r in chosen)):
         pts = sorted(
             (r["n"], r.get("vertices", r.get("triangles")), r["bytes"]) for r in chosen if r["method"] == method
@@ -92,7 +92,7 @@ def output_size(rows: list[dict], path: Path) -> None:
 def builds(rows: list[dict], path: Path) -> None:
     chosen = [r for r in rows if r["study"] == "build"]
     scaling = sorted((r["n"], r["seconds"], r["peak_mb"]) for r in rows if r["study"] == "teeth-scaling")
-    fig, (a, b) = plt.subplots(1, 2, figsize=(12, 4.6))
+    fig, (a, b) = subplots(1, 2, figsize=(12, 4.6))
     names = [r["method"] for r in chosen]
     a.barh(names, [r["seconds"] for r in chosen], color="C0")
     for k, r in enumerate(chosen):
@@ -117,7 +117,7 @@ def builds(rows: list[dict], path: Path) -> None:
 
 
 def stability(rows: list[dict], path: Path) -> None:
-    fig, ax = plt.subplots(figsize=(11, 0.32 * len(rows) + 1.2))
+    fig, ax = subplots(figsize=(11, 0.32 * len(rows) + 1.2))
     colours = {"ok": "C2", "warning": "C1", "error": "C3"}
     for k, r in enumerate(rows):
         kind = r["outcome"].split(":")[0]

@@ -8,7 +8,7 @@ import numpy as np
 from matplotlib.ticker import NullFormatter
 
 from ...geometry.outline import place
-from .png import plt, save_png
+from .png import save_png, subplots
 
 __all__ = ["draw", "limits_chart", "field_chart", "rolling_chart", "train_chart"]
 
@@ -16,7 +16,7 @@ __all__ = ["draw", "limits_chart", "field_chart", "rolling_chart", "train_chart"
 def limits_chart(limits: dict, direction: str, roller_radius: float, path: Path) -> None:
     """Largest amplitudes (convex and simple) against m: exact, the paper's, their fits."""
     m = np.array(limits["m"], dtype=float)
-    fig, ax = plt.subplots(figsize=(7.5, 5))
+    fig, ax = subplots(figsize=(7.5, 5))
     ax.loglog(m, limits["convex"], "o-", label="convex (exact, root finding)")
     ax.loglog(m, limits["simple"], "s-", label="simple, no cusps (exact, bisection)")
     ax.loglog(m, limits["paper_by_eye"], "k^", label="paper: 'oval' by eye")
@@ -45,7 +45,7 @@ def limits_chart(limits: dict, direction: str, roller_radius: float, path: Path)
 def field_chart(chart: dict, path: Path) -> None:
     """Velocity and acceleration of contour points at four turn angles (``chart`` as the design
     computed it: ``mechanisms.roller_charts``), for the rollers the parts are cut with."""
-    fig, axes = plt.subplots(2, 4, figsize=(14, 7))
+    fig, axes = subplots(2, 4, figsize=(14, 7))
     for col, at in enumerate(chart["field"]):
         for row, (label, key) in enumerate((("velocity", "velocity"), ("acceleration", "acceleration"))):
             ax = axes[row, col]
@@ -67,7 +67,7 @@ def field_chart(chart: dict, path: Path) -> None:
 def rolling_chart(motion, params, path: Path) -> None:
     phi1, by_contour, by_rates = motion.phi1, motion.by_contour, motion.by_rates
     w2, w3, e2 = motion.omega2, motion.omega3, motion.eps2
-    fig, axes = plt.subplots(2, 2, figsize=(11, 7), sharex=True)
+    fig, axes = subplots(2, 2, figsize=(11, 7), sharex=True)
     x = np.degrees(phi1)
     axes[0, 0].plot(x, np.degrees(by_contour), label="closed contour (eqs. 3, 5)")
     axes[0, 0].plot(x, np.degrees(by_rates), "--", label="integrated rate law (eq. 8)")
@@ -94,7 +94,7 @@ def rolling_chart(motion, params, path: Path) -> None:
 
 
 def train_chart(report: dict, parts, placements, path: Path) -> None:
-    fig, (ax, bar) = plt.subplots(1, 2, figsize=(12, 5), gridspec_kw={"width_ratios": [1.3, 1]})
+    fig, (ax, bar) = subplots(1, 2, figsize=(12, 5), gridspec_kw={"width_ratios": [1.3, 1]})
     for k, (part, pl) in enumerate(zip(parts, placements)):
         for ring in part.outline.rings:
             pts = place(ring, pl.angle, pl.offset)

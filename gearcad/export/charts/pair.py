@@ -6,14 +6,14 @@ from pathlib import Path
 
 import numpy as np
 
-from .png import PolyCollection, plt, save_png
+from .png import PolyCollection, save_png, subplots
 
 __all__ = ["draw", "pitch_chart", "kinematics_chart", "mesh_chart"]
 
 
 def pitch_chart(data, path: Path, rings) -> None:
     """The pair in place at driver angle 0, and r(φ) of both gears."""
-    fig, (ax, ax2) = plt.subplots(1, 2, figsize=(12, 5.2), gridspec_kw={"width_ratios": [1.25, 1]})
+    fig, (ax, ax2) = subplots(1, 2, figsize=(12, 5.2), gridspec_kw={"width_ratios": [1.25, 1]})
     e = data.pair.center_distance
     colours, dashes = ("tab:blue", "tab:orange"), ("-", "--")  # dashed: an identical mate stays visible
     for gear, ring, colour, ls in zip(data.gears, rings, colours, dashes):
@@ -57,7 +57,7 @@ def kinematics_chart(data, path: Path) -> None:
     p = data.params
     names = (p.gear1_name, p.gear2_name)
     driver, follower = names[k.driver - 1], names[2 - k.driver]
-    fig, (a1, a2) = plt.subplots(2, 1, figsize=(8, 6.4), sharex=True)
+    fig, (a1, a2) = subplots(2, 1, figsize=(8, 6.4), sharex=True)
     x = np.degrees(k.driver_angle)
     a1.plot(x, k.speed, color="tab:blue")
     a1.set_ylabel(f"ω {follower}, rad/s")
@@ -74,7 +74,7 @@ def kinematics_chart(data, path: Path) -> None:
 
 def mesh_chart(data, teeth, path: Path) -> None:
     """The toothed pair in mesh at driver angle 0: whole, and the mesh zone close up."""
-    fig, (ax, zoom) = plt.subplots(1, 2, figsize=(12, 5.6), gridspec_kw={"width_ratios": [1.3, 1]})
+    fig, (ax, zoom) = subplots(1, 2, figsize=(12, 5.6), gridspec_kw={"width_ratios": [1.3, 1]})
     colours = ("tab:blue", "tab:orange")
     for gear, toothed, colour in zip(data.gears, teeth.gears, colours):
         ring = np.vstack([toothed.outline.outer, toothed.outline.outer[:1]]) + np.asarray(gear.pivot)

@@ -9,7 +9,7 @@ from pathlib import Path
 import numpy as np
 
 from ...geometry.outline import place
-from .png import plt, save_png
+from .png import save_png, subplots
 
 __all__ = [
     "limits_vs_r_chart",
@@ -29,7 +29,7 @@ def limits_vs_r_chart(table: dict, path: Path, *, paper_by_eye: dict | None = No
     values (no r given) are drawn as horizontal ticks at the panel's right edge."""
     directions = list(table["convex"])
     r = np.array(table["r"], dtype=float)
-    fig, axes = plt.subplots(1, len(directions), figsize=(6.5 * len(directions), 5), squeeze=False)
+    fig, axes = subplots(1, len(directions), figsize=(6.5 * len(directions), 5), squeeze=False)
     for ax, d in zip(axes[0], directions):
         for i, m in enumerate(table["m"]):
             convex = np.array([np.nan if v is None else v for v in table["convex"][d][i]], dtype=float)
@@ -55,9 +55,7 @@ def shape_family_chart(family: list[dict], path: Path, *, title: str = "") -> No
     by kind (convex 'oval', concave, looped).  ``family`` is ``claims.shape_family(...)``."""
     amplitudes = sorted({f["amplitude"] for f in family})
     radii = sorted({f["r"] for f in family})
-    fig, axes = plt.subplots(
-        len(amplitudes), len(radii), figsize=(2.4 * len(radii), 2.4 * len(amplitudes)), squeeze=False
-    )
+    fig, axes = subplots(len(amplitudes), len(radii), figsize=(2.4 * len(radii), 2.4 * len(amplitudes)), squeeze=False)
     for f in family:
         ax = axes[amplitudes.index(f["amplitude"]), radii.index(f["r"])]
         colour, style = _KIND_STYLE[f["kind"]]
@@ -81,7 +79,7 @@ def elliptic_type2_chart(data: dict, path: Path) -> None:
     ellipses at a + b, which does not roll) beside the ellipse pair that rolls and the oval.
     ``data`` is ``Type2Comparison.as_dict()``."""
     phi = np.asarray(data["phi_deg"])
-    fig, (top, bottom) = plt.subplots(2, 1, figsize=(9, 7), sharex=True)
+    fig, (top, bottom) = subplots(2, 1, figsize=(9, 7), sharex=True)
     series = (
         ("paper", "k--", "paper's construction: identical ellipses at a + b (does NOT roll)"),
         ("rolling_ellipse", "C0-", f"ellipse + computed mate at E = {data['rolling_ellipse']['center_distance']:.4f}"),
@@ -114,7 +112,7 @@ def walker_speed_chart(speeds: dict, path: Path) -> None:
         "rolling": "the pair that rolls and closes 4:1",
     }
     styles = {"round": "C3-", "paper_as_built": "k:", "paper_as_intended": "k--", "rolling": "C0-"}
-    fig, ax = plt.subplots(figsize=(9, 5))
+    fig, ax = subplots(figsize=(9, 5))
     for key, label in labels.items():
         if key not in speeds:
             continue
@@ -136,7 +134,7 @@ def walker_pitch_chart(paper: dict, rolling: dict, path: Path) -> None:
     Each dict holds polar samples about each pivot: ``wheel_phi``, ``wheel_r``, ``pinion_theta``,
     ``pinion_r`` (rad, mm), and the centre distance ``L``.
     """
-    fig, axes = plt.subplots(1, 2, figsize=(12, 6))
+    fig, axes = subplots(1, 2, figsize=(12, 6))
     for ax, data, title in ((axes[0], paper, "paper (θ = 4φ)"), (axes[1], rolling, "the pair that rolls")):
         wp, wr = np.asarray(data["wheel_phi"]), np.asarray(data["wheel_r"])
         pp, pr = np.asarray(data["pinion_theta"]), np.asarray(data["pinion_r"])
@@ -161,7 +159,7 @@ def shoe_chart(ring, poses, hub_height: float, path: Path) -> None:
     (x, y) offset of B1 from the hub, mm); the ground is ``hub_height`` below the hub.
     """
     ring = np.asarray(ring)
-    fig, ax = plt.subplots(figsize=(9, 7))
+    fig, ax = subplots(figsize=(9, 7))
     for k, (phi, angle, offset) in enumerate(poses):
         pts = place(ring, angle, offset)
         pts = np.vstack([pts, pts[:1]])

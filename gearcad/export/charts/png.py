@@ -1,8 +1,10 @@
-"""The one PNG writer of the charts: matplotlib without a display, no creation time.
+"""The one PNG writer of the charts: matplotlib's Agg canvas without pyplot, no creation time.
 
-matplotlib draws the figure; Pillow encodes it as 8-bit RGB (the charts are opaque: an alpha
-channel of 255 everywhere is a quarter of the pixels' bytes to compress for nothing) at zlib
-level 3 (as small as matplotlib's own RGBA files at level 6, in about half the time).
+Figures are made on their own Agg canvas at :data:`_DPI` (:func:`figure`, :func:`subplots`): no
+pyplot figure manager, no registry of open figures to close.  matplotlib draws the figure;
+the pixels are written as 8-bit RGB (the charts are opaque: an alpha channel of 255 everywhere
+is a quarter of the pixels' bytes to compress for nothing), every row unfiltered and deflated at
+zlib level 3 (:func:`_png_bytes`).
 
 Every chart is audited as it is written: titles inside the canvas, legends clear of the data
 (:func:`layout_problems`).  With ``GEARCAD_CHART_AUDIT`` naming a file, the problems found are
@@ -11,28 +13,42 @@ appended to it as JSON lines (the test suite reads them after building every pro
 
 from __future__ import annotations
 
-import io
 import json
 import os
 import re
+import struct
+import zlib
 from pathlib import Path
 
-import matplotlib
+import numpy as np
+from matplotlib.backends.backend_agg import FigureCanvasAgg
+from matplotlib.category import StrCategoryFormatter
+from matplotlib.collections import PolyCollection
+from matplotlib.figure import Figure
+from PIL import Image
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-from matplotlib.category import StrCategoryFormatter  # noqa: E402
-from matplotlib.collections import PolyCollection  # noqa: E402
-from matplotlib.layout_engine import PlaceHolderLayoutEngine  # noqa: E402
-from PIL import Image, PngImagePlugin  # noqa: E402
+__all__ = ["figure", "subplots", "save_png", "layout_problems", "PolyCollection"]
 
-__all__ = ["plt", "save_png", "layout_problems", "PolyCollection"]
-
-_META = {"Software": "gearcad"}  # no creation time: the same design gives the same bytes
+_SOFTWARE = b"gearcad"  # and no creation time: the same design gives the same bytes
 _DPI = 110
 _COMPRESS_LEVEL = 3
 _AUDIT = "GEARCAD_CHART_AUDIT"
+
+
+def figure(figsize: tuple[float, float]) -> Figure:
+    """An empty figure of ``figsize`` inches on its own Agg canvas, at the dpi it is written at:
+    ``tight_layout`` measures the text as it will be drawn, and the drawing finds it measured
+    (at another dpi every title and tick label was measured twice, once for each)."""
+    fig = Figure(figsize=figsize, dpi=_DPI)
+    FigureCanvasAgg(fig)
+    return fig
+
+
+def subplots(nrows: int = 1, ncols: int = 1, *, figsize: tuple[float, float], **kwargs):
+    """``(figure, axes)`` as ``matplotlib.pyplot.subplots`` makes them (``kwargs``: ``sharex``,
+    ``squeeze``, ``gridspec_kw`` ...), the figure on its own Agg canvas."""
+    fig = figure(figsize)
+    return fig, fig.subplots(nrows, ncols, **kwargs)
 
 
 def _titles(fig) -> list:
@@ -100,32 +116,46 @@ def layout_problems(fig) -> list[str]:
     return problems
 
 
+def _chunk(kind: bytes, data: bytes) -> bytes:
+    return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data))
+
+
+def _png_bytes(pixels: np.ndarray) -> bytes:
+    """A PNG file of ``pixels`` ((h, w, 3) RGB or (h, w, 4) RGBA, uint8) at :data:`_DPI`.
+
+    Every row is stored unfiltered (filter type 0): Pillow tries all five PNG filters on every
+    row, which took two thirds of its encoding time, and on the charts' flat colours and thin
+    lines the unfiltered rows deflate about as small (0.7 % larger over every profile's charts).
+    """
+    height, width, channels = pixels.shape
+    rows = np.zeros((height, 1 + width * channels), np.uint8)  # each row: its filter type 0, its pixels
+    rows[:, 1:].reshape(height, width, channels)[:] = pixels
+    per_metre = round(_DPI / 0.0254)
+    return b"".join(
+        [
+            b"\x89PNG\r\n\x1a\n",
+            _chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, 2 if channels == 3 else 6, 0, 0, 0)),
+            _chunk(b"tEXt", b"Software\0" + _SOFTWARE),
+            _chunk(b"pHYs", struct.pack(">IIB", per_metre, per_metre, 1)),
+            _chunk(b"IDAT", zlib.compress(rows, _COMPRESS_LEVEL)),
+            _chunk(b"IEND", b""),
+        ]
+    )
+
+
 def _write_png(fig, path: Path) -> None:
-    """Draw the figure at :data:`_DPI` and write it: RGB where every pixel is opaque (every chart),
-    else RGBA; through matplotlib's own writer if the pixels are not the canvas's size."""
-    raw = io.BytesIO()
-    fig.savefig(raw, format="rgba", dpi=_DPI)
-    dpi, fig.dpi = fig.dpi, _DPI  # the canvas's size in pixels at that dpi, as its renderer took it
-    width, height = fig.canvas.get_width_height(physical=True)
-    fig.dpi = dpi
-    if width * height * 4 != raw.getbuffer().nbytes:  # not the canvas expected: matplotlib writes it
-        fig.savefig(path, dpi=_DPI, metadata=_META)
-        return
-    image = Image.frombuffer("RGBA", (width, height), raw.getbuffer(), "raw", "RGBA", 0, 1)
-    if image.getextrema()[3] == (255, 255):
-        image = image.convert("RGB")
-    info = PngImagePlugin.PngInfo()
-    for key, value in _META.items():
-        info.add_text(key, value)
-    image.save(path, format="png", pnginfo=info, dpi=(_DPI, _DPI), compress_level=_COMPRESS_LEVEL)
+    """Draw the figure at :data:`_DPI` (the dpi :func:`figure` gives it; the audit measures what
+    was drawn) and write its pixels: RGB where every pixel is opaque (every chart), else RGBA."""
+    fig.set_dpi(_DPI)
+    fig.canvas.draw()
+    pixels = np.asarray(fig.canvas.buffer_rgba())
+    if pixels[..., 3].min() == 255:  # Pillow drops the alpha channel twice as fast as numpy copies 3 bytes of 4
+        pixels = np.asarray(Image.fromarray(pixels).convert("RGB"))
+    Path(path).write_bytes(_png_bytes(pixels))
 
 
 def save_png(fig, path: Path) -> None:
-    """Write a figure without a creation time (the same chart gives the same bytes) and free it."""
-    if isinstance(fig.get_layout_engine(), PlaceHolderLayoutEngine):
-        # what ``fig.tight_layout()`` leaves behind: it lays out nothing, but savefig would draw
-        # the whole figure once more (ticks, text) before drawing it for the file
-        fig.set_layout_engine(None)
+    """Write a figure without a creation time (the same chart gives the same bytes)."""
     _write_png(fig, path)
     audit = os.environ.get(_AUDIT)
     if audit:
@@ -134,4 +164,3 @@ def save_png(fig, path: Path) -> None:
                 json.dumps({"file": f"{Path(path).parent.name}/{Path(path).name}", "problems": layout_problems(fig)})
                 + "\n"
             )
-    plt.close(fig)

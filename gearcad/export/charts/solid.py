@@ -12,7 +12,7 @@ from ...geometry.arcfit import decimate, decimate_indices
 from ...geometry.outline import place
 from ..loft import loft
 from ..mesh import Solid, SolidItem, extrude
-from .png import plt, save_png
+from .png import figure, save_png
 
 __all__ = ["draw_solids", "draw_design", "picture_solid", "PICTURE_PIXELS"]
 
@@ -53,7 +53,7 @@ def draw_solids(
     size: tuple[float, float] = (10.0, 6.0),
 ) -> None:
     """Render ``items`` flat-shaded (one colour each, lit from the upper left) to a PNG."""
-    fig = plt.figure(figsize=size)
+    fig = figure(size)
     ax = fig.add_subplot(projection="3d", computed_zorder=False)
     lo, hi = np.full(3, np.inf), np.full(3, -np.inf)
     for k, item in enumerate(items):
