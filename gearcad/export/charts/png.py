@@ -2,9 +2,9 @@
 
 Figures are made on their own Agg canvas at :data:`_DPI` (:func:`figure`, :func:`subplots`): no
 pyplot figure manager, no registry of open figures to close.  matplotlib draws the figure;
-the pixels are written as 8-bit RGB (the charts are opaque: an alpha channel of 255 everywhere
-is a quarter of the pixels' bytes to compress for nothing), every row unfiltered and deflated at
-zlib level 3 (:func:`_png_bytes`).
+Pillow encodes the pixels as 8-bit RGB (the charts are opaque: an alpha channel of 255 everywhere
+is a quarter of the pixels' bytes to compress for nothing) at zlib level 3 (as small as
+matplotlib's own RGBA files at level 6, in about half the time).
 
 Every chart is audited as it is written: titles inside the canvas, legends clear of the data
 (:func:`layout_problems`).  With ``GEARCAD_CHART_AUDIT`` naming a file, the problems found are
@@ -16,8 +16,6 @@ from __future__ import annotations
 import json
 import os
 import re
-import struct
-import zlib
 from pathlib import Path
 
 import numpy as np
@@ -25,11 +23,11 @@ from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.category import StrCategoryFormatter
 from matplotlib.collections import PolyCollection
 from matplotlib.figure import Figure
-from PIL import Image
+from PIL import Image, PngImagePlugin
 
 __all__ = ["figure", "subplots", "save_png", "layout_problems", "PolyCollection"]
 
-_SOFTWARE = b"gearcad"  # and no creation time: the same design gives the same bytes
+_SOFTWARE = "gearcad"  # and no creation time: the same design gives the same bytes
 _DPI = 110
 _COMPRESS_LEVEL = 3
 _AUDIT = "GEARCAD_CHART_AUDIT"
@@ -116,42 +114,18 @@ def layout_problems(fig) -> list[str]:
     return problems
 
 
-def _chunk(kind: bytes, data: bytes) -> bytes:
-    return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data))
-
-
-def _png_bytes(pixels: np.ndarray) -> bytes:
-    """A PNG file of ``pixels`` ((h, w, 3) RGB or (h, w, 4) RGBA, uint8) at :data:`_DPI`.
-
-    Every row is stored unfiltered (filter type 0): Pillow tries all five PNG filters on every
-    row, which took two thirds of its encoding time, and on the charts' flat colours and thin
-    lines the unfiltered rows deflate about as small (0.7 % larger over every profile's charts).
-    """
-    height, width, channels = pixels.shape
-    rows = np.zeros((height, 1 + width * channels), np.uint8)  # each row: its filter type 0, its pixels
-    rows[:, 1:].reshape(height, width, channels)[:] = pixels
-    per_metre = round(_DPI / 0.0254)
-    return b"".join(
-        [
-            b"\x89PNG\r\n\x1a\n",
-            _chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, 2 if channels == 3 else 6, 0, 0, 0)),
-            _chunk(b"tEXt", b"Software\0" + _SOFTWARE),
-            _chunk(b"pHYs", struct.pack(">IIB", per_metre, per_metre, 1)),
-            _chunk(b"IDAT", zlib.compress(rows, _COMPRESS_LEVEL)),
-            _chunk(b"IEND", b""),
-        ]
-    )
-
-
 def _write_png(fig, path: Path) -> None:
     """Draw the figure at :data:`_DPI` (the dpi :func:`figure` gives it; the audit measures what
-    was drawn) and write its pixels: RGB where every pixel is opaque (every chart), else RGBA."""
+    was drawn) and write its pixels with Pillow: RGB where every pixel is opaque (every chart),
+    else RGBA, at zlib level :data:`_COMPRESS_LEVEL`."""
     fig.set_dpi(_DPI)
     fig.canvas.draw()
-    pixels = np.asarray(fig.canvas.buffer_rgba())
-    if pixels[..., 3].min() == 255:  # Pillow drops the alpha channel twice as fast as numpy copies 3 bytes of 4
-        pixels = np.asarray(Image.fromarray(pixels).convert("RGB"))
-    Path(path).write_bytes(_png_bytes(pixels))
+    image = Image.fromarray(np.asarray(fig.canvas.buffer_rgba()))
+    if image.getextrema()[3] == (255, 255):
+        image = image.convert("RGB")
+    info = PngImagePlugin.PngInfo()
+    info.add_text("Software", _SOFTWARE)
+    image.save(path, format="png", pnginfo=info, dpi=(_DPI, _DPI), compress_level=_COMPRESS_LEVEL)
 
 
 def save_png(fig, path: Path) -> None:
