@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 import shapely
 
-from gearcad.geometry.depth import overlap_areas, overlap_depths
+from gearcad.geometry.depth import _disc_inside, overlap_areas, overlap_depths, overlap_exceeds
 from gearcad.teeth.mesh import MeshData
 
 
@@ -29,6 +29,28 @@ def test_overlap_areas_are_the_boxes_shared_areas_and_zero_where_they_only_touch
     np.testing.assert_allclose(overlap_areas(square, others), expected, atol=1e-15)
     np.testing.assert_allclose(overlap_areas([square] * 5, others), expected, atol=1e-15)
     np.testing.assert_allclose(overlap_depths([square] * 5, others, step=0.05).area, expected, atol=1e-15)
+
+
+def test_overlap_exceeds_says_what_the_overlay_says_deep_shallow_and_apart():
+    """Against a flat top: a disc (r = 1, 256 vertices) dipped from deep (a disc inside both
+    decides, no overlay) to touching and apart, and a 90° tip dipped d about the threshold (area
+    d², 1e-9 mm² at d = 3.16e-5: a vertex inside, but no disc of twice the area fits).  Whether
+    each overlap exceeds the area is what its overlay's area says."""
+    top = shapely.box(0, 0, 10, 1)
+    shapely.prepare(top)
+    dips = np.array([0.5, 0.1, 1e-3, 1e-5, 6e-7, 0.0, -0.01])
+    discs = shapely.buffer(shapely.points(np.column_stack([np.full(len(dips), 5.0), 2 - dips])), 1, quad_segs=64)
+    tips = [  # eight rows each: every tip is row 1 of its own, one the sampling looks at
+        shapely.Polygon([(4, 2), (5, 1 - d), (6, 2), (6, 3), (5, 3.5), (4, 3), (3.5, 2.5)])
+        for d in (1e-4, 5e-5, 4e-5, 3.2e-5, 3e-5, 2e-5)
+    ]
+    shapes = np.array([*tips, *discs], dtype=object)
+    areas = overlap_areas(top, shapes)
+    said = overlap_exceeds(top, shapes, 1e-9)
+    np.testing.assert_array_equal(said, areas > 1e-9)
+    assert said[:4].all() and not said[4:6].any()
+    shown = _disc_inside(np.full(len(shapes), top), shapes, math.sqrt(2e-9 / math.pi), 4)
+    assert shown[0] and not shown[1:6].any() and shown[6:9].all() and not shown[10:].any()
 
 
 def test_depth_sees_a_sliver_that_the_area_test_passes():

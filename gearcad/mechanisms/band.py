@@ -20,7 +20,9 @@ from dataclasses import dataclass
 import numpy as np
 import shapely
 
-from ..geometry.depth import overlap_areas
+from ..geometry.depth import overlap_areas, overlap_exceeds
+from ..geometry.gap import distances
+from ..geometry.gap import runs as edge_runs
 from ..geometry.outline import place_each
 from ..threads import side_by_side
 
@@ -98,10 +100,11 @@ def _windows(ring: np.ndarray, centres: np.ndarray, radius: float, offset, tol: 
     return shapely.intersection(pieces, shapely.buffer(shapely.points(centres), radius, quad_segs=16))
 
 
-def _placer(g: PairGeometry, offsets, spread: float, tol: float):
-    """(w1, place, reach): gear 1's windows, place(turn) -> gear 2's windows turned ``turn``
-    (rad, per position) beyond the assembled angle in gear 1's frame, and the farthest any
-    point of them lies from gear 2's pivot (mm); the parts grown by ``offsets``, E by ``spread``."""
+def _placer(g: PairGeometry, offsets, spread: float, tol: float, *, gaps: bool = False):
+    """(w1, place, gap, reach): gear 1's windows, place(turn) -> gear 2's windows turned ``turn``
+    (rad, per position) beyond the assembled angle in gear 1's frame, gap(turn) -> the distance
+    between the windows so placed (mm; with ``gaps``, else None), and the farthest any point of
+    gear 2's lies from its pivot (mm); the parts grown by ``offsets``, E by ``spread``."""
     e = g.center_distance + spread
     c1 = g.r1[:, None] * np.column_stack([np.cos(g.phi1), np.sin(g.phi1)])
     back = g.r1 - g.center_distance  # the contact in gear 2's frame, before its turn
@@ -117,9 +120,8 @@ def _placer(g: PairGeometry, offsets, spread: float, tol: float):
     first = np.cumsum(counts) - counts  # each window's first row of ``coords``
     centre = e * np.column_stack([np.cos(g.phi1), np.sin(g.phi1)])  # gear 2's pivot in gear 1's frame
 
-    def place(turn: np.ndarray, at=None) -> np.ndarray:
-        """Gear 2's windows turned ``turn`` (per position); ``at`` (indices): only those windows,
-        ``turn`` given for them alone."""
+    def placed(turn: np.ndarray, at) -> tuple[np.ndarray, np.ndarray]:
+        """Gear 2's windows ``at`` turned ``turn`` and their coordinates."""
         if at is None:
             at, rows = slice(None), slice(None)
             owner = which
@@ -128,9 +130,25 @@ def _placer(g: PairGeometry, offsets, spread: float, tol: float):
             owner = np.repeat(np.arange(len(n)), n)
             rows = np.repeat(first[at] - np.cumsum(n) + n, n) + np.arange(int(n.sum()))
         xy = place_each(coords[rows], owner, g.phi1[at] + g.phi2[at] + turn, centre[at])
-        return shapely.set_coordinates(w2[at].copy(), xy)
+        return shapely.set_coordinates(w2[at].copy(), xy), xy
 
-    return w1, place, far
+    def place(turn: np.ndarray, at=None) -> np.ndarray:
+        """Gear 2's windows turned ``turn`` (per position); ``at`` (ascending indices): only those
+        windows, ``turn`` given for them alone."""
+        return placed(turn, at)[0]
+
+    if not gaps:
+        return w1, place, None, far
+    edges1 = edge_runs(w1, c1).lines(shapely.get_coordinates(w1))
+    edges2 = edge_runs(w2, c2)
+
+    def gap(turn: np.ndarray, at=None) -> np.ndarray:
+        """The distance between the windows, gear 2's turned as :func:`place` turns them (mm)."""
+        windows, xy = placed(turn, at)
+        chosen = slice(None) if at is None else at
+        return distances(w1[chosen], windows, edges1[chosen], edges2.lines(xy, at))
+
+    return w1, place, gap, far
 
 
 def _least_overlap(w1, place, bound: np.ndarray, iterations: int = 24) -> np.ndarray:
@@ -177,7 +195,7 @@ def _play(
     point of it moves farther than the gap, so it never passes through gear 1); the gap shrinks
     by about cos α times that each step, so ``steps`` bring it under a millionth of a module.
     ``reach`` (mm) bounds the play sought."""
-    w1, place, far = _placer(g, offsets, spread, tol)
+    w1, place, gap_at, far = _placer(g, offsets, spread, tol, gaps=steps > 0)
     arm = g.center_distance - g.r1
     limit = min(reach, 1.2 * math.pi * g.module) / arm  # more than a pitch never frees a tooth
     touching = 1e-9 * g.module**2
@@ -186,8 +204,8 @@ def _play(
 
     def apart(turn: np.ndarray, at=None) -> np.ndarray:
         if at is None:
-            return overlap_areas(w1, place(start + turn)) <= touching
-        return overlap_areas(w1[at], place(start[at] + turn, at)) <= touching
+            return ~overlap_exceeds(w1, place(start + turn), touching)
+        return ~overlap_exceeds(w1[at], place(start[at] + turn, at), touching)
 
     free = apart(np.zeros_like(start))
     live = None if free.all() else np.flatnonzero(free)  # overlapping: the play is NaN, no gap to close
@@ -195,8 +213,8 @@ def _play(
     def gap(turn: np.ndarray) -> np.ndarray:
         """The gap at the free positions, gear 2 turned ``turn`` (rad, one per free position)."""
         if live is None:
-            return shapely.distance(w1, place(start + turn))
-        return shapely.distance(w1[live], place(start[live] + turn, live))
+            return gap_at(start + turn)
+        return gap_at(start[live] + turn, live)
 
     at = slice(None) if live is None else live
     first = gap(np.zeros_like(start[at])) if steps and free.any() else None  # the same either way

@@ -24,7 +24,9 @@ from dataclasses import dataclass, replace
 import numpy as np
 import shapely
 
-from ..geometry.depth import overlap_areas
+from ..geometry.depth import overlap_exceeds
+from ..geometry.gap import distances
+from ..geometry.gap import runs as edge_runs
 from ..geometry.outline import place_each
 from ..threads import side_by_side
 from .band import Band, band_of
@@ -120,8 +122,8 @@ def mesh_play(
     arm = np.hypot(*(g.contact - g.centre2).T)  # gear 2's pitch radius at the contact
     limit = min(reach, 1.2 * math.pi * g.module) / arm  # more than a pitch never frees a tooth
     zero = np.zeros_like(g.phi1)
-    placed = place(zero)
-    free = overlap_areas(w1, placed) <= 1e-9 * g.module**2
+    placed = place(zero)[0]
+    free = ~overlap_exceeds(w1, placed, 1e-9 * g.module**2)
     if not steps or not free.any():  # only whether they are free: no play to measure
         return np.where(free, 0.0, np.nan)
     live = slice(None)
@@ -129,22 +131,38 @@ def mesh_play(
         live = np.flatnonzero(free)
         w1, placed, far, limit, w2 = w1[live], placed[live], far[live], limit[live], w2[live]
         place = _placer(w2, *shapely.get_coordinates(w2, return_index=True), g.angle2[live], centre[live])
-    gap = shapely.distance(w1, placed)
-    total = np.zeros_like(g.phi1)
+    edges1, edges2 = edge_runs(w1, g.contact[live]), edge_runs(w2, own[live])
+    lines1 = edges1.lines(shapely.get_coordinates(w1))
+
+    def gap(turn: np.ndarray, at=None) -> np.ndarray:
+        """The distance between the windows, gear 2's turned ``turn`` (mm); ``at``: those only."""
+        windows, xy = place(turn)
+        lines2 = edges2.lines(xy)
+        at = slice(None) if at is None else at
+        return distances(w1[at], windows[at], lines1[at], lines2[at])
+
+    start = distances(w1, placed, lines1, edges2.lines(shapely.get_coordinates(placed)))
+    total, settled = np.zeros_like(g.phi1), 1e-6 * g.module
     for sign in (1.0, -1.0):
-        total[live] += _turn_to_touch(w1, lambda turn: place(sign * turn), gap, far, limit, steps, 1e-6 * g.module)
+        total[live] += _turn_to_touch(lambda turn, at=None: gap(sign * turn, at), start, far, limit, steps, settled)
     return np.where(free, total * arm, np.nan)
 
 
 def _placer(w2, coords: np.ndarray, which: np.ndarray, angle2: np.ndarray, centre: np.ndarray):
     """place(turn) -> gear 2's windows ``w2`` (their ``coords`` by window ``which``) turned by
-    ``angle2 + turn`` about ``centre``, one of each per window."""
-    return lambda turn: shapely.set_coordinates(w2.copy(), place_each(coords, which, angle2 + turn, centre))
+    ``angle2 + turn`` about ``centre``, one of each per window, and their coordinates."""
+
+    def place(turn):
+        xy = place_each(coords, which, angle2 + turn, centre)
+        return shapely.set_coordinates(w2.copy(), xy), xy
+
+    return place
 
 
-def _turn_to_touch(w1, place, gap: np.ndarray, far: np.ndarray, limit, steps: int, settled: float) -> np.ndarray:
-    """The turn (rad, ≥ 0, at most ``limit``) that brings gear 2's windows (``place(turn)``) to
-    touch gear 1's, from ``gap`` (mm) at turn 0, in ``steps`` looks at the gap.
+def _turn_to_touch(gap_at, gap: np.ndarray, far: np.ndarray, limit, steps: int, settled: float) -> np.ndarray:
+    """The turn (rad, ≥ 0, at most ``limit``) that brings gear 2's windows to touch gear 1's
+    (``gap_at(turn, at=None)``: their distance, mm, gear 2's turned ``turn``; ``at``: those
+    positions only), from ``gap`` at turn 0, in ``steps`` looks at the gap.
 
     A turn by the gap over ``far`` (the farthest reach of gear 2's window from its pivot) moves no
     point farther than the gap, so it never passes through gear 1, but it closes only the share
@@ -159,11 +177,11 @@ def _turn_to_touch(w1, place, gap: np.ndarray, far: np.ndarray, limit, steps: in
             closing = (gap_before - gap) / np.maximum(turn - before, 1e-15)  # mm per rad
             step = np.where(closing > 0, np.maximum(safe, 0.95 * gap / np.where(closing > 0, closing, 1.0)), safe)
         ahead = np.minimum(turn + step, limit)
-        gap_ahead = shapely.distance(w1, place(ahead))
+        gap_ahead = gap_at(ahead)
         over = np.flatnonzero((gap_ahead <= 0) & (step > safe))
         if len(over):  # the secant went too far: the safe step there
             ahead[over] = np.minimum(turn[over] + safe[over], limit[over] if np.ndim(limit) else limit)
-            gap_ahead[over] = shapely.distance(w1[over], place(ahead)[over])
+            gap_ahead[over] = gap_at(ahead, over)
         before, gap_before, turn, gap = turn, gap, ahead, gap_ahead
         if np.all((gap <= settled) | (turn >= limit)):  # every position has come to rest
             break

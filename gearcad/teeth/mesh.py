@@ -12,7 +12,7 @@ from dataclasses import dataclass
 import numpy as np
 import shapely
 
-from ..geometry.depth import Depths, overlap_areas, overlap_depths
+from ..geometry.depth import Depths, overlap_areas, overlap_depths, overlap_exceeds
 from ..geometry.outline import place_each
 from ..pitch.pair import PairData
 from ..tolerances import budget
@@ -60,24 +60,29 @@ _REACH = 2
 one pitch of it, so two leave a margin."""
 
 
-def _windows(gear: ToothedGear) -> list[np.ndarray]:
-    """For each space k, the outline from space k−2's root to space k+2's root, closed through
-    points a module under those roots: a small simple polygon that is all of the gear near k."""
+def _windows(gear: ToothedGear, spaces: np.ndarray) -> dict[int, np.ndarray]:
+    """For each space k of ``spaces``, the outline from space k−2's root to space k+2's root,
+    closed through points a module under those roots: a small simple polygon that is all of the
+    gear near k."""
     ring, z = gear.outline.outer, gear.teeth
     n = len(ring)
-    out = []
-    for k in range(z):
+    out = {}
+    for k in np.unique(spaces).tolist():
         a = gear.space_root[(k - _REACH) % z]
         b = gear.space_root[(k + _REACH) % z]
         run = ring[a : b + 1] if b > a else np.vstack([ring[a:], ring[: b + 1]])
         if z <= 4 * _REACH or len(run) > n // 2:
-            out.append(ring)  # few teeth: the window would be most of the gear, so take all of it
+            out[k] = ring  # few teeth: the window would be most of the gear, so take all of it
             continue
         inner = gear.under_root[[(k + j) % z for j in range(_REACH, -_REACH - 1, -1)]]
-        window = np.vstack([run, inner])
-        # where the pitch curve turns sharply the points under the roots can cross the teeth:
-        # then the whole gear stands in for the window
-        out.append(window if shapely.LinearRing(window).is_simple else ring)
+        out[k] = np.vstack([run, inner])
+    # where the pitch curve turns sharply the points under the roots can cross the teeth: then
+    # the whole gear stands in for the window
+    cut = [k for k, w in out.items() if w is not ring]
+    if cut:
+        sizes = [len(out[k]) for k in cut]
+        rings = shapely.linearrings(np.vstack([out[k] for k in cut]), indices=np.repeat(np.arange(len(cut)), sizes))
+        out.update((k, ring) for k, simple in zip(cut, shapely.is_simple(rings)) if not simple)
     return out
 
 
@@ -87,33 +92,39 @@ def _space_at(frame: ArcFrame, gear: ToothedGear, phi: np.ndarray) -> np.ndarray
     return np.round((s - gear.phase) / gear.rack.pitch).astype(int) % gear.teeth
 
 
-def _overlap_function(pair: PairData, gears, frames, phi1: np.ndarray):
-    """overlap(turn) -> (positions,) area of the two placed windows (see :func:`_placing`)."""
-    place = placing(pair, gears, frames, phi1)
-    return lambda turn: overlap_areas(*place(turn))
-
-
 def placing(pair: PairData, gears, frames, phi1: np.ndarray):
-    """place(turn) -> gear 1's and gear 2's windows as polygons (positions,) each, for gear 2
-    turned ``turn`` (rad, scalar or per position) beyond its assembled angle at each driver
-    angle φ1, in gear 1's frame: gear 1
-    turned by −φ1 and gear 2 by +φ2 about (E, 0) is, relative to gear 1, gear 2 turned by φ2,
-    moved to (E, 0) and turned back by φ1."""
+    """place(turn, at=None) -> gear 1's and gear 2's windows as polygons (positions,) each, for
+    gear 2 turned ``turn`` (rad, scalar or per position) beyond its assembled angle at each
+    driver angle φ1, in gear 1's frame; ``at`` (indices): those positions only, ``turn`` given
+    for them alone.  Gear 1 turned by −φ1 and gear 2 by +φ2 about (E, 0) is, relative to gear 1,
+    gear 2 turned by φ2, moved to (E, 0) and turned back by φ1."""
     e = pair.center_distance
     phi2 = pair.angle_map(phi1)
-    w1 = np.array([shapely.Polygon(w) for w in _windows(gears[0])], dtype=object)
-    w2 = _windows(gears[1])
-    g1 = w1[_space_at(frames[0], gears[0], phi1 % (2 * np.pi))]
-    pick = _space_at(frames[1], gears[1], (np.pi - phi2) % (2 * np.pi))
-    coords = np.vstack([w2[k] for k in pick])
-    which = np.repeat(np.arange(len(phi1)), [len(w2[k]) for k in pick])
+    spaces = _space_at(frames[0], gears[0], phi1 % (2 * np.pi))
+    w1 = _windows(gears[0], spaces)
+    sizes = [len(w) for w in w1.values()]
+    rings = shapely.linearrings(np.vstack(list(w1.values())), indices=np.repeat(np.arange(len(w1)), sizes))
+    polygons = dict(zip(w1, shapely.polygons(rings)))
+    g1 = np.array([polygons[k] for k in spaces.tolist()], dtype=object)
+    spaces = _space_at(frames[1], gears[1], (np.pi - phi2) % (2 * np.pi))
+    w2 = _windows(gears[1], spaces)
+    picked = [w2[k] for k in spaces.tolist()]
+    sizes = np.array([len(w) for w in picked])
+    coords, which = np.vstack(picked), np.repeat(np.arange(len(phi1)), sizes)
     shapely.prepare(g1)
 
     centre = e * np.column_stack([np.cos(phi1), np.sin(phi1)])  # (E, 0) turned back by φ1
 
-    def place(turn):
-        xy = place_each(coords, which, phi1 + phi2 + turn, centre)
-        return g1, shapely.polygons(shapely.linearrings(xy, indices=which))
+    def place(turn, at=None):
+        if at is None:
+            xy = place_each(coords, which, phi1 + phi2 + turn, centre)
+            return g1, shapely.polygons(shapely.linearrings(xy, indices=which))
+        # the sines and cosines taken over all positions' angles, as for all at once: each
+        # placement is to the bit the one ``place`` gives with ``turn`` for every position
+        angle = phi1 + phi2
+        angle[at] = angle[at] + turn
+        xy = place_each(np.vstack([picked[k] for k in at]), np.repeat(at, sizes[at]), angle, centre)
+        return g1[at], shapely.polygons(shapely.linearrings(xy, indices=np.repeat(np.arange(len(at)), sizes[at])))
 
     return place
 
@@ -152,21 +163,39 @@ def mesh_check(
     turns = nudge_turns(pair, phi1[::4], nudge)
     depths = overlap_depths(*placing(pair, gears, frames, phi1)(0.0), step=0.1 * m)
     assembled = depths.area
-    nudged_at = _overlap_function(pair, gears, frames, phi1[::4])
-    nudged = np.maximum(nudged_at(turns), nudged_at(-turns))
+    nudged = _least_nudged(placing(pair, gears, frames, phi1[::4]), turns)
     worst = int(np.argmax(assembled))
     return MeshData(
         positions=positions,
         max_overlap=float(assembled[worst]),
         allowed_overlap=allowed,
         nudge=float(nudge),
-        nudged_min_overlap=float(np.min(nudged)),
+        nudged_min_overlap=nudged,
         worst_phi=float(phi1[worst]),
         max_depth=float(np.max(depths.depth)),
         allowed_depth=budget(tolerance).allowed_depth,
         depth_at=_deepest(depths, phi1, gears[0], frames[0]),
         too_deep=tuple(float(a) for a in phi1[depths.depth > budget(tolerance).allowed_depth]),
     )
+
+
+def _least_nudged(place, turns: np.ndarray, batch: int = 8) -> float:
+    """The smallest over positions of the larger overlap with gear 2 nudged either way (mm²):
+    ``min(maximum(overlap(turns), overlap(-turns)))``, the second nudge intersected only where
+    it can matter.  A position whose overlap nudged ahead is already no less than the least
+    found cannot be the least, and a nudged overlay costs many times an assembled one (whole
+    flanks overlap); in order of the overlap ahead, about half the positions need the other."""
+    ahead = overlap_areas(*place(turns), screen=False)
+    order = np.argsort(ahead, kind="stable")
+    least = np.inf
+    for start in range(0, len(order), batch):
+        at = order[start : start + batch]
+        at = at[ahead[at] < least]
+        if not len(at):
+            break
+        back = overlap_areas(*place(-turns[at], at), screen=False)
+        least = min(least, float(np.min(np.maximum(ahead[at], back))))
+    return least
 
 
 def _deepest(found: Depths, phi1: np.ndarray, gear: ToothedGear, frame: ArcFrame) -> tuple[float, int, float]:
@@ -192,14 +221,14 @@ def backlash_range(
     """
     phi1 = np.linspace(0.0, pair.cycle, positions, endpoint=False)
     limit = nudge_turns(pair, phi1, limit)
-    overlap = _overlap_function(pair, gears, frames, phi1)
+    place = placing(pair, gears, frames, phi1)
     touching = 1e-9 * gears[0].rack.pitch ** 2
     total = np.zeros(positions)
     for sign in (1.0, -1.0):
         lo, hi = np.zeros(positions), limit.copy()
         for _ in range(steps):
             mid = 0.5 * (lo + hi)
-            hit = overlap(sign * mid) > touching
+            hit = overlap_exceeds(*place(sign * mid), touching)
             hi, lo = np.where(hit, mid, hi), np.where(hit, lo, mid)
         total += lo
     arc = total * (pair.center_distance - pair.gear1.r(phi1))
