@@ -19,7 +19,7 @@ def pytest_collection_finish(session):
     garbage collector's full passes, which walked those ~400 000 objects some 16 times a worker
     (about 5 CPU-s of the suite's 140); and young objects collected every 10 000 allocations, not
     700, so that full passes come about 8 times a worker, not 35.  In turn with the same tests
-    without it: 117 against 124 s of user CPU (tests/conftest.py, this hook)."""
+    without it: 117 against 124 s of user CPU."""
     gc.collect()
     gc.freeze()
     gc.set_threshold(10_000, 10, 10)
