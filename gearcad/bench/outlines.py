@@ -16,6 +16,7 @@ import numpy as np
 import shapely
 
 from ..geometry import bulge as B
+from ..geometry.verify import to_segments
 
 __all__ = [
     "DxfOutline",
@@ -106,12 +107,6 @@ def _densified(ring: np.ndarray, longest: float) -> np.ndarray:
     return start + step * offset[:, None]
 
 
-def _to_segments(points: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    d = b - a
-    t = np.clip(np.sum((points - a) * d, axis=-1) / np.maximum(np.sum(d * d, axis=-1), 1e-300), 0.0, 1.0)
-    return np.hypot(*np.moveaxis(points - (a + t[..., None] * d), -1, 0))
-
-
 def _to_ring(points: np.ndarray, ring: np.ndarray, k: int = 4) -> np.ndarray:
     """Distance of each point to the closed polyline ``ring``: to the segments on either side
     of its ``k`` nearest vertices (a k-d tree; all 10⁵ × 10⁵ segment distances would take
@@ -124,8 +119,8 @@ def _to_ring(points: np.ndarray, ring: np.ndarray, k: int = 4) -> np.ndarray:
     _, near = cKDTree(ring).query(points, k=min(k, n))
     near = near.reshape(len(points), -1)
     p = np.asarray(points, dtype=float)[:, None, :]
-    ahead = _to_segments(p, ring[near], ring[(near + 1) % n])
-    behind = _to_segments(p, ring[(near - 1) % n], ring[near])
+    ahead = to_segments(p, ring[near], ring[(near + 1) % n])
+    behind = to_segments(p, ring[(near - 1) % n], ring[near])
     return np.minimum(ahead, behind).min(axis=1)
 
 

@@ -9,7 +9,7 @@ from scipy.spatial import cKDTree
 
 from .arcfit import decimate
 
-__all__ = ["distances", "is_simple", "max_distance", "nearest", "thin"]
+__all__ = ["distances", "is_simple", "max_distance", "nearest", "thin", "to_segments"]
 
 
 def is_simple(ring: np.ndarray) -> bool:
@@ -62,7 +62,7 @@ def max_distance(points: np.ndarray, ring: np.ndarray, *, limit: float = 0.0) ->
 
 def distances(points: np.ndarray, rings) -> np.ndarray:
     """Each point's distance to the nearest of the closed polylines ``rings`` ((m, 2) arrays,
-    mm): the least of GEOS's distances from it to every segment (:func:`_to_segments` is GEOS's
+    mm): the least of GEOS's distances from it to every segment (:func:`to_segments` is GEOS's
     point-to-segment distance, operation for operation); for the points left to GEOS's R-tree
     (below), the R-tree's answer, as before, which can be a segment an ulp farther than the least.
 
@@ -105,8 +105,8 @@ def distances(points: np.ndarray, rings) -> np.ndarray:
             within = near <= reach[todo, None]
             row, col = np.nonzero(within)
             i, j = todo[row], owner[index[row, col]]
-            np.minimum.at(d, i, _to_segments(points[i], a[j], b[j]))  # the segments either side of the sample
-            np.minimum.at(d, i, _to_segments(points[i], a[before[j]], b[before[j]]))
+            np.minimum.at(d, i, to_segments(points[i], a[j], b[j]))  # the segments either side of the sample
+            np.minimum.at(d, i, to_segments(points[i], a[before[j]], b[before[j]]))
             todo = todo[within[:, -1] & (len(owner) > within.shape[1])]  # more samples may lie within reach
             if not len(todo):
                 break
@@ -155,7 +155,7 @@ def _nearest_segment(points: np.ndarray, a: np.ndarray, b: np.ndarray, which: np
     return distance
 
 
-def _to_segments(p: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
+def to_segments(p: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
     """Distance from points ``p`` to segments ``a``–``b`` (broadcast (..., 2) arrays, mm), in
     GEOS's operations and order (``Distance::pointToSegment``), so the numbers are its own."""
     bx, by = b[..., 0] - a[..., 0], b[..., 1] - a[..., 1]

@@ -21,6 +21,8 @@ import numpy as np
 import shapely
 from scipy.spatial import cKDTree
 
+from ..geometry.verify import to_segments
+
 __all__ = ["DepthProbe", "MARGIN", "SAMPLE"]
 
 SAMPLE = 16
@@ -105,12 +107,7 @@ class DepthProbe:
         at = vertex % len(ring)
         close = bound
         for side in (-1, 1):
-            a, b = ring[at], ring[(at + side) % len(ring)]
-            ab = b - a
-            along = np.einsum("ij,ij->i", xy - a, ab)
-            length = np.einsum("ij,ij->i", ab, ab)
-            t = np.clip(np.divide(along, length, out=np.zeros_like(along), where=length > 0), 0.0, 1.0)
-            close = np.fmin(close, np.linalg.norm(xy - a - t[:, None] * ab, axis=1))
+            close = np.fmin(close, to_segments(xy, ring[at], ring[(at + side) % len(ring)]))
         return close, bound
 
     def _depths(self, xy: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
