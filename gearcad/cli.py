@@ -65,9 +65,9 @@ def _parser() -> argparse.ArgumentParser:
     cp.add_argument("profile", type=Path, metavar="PROFILE")
     cp.add_argument("--out", default="out", help="output folder (default: out); writes OUT/NAME-coupon/")
     s = sub.add_parser("schema", help="print the JSON Schema of profiles (for TOML editors)")
-    s.add_argument("--out", type=Path, help="write it to this file instead")
+    s.add_argument("--out", help="write it to this file instead")  # a str: '' is refused, not '.'
     bench = sub.add_parser("bench", help="measure speed against accuracy; charts, CSV and markdown")
-    bench.add_argument("--out", type=Path, default=Path("out/bench"), help="output folder (default: out/bench)")
+    bench.add_argument("--out", default="out/bench", help="output folder (default: out/bench)")  # '' is refused
     bench.add_argument("--quick", action="store_true", help="fewer points: a smoke run")
     bench.add_argument(
         "--skip",
@@ -153,9 +153,11 @@ def _run(args) -> int:
         from .api import profile_schema
 
         text = json.dumps(profile_schema(), indent=2, ensure_ascii=False) + "\n"
-        if args.out:
+        if args.out is not None:
+            if not args.out.strip():
+                raise GearcadError("--out '': empty; give a file name (is a shell variable unset?)")
             try:
-                args.out.write_text(text, encoding="utf-8")
+                Path(args.out).write_text(text, encoding="utf-8")
             except OSError as exc:  # a folder, a missing folder, a read-only place
                 raise OutputError(f"--out {args.out}: cannot write the schema there ({exc.strerror or exc})") from None
         else:
@@ -174,7 +176,7 @@ def _run(args) -> int:
     if args.command == "bench":
         from .bench import run_bench
 
-        rows = run_bench(args.out, quick=args.quick, skip=args.skip, echo=print)
+        rows = run_bench(Path(args.out), quick=args.quick, skip=args.skip, echo=print)
         print(f"{len(rows)} measurements written to {args.out}/ (results.md, results.csv, *.png)")
         return 0
     if args.command == "sweep":

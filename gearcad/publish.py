@@ -56,7 +56,7 @@ from pathlib import Path
 from .errors import GearcadError, OutputError, ProfileError
 from .interrupts import Interrupted, held_signals, interrupt_guard
 
-__all__ = ["Publisher", "Interrupted", "interrupt_guard", "check_out", "resolve_out", "out_lock"]
+__all__ = ["Publisher", "Interrupted", "interrupt_guard", "check_out", "resolve_out", "out_lock", "write_files"]
 
 _NAME = re.compile(r"[\w-][\w.-]*")
 _PREFIX = ".gearcad-staging-"
@@ -124,6 +124,50 @@ def check_out(out: Path | str) -> None:
         raise GearcadError(f"--out {shown}: {ancestor} is a file, so no folder can be made inside it")
     if not os.access(ancestor, os.W_OK | os.X_OK):
         raise GearcadError(f"--out {shown}: {ancestor} is not writable")
+
+
+def write_files(out: Path | str, contents: dict[str, bytes], *, what: str = "--out") -> dict[str, Path]:
+    """Write each ``name: bytes`` of ``contents`` into the folder ``out`` (made if missing), whole.
+
+    Each file is first written to a new file under a random hidden name (created exclusively:
+    never through a link planted in ``out``), with the usual mode for the umask, then renamed
+    over ``out/name`` — a rename replaces a link of that name, it does not follow it — under the
+    lock a build holds while it publishes into ``out``.  A failure removes what was written and
+    raises :class:`OutputError` (one line); files already renamed stay (each one is whole).
+    Returns the paths written, in the order given.
+    """
+    for name in contents:
+        if not _NAME.fullmatch(name) or name.startswith("."):
+            raise ValueError(f"write_files: {name!r} is not a plain file name")
+    path = resolve_out(out)
+    try:
+        path.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise OutputError(f"{what} {_shown(out)}: cannot make the folder ({exc.strerror or exc})") from None
+    umask = os.umask(0)
+    os.umask(umask)
+    written: dict[str, Path] = {}
+    temporary: list[str] = []
+    try:
+        with out_lock(path):
+            for name, data in contents.items():
+                fd, tmp = tempfile.mkstemp(prefix=f".{name}.", suffix=".tmp", dir=path)
+                temporary.append(tmp)
+                with os.fdopen(fd, "wb") as f:
+                    os.fchmod(f.fileno(), 0o666 & ~umask)
+                    f.write(data)
+                os.replace(tmp, path / name)
+                temporary.remove(tmp)
+                written[name] = path / name
+    except OSError as exc:
+        raise OutputError(
+            f"{what} {_shown(out)}: cannot write {exc.filename or path} ({exc.strerror or exc})"
+        ) from None
+    finally:
+        for tmp in temporary:
+            with suppress(OSError):
+                os.unlink(tmp)
+    return written
 
 
 def _load_renameat2():

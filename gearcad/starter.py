@@ -7,12 +7,14 @@ the schema is written beside it, so a TOML editor still completes and checks the
 from __future__ import annotations
 
 import json
+import os
 import re
 import tomllib
 from pathlib import Path
 
-from .errors import ProfileError
+from .errors import OutputError, ProfileError
 from .profiles import parse_profile, profile_schema
+from .publish import write_files
 
 __all__ = ["SCHEMA_LINE", "example_folders", "new_profile"]
 
@@ -75,13 +77,17 @@ def new_profile(name: str, source: str = "elliptic_focus", folder: str | Path = 
         lines = str(exc).splitlines()
         raise ProfileError("\n".join(ln if ln.startswith("name = ") else f"{path}: {ln}" for ln in lines)) from None
     folder = Path(folder)
-    target, schema = folder / f"{name}.toml", folder / "profile.schema.json"
-    if target.exists():
+    target = folder / f"{name}.toml"
+    if os.path.lexists(target):
         raise ProfileError(f"{target}: exists already; choose another NAME or --dir (nothing was written)")
     if folder.exists() and not folder.is_dir():
         raise ProfileError(f"--dir = {str(folder)!r}: is a file, not a folder")
-    folder.mkdir(parents=True, exist_ok=True)
-    schema.write_text(json.dumps(profile_schema(), indent=2, ensure_ascii=False) + "\n", encoding="utf-8")
-    with open(target, "x", encoding="utf-8") as f:
-        f.write(text)
-    return target, schema
+    schema_text = json.dumps(profile_schema(), indent=2, ensure_ascii=False) + "\n"
+    # the schema replaces a file or link of its name (renamed over it, never written through it)
+    schema = write_files(folder, {"profile.schema.json": schema_text.encode("utf-8")}, what="--dir")
+    try:
+        with open(target, "x", encoding="utf-8") as f:  # O_EXCL: never through a link, never over a file
+            f.write(text)
+    except OSError as exc:
+        raise OutputError(f"{target}: cannot write the profile ({exc.strerror or exc})") from None
+    return target, schema["profile.schema.json"]

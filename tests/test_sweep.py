@@ -1,11 +1,14 @@
 """``gearcad sweep``: the points visited, the table (refusals are rows), the front, the files read
 back, and the same rows from one process, a local pool and a Dask LocalCluster."""
 
+import os
+
 import numpy as np
 import pytest
 
 import gearcad
 from gearcad.cli import main
+from gearcad.sweeps import write_sweep
 from gearcad.sweeps.front import pareto
 from gearcad.sweeps.space import SweepSpec, parse_vary, points
 
@@ -129,3 +132,18 @@ def test_cli_sweep_and_its_refusals(tmp_path, capsys):
         assert main(["sweep", str(FOCUS), "--workers", "1", "--out", str(bad), *args]) == 2, args
         assert says in capsys.readouterr().err
     assert not bad.exists()
+
+
+def test_sweep_writes_through_no_planted_link(table, tmp_path):
+    """Issue 34 item 1: links planted under the names sweep writes are replaced, not written through."""
+    victim = tmp_path / "victim.txt"
+    victim.write_text("keep me")
+    out = tmp_path / "sweep"
+    names = ["sweep.parquet", "sweep.csv", "front.csv", "sweep.html"]
+    out.mkdir()
+    for name in [f".{n}.tmp" for n in names] + names:  # the names the old code wrote through, and the final ones
+        os.symlink(victim, out / name)
+    write_sweep(table, out)
+    assert victim.read_text() == "keep me"
+    for n in names:
+        assert (out / n).is_file() and not (out / n).is_symlink()

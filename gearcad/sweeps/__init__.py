@@ -128,24 +128,19 @@ def _run(data, name, stage, overrides, **kwargs) -> list[dict]:
 
 
 def write_sweep(table, out: str | Path) -> dict[str, Path]:
-    """``sweep.parquet``, ``sweep.csv``, ``front.csv`` and ``sweep.html`` in ``out`` (written
-    to temporary names, then renamed: no half-written file is left)."""
+    """``sweep.parquet``, ``sweep.csv``, ``front.csv`` and ``sweep.html`` in ``out``, each
+    written whole under a random name and renamed into place (:func:`gearcad.publish.write_files`:
+    never through a link planted in ``out``, no half-written file left)."""
+    from ..publish import check_out, write_files
     from .page import sweep_page
 
-    out = Path(out)
-    out.mkdir(parents=True, exist_ok=True)
-    files = {k: out / k for k in ("sweep.parquet", "sweep.csv", "front.csv", "sweep.html")}
-    tmp = {k: p.with_name(f".{p.name}.tmp") for k, p in files.items()}
-    try:
-        plain = table.copy()
-        plain.attrs = {}
-        plain.to_parquet(tmp["sweep.parquet"], index=False)
-        plain.to_csv(tmp["sweep.csv"], index=False)
-        plain[plain["pareto"]].to_csv(tmp["front.csv"], index=False)
-        tmp["sweep.html"].write_text(sweep_page(table), encoding="utf-8")
-        for k in files:
-            tmp[k].replace(files[k])
-    finally:
-        for p in tmp.values():
-            p.unlink(missing_ok=True)
-    return files
+    check_out(out)
+    plain = table.copy()
+    plain.attrs = {}
+    contents = {
+        "sweep.parquet": plain.to_parquet(index=False),
+        "sweep.csv": plain.to_csv(index=False).encode("utf-8"),
+        "front.csv": plain[plain["pareto"]].to_csv(index=False).encode("utf-8"),
+        "sweep.html": sweep_page(table).encode("utf-8"),
+    }
+    return write_files(out, contents)

@@ -45,7 +45,7 @@ def add_parser(sub) -> None:
     s.add_argument("--maximise", action="append", default=[], metavar="KEY", help="an objective (a report key)")
     s.add_argument("--workers", type=int, help="local processes (default: every core)")
     s.add_argument("--scheduler", metavar="ADDRESS", help="run on this Dask scheduler, e.g. tcp://10.0.0.5:8786")
-    s.add_argument("--out", type=Path, default=Path("out/sweep"), help="output folder (default: out/sweep)")
+    s.add_argument("--out", default="out/sweep", help="output folder (default: out/sweep)")  # a str: '' is refused
 
 
 def run(args: argparse.Namespace) -> int:
