@@ -2,6 +2,7 @@
 the pitch curve engraved so that no filling program engraves a region, the print plate apart
 by its twisted footprints with room for a skirt, pilot holes and the assembly texts explained."""
 
+import io
 import itertools
 import json
 import re
@@ -134,3 +135,30 @@ def test_a_normal_module_says_why_the_count_differs(built):
     z = report["gears"][0]["teeth"]["count"]
     assert "normal module" in note["message"] and f"{1 / np.cos(np.radians(25)):.4f}" in note["message"]
     assert f"has {z} teeth" in note["message"] and "teeth.count" in note["message"]
+
+
+def test_the_walker_plates_fit_a_common_bed_and_its_leg_is_named(built):
+    """Issue 37 item 13: the walker's parts on the default 250 × 210 mm bed; the shoe part (385 × 332 mm)
+    is on no plate and a ``bed`` finding names it with the bed it needs."""
+    report = _report(built, "walker")
+    beds = [f for f in report["warnings"] if f["code"] == "bed"]
+    assert [f["where"] for f in beds] == ["shoe"] and "output.bed=[" in beds[0]["message"]
+    for path in sorted((built / "walker").glob("plate*.3mf")):
+        scene = trimesh.load(path)
+        (x0, y0, _), (x1, y1, _) = scene.bounds
+        assert x0 >= 0 and y0 >= 0 and x1 <= 250 and y1 <= 210, path.name
+        assert "shoe" not in scene.geometry
+
+
+def test_the_sheet_svg_shows_its_parts_from_the_top_left(built):
+    """Issue 37 item 12: a browser opens sheet.svg at its real size at the page's top-left corner,
+    so the parts are laid out from there (the first screen of a 96 dpi browser: 1000 × 700 px)."""
+    from svgelements import SVG
+    from svgelements import Path as SvgPath
+
+    for profile in ("elliptic_focus", "walker"):
+        svg = SVG.parse(io.StringIO((built / profile / "sheet.svg").read_text(encoding="utf-8")))
+        boxes = [e.bbox() for e in svg.elements() if isinstance(e, SvgPath) and e.bbox() is not None]
+        # svgelements scales user units (mm here) to 96 dpi pixels, as a browser does
+        first = [b for b in boxes if b[0] < 1000 and b[1] < 700]
+        assert first, f"{profile}: no part drawn within the first screen of sheet.svg"

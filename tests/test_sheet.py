@@ -19,7 +19,7 @@ from svgelements import Path as SvgPath
 import gearcad
 from gearcad.errors import DesignError
 from gearcad.export.dxf import write_dxf
-from gearcad.export.mesh import extrude
+from gearcad.export.mesh import SolidItem, extrude
 from gearcad.export.plate import write_plate
 from gearcad.export.sheet import sheet_drawing
 from gearcad.export.svg import write_svg
@@ -183,7 +183,9 @@ def test_plate_read_back_places_every_part_on_the_bed_apart(design, tmp_path):
     out = design.params.output
     solids = {p.name: extrude(p.outline, out.thickness, name=p.name) for p in design.parts()}
     path = tmp_path / "plate.3mf"
-    triangles = write_plate(path, design, solids)
+    assert len(design.plates) == 1 and len(design.plate) == len(design.placements)  # all on the default bed
+    items = [SolidItem(solids[pl.part], pl.angle, (*pl.offset, 0.0)) for pl in design.plate]
+    triangles = write_plate(path, design, items)
     assert triangles == sum(solids[pl.part].triangle_count for pl in design.placements)
     scene = trimesh.load(path)
     placed = []
@@ -208,7 +210,45 @@ def test_plate_read_back_places_every_part_on_the_bed_apart(design, tmp_path):
     assert "--dont-arrange" in model
 
 
-def test_plate_too_small_is_refused_on_one_line(design):
-    with pytest.raises(DesignError) as err:
-        plate_layout(resized(design, bed=(150.0, 150.0)))
-    assert "\n" not in str(err.value) and str(err.value).startswith("output.bed = [150, 150] mm")
+def _footprints(design, layout) -> list[shapely.Polygon]:
+    """Each placed part's outline as a polygon on the bed (independent of the layout's boxes)."""
+    parts = {p.name: p for p in design.parts()}
+    return [placed_polygon(parts[pl.part], pl) for pl in layout]
+
+
+def test_a_small_bed_takes_the_parts_on_several_plates(design):
+    """Issue 37 item 13: parts that do not fit one bed go on more plates, each on the bed."""
+    body = layouts.footprint_box(max(design.parts(), key=lambda p: p.outline.area))
+    side = max(body.width, body.height) + 2 * layouts.SKIRT_MM + 1.0  # the body alone, no roller beside it
+    small = resized(design, bed=(side, side))
+    plates = plate_layout(small)
+    assert len(plates.plates) > 1 and plates.too_large == ()
+    # every placement on exactly one plate
+    assert Counter(pl.part for plate in plates.plates for pl in plate) == Counter(pl.part for pl in design.placements)
+    gap, skirt = design.params.output.gap, layouts.SKIRT_MM
+    for plate in plates.plates:
+        shapes = _footprints(design, plate)
+        for shape in shapes:
+            x0, y0, x1, y1 = shape.bounds
+            assert min(x0, y0) >= max(gap, skirt) - 1e-6 and x1 <= side - skirt + 1e-6 and y1 <= side - skirt + 1e-6
+        for a, b in itertools.combinations(shapes, 2):
+            assert a.distance(b) >= gap - 1e-6
+    # largest first: the first plate holds the largest part
+    largest = max(design.parts(), key=lambda p: p.outline.area).name
+    assert largest in {pl.part for pl in plates.plates[0]}
+
+
+def test_a_part_larger_than_the_bed_is_named_with_the_bed_it_needs(design):
+    body = max(design.parts(), key=lambda p: p.outline.area)
+    x0, y0, x1, y1 = shapely.Polygon(body.outline.outer).bounds
+    tiny = resized(design, bed=(60.0, 60.0))
+    plates = plate_layout(tiny)
+    left = {b.part for b in plates.too_large}
+    assert body.name in left and all(body.name not in {pl.part for pl in p} for p in plates.plates)
+    need = plates.needs(next(b for b in plates.too_large if b.part == body.name))
+    # the bed it needs is larger than the part with its skirt, and takes it alone
+    assert need[0] * need[1] >= (x1 - x0 + 2 * layouts.SKIRT_MM) * (y1 - y0 + 2 * layouts.SKIRT_MM) * 0.5
+    again = layouts.plate_layout(
+        [body], [Placement(body.name, 0.0, (0.0, 0.0))], tiny.params.output.model_copy(update={"bed": need})
+    )
+    assert again.too_large == () and len(again.plates) == 1

@@ -42,7 +42,7 @@ def write_3mf(path: Path, items: list, *, design: Design, whole: str | None = No
     if whole == "plate":
         from .plate import write_plate
 
-        return {"triangles": write_plate(path, design, {i.solid.name: i.solid for i in items})}
+        return {"triangles": write_plate(path, design, items)}
     from .mesh import write_3mf as write
 
     count = write(path, items)

@@ -201,8 +201,10 @@ def _section_layouts(design: Design, figures: Figures, files: Mapping) -> str:
     sheets = [n for n in files if n.startswith("sheet.")]
     if sheets:
         layouts.append(("cutting sheet", out.sheet, design.sheet, sheets))
-    if "plate.3mf" in files:
-        layouts.append(("print plate (top view)", out.bed, design.plate, ["plate.3mf"]))
+    plates = [(stem, layout) for stem, layout in zip(design.plate_files(), design.plates) if f"{stem}.3mf" in files]
+    for k, (stem, layout) in enumerate(plates, 1):
+        noun = f"print plate {k} of {len(plates)} (top view)" if len(plates) > 1 else "print plate (top view)"
+        layouts.append((noun, out.bed, layout, [f"{stem}.3mf"]))
     shown = []
     for noun, (w, h), layout, names in layouts:
         svg = figures.view(layout, (0.0, 0.0, w, h), label=noun, frame=(w, h))

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import re
 from collections.abc import Mapping
 from html import escape
 from urllib.parse import quote
@@ -17,8 +18,8 @@ def _what(name: str, entry: Mapping) -> str:
     bits = []
     if name.startswith("sheet."):
         bits.append("cutting sheet: every part laid out")
-    elif name == "plate.3mf":
-        bits.append("print plate: every part on the bed")
+    elif re.fullmatch(r"plate(-[0-9]+)?\.3mf", name):
+        bits.append("print plate: parts laid out on the bed")
     elif part == "assembly":
         bits.append("assembly: parts in place (checks the fit; not for cutting or printing)")
     elif part:

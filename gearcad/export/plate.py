@@ -14,15 +14,15 @@ from __future__ import annotations
 import io
 import zipfile
 from collections import Counter
-from collections.abc import Mapping
+from collections.abc import Sequence
 from pathlib import Path
 
 import numpy as np
 
 from ..errors import DesignError
 from ..geometry.outline import place
-from ..mechanisms import Design
-from .mesh import _CONTENT_TYPES, _RELS, Solid, _xml_name
+from ..mechanisms import Design, Placement
+from .mesh import _CONTENT_TYPES, _RELS, SolidItem, _xml_name
 
 __all__ = ["write_plate"]
 
@@ -40,17 +40,18 @@ def _metadata(name: str, value: str) -> str:
     return f'<metadata name="{name}">{_xml_name(value)}</metadata>\n'
 
 
-def write_plate(path: Path, design: Design, solids: Mapping[str, Solid]) -> int:
-    """Write ``plate.3mf``: the design's solids laid out as ``design.plate``.
+def write_plate(path: Path, design: Design, items: Sequence[SolidItem]) -> int:
+    """Write one print plate (``plate.3mf``, ``plate-2.3mf``, …): solids placed on the bed.
 
     Parameters
     ----------
     path : Path
         The file to write (the same design and solids always give the same bytes).
     design : Design
-        Gives the parts, how often the assembly places each, and ``output.bed``/``output.gap``.
-    solids : mapping of part name to Solid
-        Each part's solid, pivot at the origin, standing on z ≥ 0 (as ``extrude`` makes them).
+        Gives ``output.bed``/``output.gap``/``output.thickness`` and the number of plates.
+    items : sequence of SolidItem
+        The plate's solids (pivot at the origin, standing on z ≥ 0, as ``extrude`` makes them),
+        each turned and moved onto the bed as a layout of ``design.plates`` places it.
 
     Returns
     -------
@@ -63,7 +64,8 @@ def write_plate(path: Path, design: Design, solids: Mapping[str, Solid]) -> int:
         When the parts do not fit on the bed (naming ``output.bed``).
     """
     out = design.params.output
-    layout = design.plate
+    solids = {i.solid.name: i.solid for i in items}
+    layout = [Placement(i.solid.name, i.angle, tuple(i.offset[:2])) for i in items]
     names = list(dict.fromkeys(pl.part for pl in layout))
     ids = {name: k for k, name in enumerate(names, 1)}
     bed_w, bed_h = out.bed
@@ -89,7 +91,10 @@ def write_plate(path: Path, design: Design, solids: Mapping[str, Solid]) -> int:
     text.write(
         '<model unit="millimeter" xml:lang="en-US" xmlns="http://schemas.microsoft.com/3dmanufacturing/core/2015/02">\n'
     )
-    text.write(_metadata("Title", f"{design.name}: print plate"))
+    stem = Path(path).stem
+    plates = len(design.plates)
+    which = f" {1 if stem == 'plate' else stem.rpartition('-')[2]} of {plates}" if plates > 1 else ""
+    text.write(_metadata("Title", f"{design.name}: print plate{which}"))
     text.write(_metadata("Application", "gearcad"))
     listed = ", ".join(f"{n} ×{counts[n]}" if counts[n] > 1 else n for n in names)
     text.write(

@@ -104,10 +104,12 @@ def _pieces(fmt: Format, design: Design, solids: dict, drawings: dict) -> list[t
         return pieces + [(w, w, drawings[(w,)]) for w in fmt.wholes]
     from .mesh import SolidItem
 
-    where = {"assembly": design.placements, "plate": design.plate}
+    scenes = {"assembly": [("assembly", design.placements)], "plate": list(zip(design.plate_files(), design.plates))}
     pieces = [(name, None, [SolidItem(solid)]) for name, solid in solids.items()]
     return pieces + [
-        (w, w, [SolidItem(solids[pl.part], pl.angle, (*pl.offset, 0.0)) for pl in where[w]]) for w in fmt.wholes
+        (stem, w, [SolidItem(solids[pl.part], pl.angle, (*pl.offset, 0.0)) for pl in layout])
+        for w in fmt.wholes
+        for stem, layout in scenes[w]
     ]
 
 

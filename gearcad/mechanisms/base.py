@@ -124,8 +124,10 @@ class Design:
     tables: tuple[Table, ...] = ()
     sheet: tuple[Placement, ...] = ()
     """Every placed part laid out flat on ``output.sheet`` (when DXF or SVG is written)."""
-    plate: tuple[Placement, ...] = ()
-    """Every placed part laid out on the printer's ``output.bed`` (when 3MF is written)."""
+    plates: tuple[tuple[Placement, ...], ...] = ()
+    """The placed parts laid out on as many printer beds (``output.bed``) as they need, when a
+    chosen format writes plates (3MF): ``plate.3mf``, ``plate-2.3mf``, …  A part too large for
+    the bed is on none (a ``bed`` finding names it)."""
     sections: dict = field(default_factory=dict)
     """Part name → its twisted sections (``teeth.helical.GearSections``): such a part's solid
     is lofted through them instead of extruded."""
@@ -142,6 +144,15 @@ class Design:
     @property
     def name(self) -> str:
         return self.params.name
+
+    @property
+    def plate(self) -> tuple[Placement, ...]:
+        """The first printer bed's placements (``plate.3mf``); () when nothing is laid out."""
+        return self.plates[0] if self.plates else ()
+
+    def plate_files(self) -> tuple[str, ...]:
+        """The plates' file stems, one per bed: ``plate``, ``plate-2``, …"""
+        return tuple("plate" if k == 0 else f"plate-{k + 1}" for k in range(len(self.plates)))
 
     def parts(self) -> tuple[Part, ...]:
         """Every part once (the assembly may place a part several times)."""

@@ -16,6 +16,7 @@ from typing import Any
 import numpy as np
 
 from ..findings import Finding, finding
+from ..formats import TABLE
 from ..tolerances import budget
 from . import layouts
 from .base import Assembly, Design, Motion, Table, assembly_depth, assembly_overlap
@@ -162,7 +163,9 @@ def finish(draft: Draft, *, start: float | None = None) -> Design:
     line = f"assembly: max overlap {assembly.overlap:.3g} mm² (allowed {assembly.allowed:.3g})"
     if assembly.nudged is not None:
         line += f", nudged {assembly.nudged:.3g} mm²"
-    formats = set(out.formats)
+    wholes = {w for f in TABLE if f.name in set(out.formats) for w in f.wholes}
+    plates = layouts.plate_layout(parts, draft.placements, out, draft.sections) if "plate" in wholes else None
+    findings += _too_large(plates)
     return Design(
         params=draft.params,
         mechanism=draft.mechanism,
@@ -177,13 +180,34 @@ def finish(draft: Draft, *, start: float | None = None) -> Design:
         details=(*draft.details, line),
         motion=draft.motion,
         tables=draft.tables,
-        sheet=layouts.sheet_layout(parts, draft.placements, out) if formats & {"dxf", "svg"} else (),
-        plate=layouts.plate_layout(parts, draft.placements, out, draft.sections) if "3mf" in formats else (),
+        sheet=layouts.sheet_layout(parts, draft.placements, out) if "sheet" in wholes else (),
+        plates=plates.plates if plates is not None else (),
         sections=draft.sections,
-        made=_made_rings(made, out) if "step" in formats and out.kerf > 0 else {},
+        made=_made_rings(made, out) if "step" in out.formats and out.kerf > 0 else {},
         charts=draft.charts,
         seconds=time.perf_counter() - start,
     )
+
+
+def _too_large(plates) -> tuple:
+    """A ``bed`` finding per part no printer bed of ``output.bed`` takes (left off the plates)."""
+    if plates is None or not plates.too_large:
+        return ()
+    w, h = plates.bed
+    found = []
+    for name in dict.fromkeys(b.part for b in plates.too_large):
+        box = next(b for b in plates.too_large if b.part == name)
+        need_w, need_h = plates.needs(box)
+        found.append(
+            finding(
+                "bed",
+                f"{name} ({box.width:.1f} × {box.height:.1f} mm) fits on no output.bed = [{w:g}, {h:g}] mm plate, "
+                f"so no plate holds it: print it alone on a bed of at least {need_w} × {need_h} mm "
+                f"(--set output.bed=[{need_w},{need_h}]), or cut it from the sheet",
+                name,
+            )
+        )
+    return tuple(found)
 
 
 def _made_rings(blanks, out) -> dict:

@@ -38,6 +38,7 @@ __all__ = [
     "lay_out",
     "sheet_layout",
     "plate_layout",
+    "Plates",
 ]
 
 _TURN_GAIN = 0.05
@@ -186,10 +187,17 @@ def footprint_box(part: Part, sections=None) -> Box:
 
 
 def lay_out(
-    boxes: Sequence[Box], size: tuple[float, float], gap: float, *, key: str, what: str, edge: float = 0.0
+    boxes: Sequence[Box],
+    size: tuple[float, float],
+    gap: float,
+    *,
+    key: str,
+    what: str,
+    edge: float = 0.0,
+    from_top: bool = False,
 ) -> tuple[Placement, ...]:
     """Place every box (one per part laid out) on ``size`` = (w, h) mm, ``gap`` apart and from the
-    edges (``edge`` from the edges where that is more).
+    edges (``edge`` from the edges where that is more); ``from_top``: rows from the top edge down.
 
     Largest boxes go first (ties by name, so the result is reproducible).  ``key`` is the profile
     key named when they do not fit (``output.sheet``, ``output.bed``), ``what`` the noun
@@ -207,10 +215,7 @@ def lay_out(
     order = sorted(boxes, key=lambda b: (-b.width * b.height, b.part))
     spots = _try(order, w, h, gap) if min(size) > 0 else None
     if spots is not None:
-        return tuple(
-            (b.turned() if turned else b).placed_at(extra + gap + x, extra + gap + y)
-            for b, (x, y, turned) in zip(order, spots)
-        )
+        return _placed(order, spots, extra, gap, top=size[1] + 2 * extra if from_top else None)
     counts = Counter(b.part for b in boxes)
     listed = ", ".join(f"{name} ×{n}" if n > 1 else name for name, n in counts.items())
     where = f"{key} = [{w + 2 * extra:g}, {h + 2 * extra:g}] mm with output.gap = {gap:g} mm" + (
@@ -240,6 +245,17 @@ def lay_out(
     )
 
 
+def _placed(order: Sequence[Box], spots, extra: float, gap: float, top: float | None = None) -> tuple[Placement, ...]:
+    """The placements of packed boxes; with ``top`` (the height, mm) packed down from the top edge
+    instead of up from the bottom one (the packer's rows mirrored)."""
+    placed = []
+    for b, (x, y, turned) in zip(order, spots):
+        box = b.turned() if turned else b
+        y = extra + gap + y if top is None else top - extra - gap - y - box.height
+        placed.append(box.placed_at(extra + gap + x, y))
+    return tuple(placed)
+
+
 def _advice(what: str, width: float, height: float, least: str) -> str:
     """The sheet (or bed) to give, never one over the largest length a profile accepts."""
     if max(width, height) > LARGEST_LENGTH:
@@ -255,7 +271,9 @@ def _try(order: Sequence[Box], w: float, h: float, gap: float):
 
 def sheet_layout(parts: Sequence[Part], placements: Sequence[Placement], output) -> tuple[Placement, ...]:
     """Every placed part laid out on ``output.sheet`` (lower-left corner at the origin), each turned
-    about its pivot and moved; at least ``output.gap`` apart and from the edges.
+    about its pivot and moved; at least ``output.gap`` apart and from the edges.  The parts sit in
+    rows from the sheet's top-left corner down: where an SVG page and a browser begin (a sheet
+    laid out from the bottom showed a blank first screen), and where most laser beds home.
 
     Raises
     ------
@@ -264,7 +282,7 @@ def sheet_layout(parts: Sequence[Part], placements: Sequence[Placement], output)
     """
     boxes = {p.name: part_box(p) for p in parts}
     laid = [boxes[pl.part] for pl in placements]
-    return lay_out(laid, tuple(output.sheet), output.gap, key="output.sheet", what="sheet")
+    return lay_out(laid, tuple(output.sheet), output.gap, key="output.sheet", what="sheet", from_top=True)
 
 
 SKIRT_MM = 7.0
@@ -272,19 +290,57 @@ SKIRT_MM = 7.0
 (PrusaSlicer's default skirt_distance is 6 mm, plus its line), and must stay on the bed."""
 
 
-def plate_layout(
-    parts: Sequence[Part], placements: Sequence[Placement], output, sections=None
-) -> tuple[Placement, ...]:
-    """Every placed part laid out on ``output.bed`` (front-left corner at the origin), footprints at
-    least ``output.gap`` apart and :data:`SKIRT_MM` (or the gap, if more) from the bed's edges;
-    a helical part's footprint is that of its twisted sections (``sections``: name → GearSections).
+@dataclass(frozen=True)
+class Plates:
+    """The parts laid out on as many printer beds as they need (``output.bed`` each).
 
-    Raises
-    ------
-    DesignError
-        When they do not fit (one line naming ``output.bed``).
+    ``plates``: each bed's placements, the first bed holding the largest parts; ``too_large``:
+    the boxes of parts (one per placement) that no bed of that size takes even alone — they are
+    left off the plates (each part still has its own STL/3MF), and the design says which.
     """
+
+    plates: tuple[tuple[Placement, ...], ...] = ()
+    too_large: tuple[Box, ...] = ()
+    bed: tuple[float, float] = (0.0, 0.0)
+    margin: float = 0.0
+    """Added to a part's box on each side to get the bed it needs (gap and skirt)."""
+
+    def needs(self, box: Box) -> tuple[int, int]:
+        """The bed (w, h, mm, rounded up) that takes ``box`` alone, the long side along w."""
+        long, short = max(box.width, box.height), min(box.width, box.height)
+        return math.ceil(long + 2 * self.margin), math.ceil(short + 2 * self.margin)
+
+
+def plate_layout(parts: Sequence[Part], placements: Sequence[Placement], output, sections=None) -> Plates:
+    """Every placed part laid out on beds of ``output.bed`` (front-left corner at the origin),
+    footprints at least ``output.gap`` apart and :data:`SKIRT_MM` (or the gap, if more) from the
+    bed's edges; a helical part's footprint is that of its twisted sections (``sections``: name →
+    GearSections).  The parts go on as few beds as first-fit takes them, largest first: a bed
+    is filled with every part that still fits on it before the next is begun.  Parts too large
+    for the bed alone are left off (:attr:`Plates.too_large`)."""
     twisted = {name: g.rings for name, g in (sections or {}).items()}
     boxes = {p.name: footprint_box(p, twisted.get(p.name)) for p in parts}
     laid = [boxes[pl.part] for pl in placements]
-    return lay_out(laid, tuple(output.bed), output.gap, key="output.bed", what="bed", edge=SKIRT_MM)
+    gap = output.gap
+    extra = max(0.0, SKIRT_MM - gap)
+    w, h = output.bed[0] - 2 * extra, output.bed[1] - 2 * extra
+    order = sorted(laid, key=lambda b: (-b.width * b.height, b.part))
+    fits = [min(w, h) > 0 and _try([b], w, h, gap) is not None for b in order]
+    rest = [b for b, ok in zip(order, fits) if ok]
+    plates = []
+    while rest:
+        chosen, spots, left = [], None, []
+        for b in rest:
+            tried = _try([*chosen, b], w, h, gap)
+            if tried is None:
+                left.append(b)
+            else:
+                chosen, spots = [*chosen, b], tried
+        plates.append(_placed(chosen, spots, extra, gap))
+        rest = left
+    return Plates(
+        plates=tuple(plates),
+        too_large=tuple(b for b, ok in zip(order, fits) if not ok),
+        bed=tuple(output.bed),
+        margin=gap + extra,
+    )

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import math
 import numbers
+import re
 from dataclasses import dataclass
 from typing import Annotated, Any, Literal
 
@@ -225,10 +226,10 @@ NAME_RULE = (
 
 
 def _not_reserved(name: str) -> str:
-    if name.casefold() in RESERVED_NAMES:
+    if name.casefold() in RESERVED_NAMES or re.fullmatch(r"plate-[0-9]+", name.casefold()):
         raise PydanticCustomError(
             VALUE_ERROR,
-            "must not be '{name}': the build writes its own files under that name (reserved: {reserved})",
+            "must not be '{name}': the build writes its own files under that name (reserved: {reserved}, plate-2, …)",
             {"name": name.casefold(), "reserved": ", ".join(RESERVED_NAMES)},
         )
     return name
