@@ -1,0 +1,99 @@
+"""Messages that give the fix (issue 37): a refusal names the value that works, and no message
+shows Python (``inf``, ``[0.2, 0.3]``, ``None``) where a person reads it."""
+
+import re
+from types import SimpleNamespace
+
+import numpy as np
+import pytest
+
+from gearcad.errors import DesignError
+from gearcad.mechanisms.parts import _with_bore
+
+
+def _bore(diameter, keyway_width=0.0, keyway_depth=0.0, flat=0.0):
+    return SimpleNamespace(diameter=diameter, keyway_width=keyway_width, keyway_depth=keyway_depth, flat=flat, pilot=0)
+
+
+def _circle(radius, n=720):
+    t = np.linspace(0, 2 * np.pi, n, endpoint=False)
+    return radius * np.column_stack([np.cos(t), np.sin(t)])
+
+
+@pytest.mark.parametrize(
+    ("bore", "key", "largest"),
+    [
+        # a round bore in a part whose outline is 4 mm from the pivot, 1 mm of wall: d < 2·(4 − 1)
+        (_bore(6.0), "bore.diameter", 5.9),
+        (_bore(6.0, flat=2.5), "bore.diameter", 5.9),  # a D-flat does not shorten the bore's reach
+        # a keyway 1 wide on a 4 mm bore: its corner (2 + depth, 0.5) within 3 mm: depth < √8.75 − 2
+        (_bore(4.0, keyway_width=1.0, keyway_depth=2.0), "bore.keyway_depth", 0.9),
+    ],
+)
+def test_a_bore_too_large_is_refused_with_the_largest_that_fits(bore, key, largest):
+    outer = _circle(4.0)
+    with pytest.raises(DesignError) as refused:
+        _with_bore(outer, bore, 0.001, part="gear", wall=1.0)
+    message = str(refused.value)
+    assert f"{key} = {largest:g} fits" in message, message
+    assert "keeps" in message  # or larger gears
+    setattr(bore, key.split(".")[1], largest)
+    _with_bore(outer, bore, 0.001, part="gear", wall=1.0)  # the value offered fits
+    setattr(bore, key.split(".")[1], largest + 0.1)
+    with pytest.raises(DesignError):
+        _with_bore(outer, bore, 0.001, part="gear", wall=1.0)  # and is the largest, to 0.1 mm
+
+
+PHI = 2 * np.pi * np.arange(36) / 36
+
+
+def _motion(e=60.0, teeth=None, **gear1):
+    return {
+        "name": "motion",
+        "gear1": {"curve": "motion", **gear1},
+        "pair": {"center_distance": e},
+        "teeth": teeth or {"module": 1.0},
+    }
+
+
+def test_a_two_to_one_motion_is_refused_naming_the_lobes_that_close_it():
+    import gearcad
+
+    psi = np.degrees(PHI / 2 + 0.05 * np.sin(PHI))  # half a turn per driver turn, with a wobble
+    profile = _motion(follower_deg=psi.tolist(), tolerance_deg=0.1)
+    with pytest.raises(gearcad.DesignError) as refused:
+        gearcad.design(profile, stage="pitch")
+    assert "set gear2.lobes = 2" in str(refused.value)
+    motion = gearcad.design({**profile, "gear2": {"lobes": 2}}, stage="pitch").report()["motion"]
+    assert motion["error_deg"] <= 0.1
+
+
+@pytest.mark.parametrize("teeth", [{"module": 3.0}, {"count": 20}])
+def test_a_quick_return_law_is_refused_with_the_centre_distance_or_module_that_takes_it(teeth):
+    """k = e^(1.5 sin φ)/I0(1.5): mean 1, from 0.137 to 2.70 — at E = 60 mm the roots of module-3
+    teeth allow 0.127…7.9 but their curvature radius is not there; the values offered are the
+    smoothest law's limits (not always the nearest: a rougher law may fit a little sooner),
+    checked here by fitting on both sides."""
+    import gearcad
+    from gearcad.mechanisms import pair_motion
+
+    i0 = np.i0(1.5)
+    profile = _motion(ratio=(np.exp(1.5 * np.sin(PHI)) / i0).tolist(), teeth=teeth)
+    with pytest.raises(gearcad.DesignError) as refused:
+        gearcad.design(profile, stage="pitch")
+    message = str(refused.value)
+    offered = dict(
+        re.findall(r"(pair\.center_distance|teeth\.module|teeth\.count) = ([0-9.]+)", message.split("fits with")[1])
+    )
+    assert offered and ("pair.center_distance" in offered) == ("module" in teeth), message
+    params = gearcad.parse_profile(profile)
+    psi, key = pair_motion._follower(params.gear1)
+    for name, value in offered.items():
+        section, field = name.split(".")
+        fixed = {**profile, section: {**profile[section], field: float(value) if "." in value else int(value)}}
+        if field == "count":
+            fixed["teeth"] = {"count": int(value)}
+        gearcad.design(fixed, stage="pitch")  # the value offered fits
+        nearer = {"center_distance": {"center_distance": float(value) * 0.9}, "module": {"module": float(value) * 1.1}}
+        if field in nearer:  # and is near the nearest: 10% less change does not fit
+            assert pair_motion._fits(params, psi, key, **nearer[field]) is None
