@@ -97,3 +97,52 @@ def test_a_quick_return_law_is_refused_with_the_centre_distance_or_module_that_t
         nearer = {"center_distance": {"center_distance": float(value) * 0.9}, "module": {"module": float(value) * 1.1}}
         if field in nearer:  # and is near the nearest: 10% less change does not fit
             assert pair_motion._fits(params, psi, key, **nearer[field]) is None
+
+
+PYTHON = re.compile(
+    r"\b(inf|nan|None|True|False)\b|np\.|array\(|\[-?\d[\d.e+-]*(, -?\d[\d.e+-]*)*\]|\(-?\d[\d.e+-]*, -?\d[\d.e+-]*\)"
+    r"|\['"
+)
+"""What Python prints and a person does not write: inf, nan, None, lists and tuples of numbers."""
+
+
+def _strings(node, path=""):
+    if isinstance(node, dict):
+        for key, value in node.items():
+            yield from _strings(value, f"{path}.{key}")
+    elif isinstance(node, list):
+        for i, value in enumerate(node):
+            yield from _strings(value, f"{path}[{i}]")
+    elif isinstance(node, str):
+        yield path, node
+
+
+def test_no_report_text_shows_python(built):
+    """Every string of every example's report.json — findings, the papers' claims, summaries."""
+    import json
+
+    leaks = [
+        f"{report.parent.name}{path}: {text}"
+        for report in sorted(built.glob("*/report.json"))
+        for path, text in _strings(json.loads(report.read_text(encoding="utf-8")))
+        if PYTHON.search(text)
+    ]
+    assert not leaks, leaks[:5]
+    assert "loops only for r = 0.2, 0.3 and 0.4 R" in (built / "roller_body_m3" / "report.json").read_text("utf-8")
+
+
+def test_numbers_and_lists_as_a_person_writes_them():
+    from gearcad.findings import amount, listed
+
+    assert listed([0.2, 0.3, 0.4]) == "0.2, 0.3 and 0.4" and listed([0.0]) == "0" and listed([]) == "none"
+    assert amount(float("inf"), ".4f", infinite="no limit") == "no limit" and amount(0.12243, ".4f") == "0.1224"
+    assert not PYTHON.search(listed(["external", "internal"]))
+
+
+def test_a_law_when_the_teeth_allow_no_ratio_says_so_in_words():
+    import gearcad
+
+    # module-10 roots (22.5 mm) at E = 30 mm: no pitch radius pair reaches both
+    with pytest.raises(gearcad.DesignError) as refused:
+        gearcad.design(_motion(e=30.0, teeth={"module": 10.0}, ratio=[1.0] * 8), stage="pitch")
+    assert "the teeth allow no ratio" in str(refused.value) and not PYTHON.search(str(refused.value))

@@ -152,9 +152,14 @@ def fit_motion(
         if best is not None
         else "no law within them exists"
     )
+    allowed = (
+        f"the smallest ratio the teeth allow is {lo:.4g} (the largest {hi:.4g}; {limits.why})"
+        if lo <= hi
+        else f"the teeth allow no ratio ({limits.why})"
+    )
     raise DesignError(
         f"{key}: no closing ratio law meets the motion within {math.degrees(tolerance):g}° and the limits teeth "
-        f"need — {achievable}; the smallest ratio the teeth allow is {lo:.4g} (the largest {hi:.4g}; {limits.why})"
+        f"need — {achievable}; {allowed}"
         + (f", curvature radius ≥ {limits.curvature_radius:.4g} mm" if limits.curvature_radius > 0 else "")
         + f"; the motion asks for ratios from about {given.min():.4g} to {given.max():.4g}"
     )
