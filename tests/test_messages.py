@@ -146,3 +146,29 @@ def test_a_law_when_the_teeth_allow_no_ratio_says_so_in_words():
     with pytest.raises(gearcad.DesignError) as refused:
         gearcad.design(_motion(e=30.0, teeth={"module": 10.0}, ratio=[1.0] * 8), stage="pitch")
     assert "the teeth allow no ratio" in str(refused.value) and not PYTHON.search(str(refused.value))
+
+
+def test_the_fitted_motion_error_is_printed_and_on_the_page(tmp_path, capsys):
+    """check and build print the law's motion error (report.json's motion.error_deg), and the
+    page shows it: ψ = φ + 0.3 sin φ + 0.002 sin 5φ fitted to 0.5° — the smoothest law keeps the
+    first order and misses the fifth by 0.002 rad = 0.115°."""
+    import json
+
+    from gearcad.cli import main
+
+    psi = PHI + 0.3 * np.sin(PHI) + 0.002 * np.sin(5 * PHI)
+    samples = ", ".join(f"{v:.12f}" for v in np.degrees(psi))
+    profile = tmp_path / "fitted.toml"
+    profile.write_text(
+        f'name = "fitted"\n[gear1]\ncurve = "motion"\nfollower_deg = [{samples}]\ntolerance_deg = 0.5\n'
+        "[pair]\ncenter_distance = 50.0\n[teeth]\nmodule = 2.0\n"
+        '[output]\ntolerance = 0.05\ncharts = false\nanimation = false\nformats = ["dxf"]\n',
+        encoding="utf-8",
+    )
+    assert main(["check", str(profile), "--stage", "pitch"]) == 0
+    assert re.search(r"motion error [0-9.e-]+° \(allowed 0\.5°", capsys.readouterr().out)
+    assert main(["build", str(profile), "--out", str(tmp_path / "out")]) == 0
+    printed = capsys.readouterr().out
+    error = json.loads((tmp_path / "out" / "fitted" / "report.json").read_text(encoding="utf-8"))["motion"]["error_deg"]
+    assert error == pytest.approx(np.degrees(0.002), rel=1e-6) and f"motion error {error:.2g}°" in printed
+    assert f"motion error {error:.2g}°" in (tmp_path / "out" / "fitted" / "index.html").read_text(encoding="utf-8")

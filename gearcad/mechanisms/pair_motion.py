@@ -13,7 +13,7 @@ from ..pitch.curve import TWO_PI, PitchCurve
 from ..pitch.motion import MotionFit, MotionLimits, fit_motion, follower_from_ratio, smoothest_law
 from ..profiles import GearPairParams, MotionParams
 
-__all__ = ["motion_limits", "motion_law", "motion_block", "fitted_blocks"]
+__all__ = ["motion_limits", "motion_law", "motion_block", "motion_phrase", "fitted_blocks"]
 
 
 def motion_limits(
@@ -84,29 +84,33 @@ def _fits(params: GearPairParams, psi: np.ndarray, key: str, **change) -> Motion
 
 def _lobes_remedy(params: GearPairParams, psi: np.ndarray, key: str) -> str:
     """When the motion turns the follower another fraction of a turn than the lobes give (a 2:1
-    reduction with 1:1 lobes): the lobes that give it."""
-    n = len(psi)
-    turns = (psi[-1] - psi[0]) * n / (n - 1) / TWO_PI  # the follower's turns per driver turn
-    mean = params.gear1.lobes / params.gear2_lobes
-    if turns <= 0 or abs(turns - mean) <= 0.02 * mean:
+    reduction with 1:1 lobes): the mate's lobes that give it, offered only when the law then fits."""
+    turns = _closing_turns(psi)
+    lobes1, lobes2 = params.gear1.lobes, params.gear2_lobes
+    if turns is None or abs(turns - lobes1 / lobes2) <= 0.1 * turns:  # a motion that nearly closes: no hint
         return ""
-    fraction = Fraction(turns).limit_denominator(24)
-    asked = f"; the motion turns the follower {turns:.3g} of a turn per driver turn"
-    asked += f", not gear1.lobes/gear2.lobes = {_ratio(mean)}"
-    if fraction.numerator > 24 or abs(fraction - turns) > 0.02 * turns:
-        return asked + " (no ratio of lobes up to 24 is within 2% of it)"
-    lobes1, lobes2 = params.gear1.lobes, params.gear1.lobes * fraction.denominator / fraction.numerator
-    if lobes2 != int(lobes2) or not 1 <= lobes2 <= 24:
-        lobes1, lobes2 = fraction.numerator, fraction.denominator
-        return asked + f": set gear1.lobes = {lobes1} and gear2.lobes = {lobes2} (a {lobes1}:{lobes2} pair)"
-    fit = _fits(params, psi, key, mate_lobes=int(lobes2))
-    fits = f", where the law fits within {math.degrees(fit.error):.2g}°" if fit is not None else ""
-    return asked + f": set gear2.lobes = {int(lobes2)}{fits}"
+    near = Fraction(turns).limit_denominator(12)
+    shown = str(near) if abs(near - turns) <= 0.03 * turns else f"{turns:.3g}"
+    asked = f"; the motion turns the follower about {shown} of a turn per driver turn, not "
+    asked += f"gear1.lobes/gear2.lobes = {Fraction(lobes1, lobes2)}"
+    mate = round(lobes1 / turns)
+    if 1 <= mate <= 24 and abs(lobes1 / mate - turns) <= 0.03 * turns:
+        fit = _fits(params, psi, key, mate_lobes=mate)
+        if fit is not None:
+            return asked + f": set gear2.lobes = {mate}, where the law fits within {math.degrees(fit.error):.2g}°"
+    return asked
 
 
-def _ratio(value: float) -> str:
-    """``value`` as lobes1/lobes2 ("1/2", "1")."""
-    return str(Fraction(value).limit_denominator(24))
+def _closing_turns(psi: np.ndarray) -> float | None:
+    """The follower's turns per driver turn the samples ask for: their span, plus the step across
+    the seam (from the last sample to the first, a turn on) interpolated from its neighbours'.
+    None when the motion does not turn forward."""
+    step = np.diff(psi)
+    if len(step) < 4:
+        return None
+    seam = (9 * (step[-1] + step[0]) - (step[-2] + step[1])) / 16  # the cubic through the steps about it
+    turns = (psi[-1] - psi[0] + seam) / TWO_PI
+    return float(turns) if turns > 0 else None
 
 
 def _size_remedy(params: GearPairParams, psi: np.ndarray, key: str) -> str:
@@ -131,11 +135,12 @@ def _size_remedy(params: GearPairParams, psi: np.ndarray, key: str) -> str:
     if t.module:  # a count would grow the module with the centre distance
         root = bore + t.module * (1 + t.dedendum)
         wider = math.ceil(max(root / share, t.module * depth / rho if rho > 0 else math.inf) * (1 + 1e-9))
-        if wider < _LARGEST_CENTRE_DISTANCE and _fits(params, psi, key, center_distance=float(wider)):
+        if wider <= _FARTHEST * e and _fits(params, psi, key, center_distance=float(wider)):
             options.append(f"pair.center_distance = {wider}")
     module = min((e * share - bore) / (1 + t.dedendum), e * rho / depth)
     module = math.floor(module * 100 * (1 - 1e-9)) / 100
-    if module > 0 and _fits(params, psi, key, module=module):
+    given = t.module or 2 * e * lobes1 / (lobes1 + lobes2) / t.count
+    if module * _FARTHEST >= given and _fits(params, psi, key, module=module):
         if t.module:
             options.append(f"teeth.module = {module:g}")
         else:  # the count sets the module: m = 2E·mean/(1 + mean)/count
@@ -143,8 +148,10 @@ def _size_remedy(params: GearPairParams, psi: np.ndarray, key: str) -> str:
     return f"; it fits with {' or '.join(options)}" if options else ""
 
 
-_LARGEST_CENTRE_DISTANCE = 100_000
-"""mm: a remedy past this is not one."""
+_FARTHEST = 10
+"""A centre distance more than this many times the profile's, or a module less than its share,
+is not offered: the law the motion needs is then too rough for teeth (a motion that does not
+close, samples too coarse)."""
 
 
 def motion_block(fit: MotionFit, params: GearPairParams) -> dict:
@@ -160,6 +167,11 @@ def motion_block(fit: MotionFit, params: GearPairParams) -> dict:
         "ratio_max": fit.ratio_range[1],
         "min_curvature_radius": fit.min_curvature_radius,
     }
+
+
+def motion_phrase(block: dict) -> str:
+    """The fitted motion's error for a summary line: the report's ``motion`` block in words."""
+    return f"motion error {block['error_deg']:.2g}° (allowed {block['tolerance_deg']:g}°, order {block['order']})"
 
 
 def fitted_blocks(data: dict, params: GearPairParams, driver: PitchCurve, fit: MotionFit | None) -> None:
