@@ -33,6 +33,7 @@ CODES: dict[str, str] = {
     "jams": "a mesh's play falls below zero somewhere over the process's tolerances: the made pair can bind",
     "loose": "a mesh's worst-case play exceeds what a maker would accept (process.max_play)",
     "backlash-fixed": "the profile fixes teeth.backlash below what the process's worst case needs",
+    "kerf-ignored": "output.kerf is set but the process's cutter is used (process.kerf, or a router's tool)",
 }
 """Every warning code gearcad emits, with what it means.  Codes never change meaning."""
 

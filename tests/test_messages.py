@@ -10,6 +10,8 @@ import pytest
 from gearcad.errors import DesignError
 from gearcad.mechanisms.parts import _with_bore
 
+from .conftest import ROOT
+
 
 def _bore(diameter, keyway_width=0.0, keyway_depth=0.0, flat=0.0):
     return SimpleNamespace(diameter=diameter, keyway_width=keyway_width, keyway_depth=keyway_depth, flat=flat, pilot=0)
@@ -172,3 +174,42 @@ def test_the_fitted_motion_error_is_printed_and_on_the_page(tmp_path, capsys):
     error = json.loads((tmp_path / "out" / "fitted" / "report.json").read_text(encoding="utf-8"))["motion"]["error_deg"]
     assert error == pytest.approx(np.degrees(0.002), rel=1e-6) and f"motion error {error:.2g}°" in printed
     assert f"motion error {error:.2g}°" in (tmp_path / "out" / "fitted" / "index.html").read_text(encoding="utf-8")
+
+
+@pytest.mark.parametrize(
+    ("process", "output_kerf", "warned"),
+    [
+        (
+            {"kind": "laser", "kerf": 0.2},
+            0.15,
+            "output.kerf = 0.15 is not used: the cut paths are offset by half of process.kerf = 0.2",
+        ),
+        ({"kind": "laser", "kerf": 0.15}, 0.15, None),  # the same width twice
+        ({"kind": "laser"}, 0.15, None),  # output.kerf is the beam's width
+        ({"kind": "laser"}, 0.0, "the laser's default kerf 0.2"),  # 0 given, 0.2 cut
+        ({"kind": "cnc"}, 0.2, "process.tool_diameter = 3.175"),
+        ({"kind": "fdm"}, 0.1, None),  # a printer has no cutter: output.kerf is used
+        (None, 0.1, None),
+    ],
+)
+def test_two_kerfs_follow_one_rule_and_warn_when_they_differ(process, output_kerf, warned):
+    from gearcad.mechanisms import fit
+    from gearcad.profiles import load_profile
+
+    overrides = {"output.kerf": output_kerf, **({f"process.{k}": v for k, v in process.items()} if process else {})}
+    params = load_profile(ROOT / "profiles" / "spur_pair.toml", overrides=overrides)
+    found = fit.kerf_finding(params)
+    assert (found is None) == (warned is None)
+    if found is not None:
+        assert found.code == "kerf-ignored" and warned in found.message
+        made = fit.made(params).output.kerf  # the width cut is the one the message names
+        assert f"{made:g}" in found.message.split("half of")[1]
+
+
+def test_a_build_lists_the_kerf_it_ignores():
+    import gearcad
+
+    overrides = {"output.kerf": 0.15, "process.kind": "laser", "process.kerf": 0.2, "teeth": None}
+    overrides |= {"output.tolerance": 0.01, "output.charts": False, "output.animation": False}
+    design = gearcad.design(gearcad.load_profile(ROOT / "profiles" / "spur_pair.toml", overrides=overrides))
+    assert [f.code for f in design.findings].count("kerf-ignored") == 1
