@@ -11,6 +11,7 @@ import numpy as np
 
 from gearcad.compare import key_numbers
 from gearcad.geometry.outline import Outline
+from gearcad.profiles import profile_schema
 from gearcad.starter import new_profile
 from gearcad.sweeps.evaluate import flatten
 from gearcad.sweeps.space import read_sweep_file
@@ -98,7 +99,9 @@ def test_a_sweep_file_reads_its_profile_from_its_own_folder(tmp_path):
     assert "taken from\n  the sweep file's folder" in README
 
 
-def test_new_gives_the_users_design_without_the_papers_comments(tmp_path):
+def test_new_gives_the_users_design_without_the_papers_comments(tmp_path, monkeypatch):
+    schema = profile_schema()  # once, not per copy: the copy's text is under test here
+    monkeypatch.setattr("gearcad.starter.profile_schema", lambda: schema)
     for example in ("elliptic_focus", "walker", "roller_body_m3"):
         path, _ = new_profile(f"mine_{example}", example, tmp_path / example)
         text = path.read_text(encoding="utf-8")
