@@ -6,7 +6,9 @@
     python3 tasks.py consumers  # install the makers' programs (Debian) and run every consumer check
 
 Each command first makes .venv (once) and installs gearcad into it (again only when
-pyproject.toml changes), then runs.  Extra arguments are passed on: ``python3 tasks.py build
+pyproject.toml changes; about 70 packages, 80 s on a fast connection, a line per package, the
+whole log in .venv/pip-install.log), then runs.  Afterwards ``.venv/bin/gearcad`` is the command
+line, with no activation needed.  Extra arguments are passed on: ``python3 tasks.py build
 profiles/walker.toml --out /tmp/x`` or ``python3 tasks.py test -k walker``.
 
 ``consumers`` installs, with apt-get (as root, or through sudo), the programs that
@@ -25,6 +27,7 @@ import os
 import shutil
 import subprocess
 import sys
+import time
 import venv
 from pathlib import Path
 
@@ -33,6 +36,8 @@ VENV = ROOT / ".venv"
 BIN = VENV / ("Scripts" if os.name == "nt" else "bin")
 PYTHON = BIN / ("python.exe" if os.name == "nt" else "python")
 STAMP = VENV / ".gearcad-installed"
+LOG = VENV / "pip-install.log"
+LAUNCHER = f"{VENV.name}/{BIN.name}/gearcad"
 
 
 def _say(message: str) -> None:
@@ -54,9 +59,67 @@ def ensure_environment() -> None:
     pip = [str(PYTHON), "-m", "pip"]
     if subprocess.run([*pip, "--version"], capture_output=True).returncode != 0:
         pip = [sys.executable, "-m", "pip", "--python", str(PYTHON)]
-    _say("installing gearcad and its dependencies (first run only)")
-    subprocess.run([*pip, "install", "--quiet", "--disable-pip-version-check", "-e", f"{ROOT}[test,sweep]"], check=True)
+    _say(INSTALLING)
+    start = time.monotonic()
+    command = [*pip, "install", "--disable-pip-version-check", "--progress-bar", "off", "-e", f"{ROOT}[test,sweep]"]
+    with (
+        open(LOG, "w", encoding="utf-8") as log,
+        subprocess.Popen(
+            command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, errors="replace"
+        ) as pip_run,
+    ):
+        for shown in progress(_logged(pip_run.stdout, log)):
+            _say(shown)
+    if pip_run.returncode != 0:
+        raise SystemExit(f"tasks: pip failed (exit {pip_run.returncode}); its whole output is in {LOG}")
+    _say(f"installed in {time.monotonic() - start:.0f} s; the command line is now {LAUNCHER}")
     STAMP.write_text(want)
+
+
+def _logged(lines, log):
+    for line in lines:
+        log.write(line)
+        yield line
+
+
+INSTALLING = (
+    f"installing gearcad and the ~70 packages it needs (numpy, scipy, shapely, OpenCASCADE, matplotlib, "
+    f"pytest, …; about 1 GB) into {VENV.name}/ — first run only, and again when pyproject.toml changes. "
+    "It took 80 s on a fast connection; allow several minutes on a busy machine. One line per package:"
+)
+
+
+def progress(lines):
+    """The lines to show of pip's output, each as it comes: one per package pip collects (with
+    its download's size, or "cached"), one when it installs them all, pip's warnings and errors.
+    The rest (requirements already met, hashes, metadata) goes only to the log."""
+    pending = None
+    for line in lines:
+        text = line.strip()
+        size = text.rsplit("(", 1)[1].rstrip(")") if text.endswith(")") and "(" in text else ""
+        if pending and text.startswith("Downloading "):
+            yield f"  {pending} ({size})" if size else f"  {pending}"
+            pending = None
+            continue
+        if pending and text.startswith("Using cached "):
+            yield f"  {pending} (cached)"
+            pending = None
+            continue
+        if pending:
+            yield f"  {pending}"
+            pending = None
+        if text.startswith("Collecting "):
+            pending = text.removeprefix("Collecting ").split(" ", 1)[0]
+        elif text.startswith("Installing collected packages:"):
+            count = len(text.split(":", 1)[1].split(","))
+            wait = " (unpacking and compiling: silent for a minute or so)" if count > 10 else ""
+            yield f"  installing {count} package{'s' if count > 1 else ''}{wait}"
+        elif text.startswith("Building wheels for collected packages:"):
+            yield "  building " + text.split(":", 1)[1].strip()
+        elif text.startswith(("ERROR", "WARNING", "error:")):
+            yield "  " + text
+    if pending:
+        yield f"  {pending}"
 
 
 CONSUMER_PACKAGES = (
@@ -134,7 +197,11 @@ def main(argv: list[str]) -> int:
     ensure_environment()
     os.chdir(ROOT)
     if argv[0] == "build":
+        count = len(list(Path("profiles").glob("*.toml")))
+        what = "the profiles given" if argv[1:] else f"the {count} profiles in profiles/ (about 10 s in all)"
+        _say(f"{LAUNCHER} build: {what}, a line as each is built")
         return subprocess.run([str(BIN / "gearcad"), "build", *argv[1:]], env=_bytecode_kept()).returncode
+    _say("running the test suite: pytest -q on every core (about 70 s on 2 cores; a dot per test)")
     return subprocess.run([str(PYTHON), "-m", "pytest", "-q", *argv[1:]], env=_bytecode_kept()).returncode
 
 

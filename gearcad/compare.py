@@ -1,7 +1,8 @@
 """``gearcad compare A B``: two designs' key numbers and findings side by side.
 
 The numbers are the report's own (``report.json``), flattened to dotted keys; lists of
-gears are keyed by their place (``gears.1.name``), so two designs line up row by row.
+gears are keyed by their place from 0 (``gears.0.name``), as ``sweep`` and report.json's lists number
+them, so two designs line up row by row.
 """
 
 from __future__ import annotations
@@ -25,7 +26,7 @@ def _flat(value: Any, key: str) -> Iterator[tuple[str, Any]]:
         for k, v in value.items():
             yield from _flat(v, f"{key}.{k}")
     elif isinstance(value, list) and value and all(isinstance(v, dict) for v in value):
-        for n, v in enumerate(value, 1):  # by place, so that two designs' gears line up
+        for n, v in enumerate(value):  # by place from 0, as sweep keys them: two designs' gears line up
             yield from _flat(v, f"{key}.{n}")
     elif isinstance(value, bool | int | float | str) and not isinstance(value, list):
         yield key, value

@@ -3,11 +3,12 @@
 from __future__ import annotations
 
 import logging
+import math
 from dataclasses import dataclass
 
 from .errors import ProfileError
 
-__all__ = ["CODES", "ERRORS", "Finding", "finding", "failing", "check_codes"]
+__all__ = ["CODES", "ERRORS", "Finding", "finding", "failing", "check_codes", "listed", "amount"]
 
 log = logging.getLogger("gearcad")
 log.addHandler(logging.NullHandler())  # a library says nothing on stderr unless its user asks
@@ -33,6 +34,7 @@ CODES: dict[str, str] = {
     "loose": "a mesh's worst-case play exceeds what a maker would accept (process.max_play)",
     "backlash-fixed": "the profile fixes teeth.backlash below what the process's worst case needs",
     "bed": "a part is larger than the printer's bed (output.bed): no print plate holds it",
+    "kerf-ignored": "output.kerf is set but the process's cutter is used (process.kerf, or a router's tool)",
 }
 """Every warning code gearcad emits, with what it means.  Codes never change meaning."""
 
@@ -73,3 +75,18 @@ def check_codes(codes) -> tuple[str, ...]:
 def failing(findings, allow=()) -> tuple[Finding, ...]:
     """The findings that are errors (:data:`ERRORS`) and not allowed by code."""
     return tuple(f for f in findings if f.code in ERRORS and f.code not in allow)
+
+
+def amount(value: float, spec: str = ".4g", *, infinite: str = "none") -> str:
+    """A number as a message shows it to a person: ``spec``-formatted, and ``infinite`` (a word:
+    "none", "no limit") where Python would print ``inf`` or ``nan``."""
+    value = float(value)
+    return format(value, spec) if math.isfinite(value) else infinite
+
+
+def listed(values, spec: str = "g", *, empty: str = "none") -> str:
+    """Numbers (or words) as a person writes them: "0.2, 0.3 and 0.4", not ``[0.2, 0.3, 0.4]``."""
+    items = [format(v, spec) if isinstance(v, int | float) else str(v) for v in values]
+    if not items:
+        return empty
+    return items[0] if len(items) == 1 else f"{', '.join(items[:-1])} and {items[-1]}"

@@ -41,18 +41,31 @@ def _source(name: str) -> Path:
 
 
 def _retitled(text: str, name: str, source: str) -> str:
-    """``text`` with its top-level ``name`` and ``title`` set (added if absent), schema line first."""
-    head, table, rest = text.partition("\n[")
-    head = _TOP_KEY.sub("", head)
-    lines = [ln for ln in head.rstrip("\n").split("\n") if ln.strip() != SCHEMA_LINE]
-    while lines and not lines[-1].strip():
-        lines.pop()
-    comments = 0
-    while comments < len(lines) and lines[comments].startswith("#"):
-        comments += 1
+    """``text`` as the user's own design: its top-level ``name`` and ``title`` set (added if
+    absent), the schema line first, a neutral header in place of the example's comments, no
+    comment lines or comments after keys (they tell the example's paper: its tables, its 270 rpm),
+    and no ``driver_rpm`` (the paper's speed: the default applies).  Every value that shapes the
+    parts is kept."""
+
+    def bare(line: str) -> str | None:
+        """The line without its comment (None: a comment line, or the example's speed)."""
+        if line.lstrip().startswith("#") or re.match(r"\s*driver_rpm\s*=", line):
+            return None
+        for at in (i for i, c in enumerate(line) if c == "#"):
+            try:
+                tomllib.loads(line[:at])  # a whole key = value (or [table]) before it: a comment
+            except tomllib.TOMLDecodeError:
+                continue  # a '#' inside a string, or a line of a value spread over lines
+            return line[:at].rstrip()
+        return line.rstrip()
+
+    kept = [ln for ln in map(bare, text.split("\n")) if ln is not None]
+    head, table, rest = "\n".join(kept).partition("\n[")
+    head = [ln for ln in _TOP_KEY.sub("", head).split("\n") if ln.strip()]
+    header = f"# {name}: started from gearcad's example {source} (gearcad new); every key: docs/reference.md"
     keys = [f"name = {json.dumps(name)}", f"title = {json.dumps(f'{name} (started from {source})')}"]
-    body = [SCHEMA_LINE, *lines[:comments], *keys, *[ln for ln in lines[comments:] if ln.strip()]]
-    return "\n".join(body) + "\n" + table + rest
+    body = re.sub(r"\n{3,}", "\n\n", table + rest)
+    return "\n".join([SCHEMA_LINE, header, *keys, *head]) + "\n" + body.rstrip("\n") + "\n"
 
 
 def new_profile(name: str, source: str = "elliptic_focus", folder: str | Path = ".") -> tuple[Path, Path]:

@@ -20,6 +20,7 @@ import shapely
 from scipy.optimize import brentq, minimize_scalar
 from scipy.spatial import cKDTree
 
+from ..findings import amount, listed
 from . import rollers as RB
 from .claims import PAPER_M, paper_check
 
@@ -180,7 +181,8 @@ def radius_claim_check(direction: str = "vertical", amplitude: float = 0.1, m: i
     message = (
         f"the roller radius changes the body ({direction}, m = {m}, a = {amplitude:g}): over r = "
         f"{rows[0]['r']:g}…{rows[-1]['r']:g} R the out-of-roundness goes {oor[0]:.4f}→{oor[-1]:.4f} and the "
-        f"largest loop-free amplitude {simple[0]:.4f}→{simple[-1]:.4f}; the convex ('oval') limit "
+        f"largest loop-free amplitude {amount(simple[0], '.4f', infinite='no limit')}→"
+        f"{amount(simple[-1], '.4f', infinite='no limit')}; the convex ('oval') limit "
         f"{min(convex):.4f}…{max(convex):.4f} depends on r only where the offset grows a cusp"
     )
     return paper_check(
@@ -204,8 +206,8 @@ def nodal_points_check(direction: str = "vertical", m: int = 3, amplitude: float
         "for every roller radius of the figure",
         {"looped_for_r": looped, "loop_free_for_r": clean},
         not clean,
-        f"at a = {amplitude:g} ({direction}, m = {m}) the contour has loops only for r in {looped}; "
-        f"for r in {clean} it has none",
+        f"at a = {amplitude:g} ({direction}, m = {m}) the contour has loops only for r = {listed(looped)} R; "
+        f"for r = {listed(clean)} R it has none",
     )
 
 

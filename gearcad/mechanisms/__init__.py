@@ -36,7 +36,13 @@ def design(params: ProfileParams, stage: str = "full") -> Design:
         return replace(staged_design(fit.made(params), stage), seconds=time.perf_counter() - start)
     mechanism = import_module(f".{MECHANISMS[params.mechanism].module}", __name__)
     if params.mechanism in mesh_fit.KEYS:  # a train's meshes, a body's rollers: their backlash and bands
-        return finish(mesh_fit.chosen(params, mechanism.design), start=start)
+        return finish(_kerf_noted(mesh_fit.chosen(params, mechanism.design), params), start=start)
     draft, bands = fit.chosen(params, mechanism.design)  # the process's cutter and the backlash it needs
     draft = band_trains.with_mesh_bands(fit.with_bands(draft, bands))  # a train's meshes, a body's rollers
-    return finish(draft, start=start)
+    return finish(_kerf_noted(draft, params), start=start)
+
+
+def _kerf_noted(draft: Draft, params: ProfileParams) -> Draft:
+    """The draft with ``kerf-ignored`` among its findings when the profile's two kerfs differ."""
+    found = fit.kerf_finding(params)
+    return draft if found is None else replace(draft, findings=(*draft.findings, found))

@@ -17,7 +17,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from ..findings import finding
+from ..findings import Finding, finding
 from ..geometry.arcfit import ArcRing
 from .band import Band, PairGeometry, pair_band
 from .base import Design
@@ -94,6 +94,29 @@ def made(params, backlash: float | None = None):
         chosen = needed_backlash(params) if backlash is None else backlash
         update["teeth"] = params.teeth.model_copy(update={"backlash": chosen})
     return params.model_copy(update=update) if update else params
+
+
+def kerf_finding(params) -> Finding | None:
+    """``kerf-ignored`` when the profile sets ``output.kerf`` and the process cuts with another
+    width.  The rule (docs/fit.md): a laser cuts ``process.kerf`` wide (else ``output.kerf``,
+    else 0.2 mm), a router its ``process.tool_diameter``; any other profile ``output.kerf``."""
+    process = _process(params)
+    output = getattr(params, "output", None)
+    if process is None or output is None or "kerf" not in output.model_fields_set:
+        return None
+    used = process.cutter(output.kerf)
+    if process.kind not in ("laser", "cnc") or abs(used - output.kerf) <= 1e-9:
+        return None
+    if process.kind == "cnc":
+        source = f"process.tool_diameter = {used:g}"
+    else:
+        source = f"process.kerf = {used:g}" if process.kerf is not None else f"the laser's default kerf {used:g}"
+    return finding(
+        "kerf-ignored",
+        f"output.kerf = {output.kerf:g} is not used: the cut paths are offset by half of {source} "
+        f"(process.kind = {process.kind!r} cuts with the process's width; remove output.kerf or make them agree)",
+        "output",
+    )
 
 
 def _excess(params, band: Band) -> float:

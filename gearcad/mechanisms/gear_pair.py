@@ -20,6 +20,7 @@ from ..tolerances import DEFAULT, budget, designed_play
 from .base import Motion, Table
 from .budget import check_section_work, check_teeth_work
 from .finish import Contact, Draft, PartSpec
+from .pair_motion import motion_block, motion_phrase
 from .pair_papers import PaperExtras, paper_extras
 from .pair_pitch import PairDesign, pitch_design
 from .parts import Placement, check_bore
@@ -226,12 +227,14 @@ def _normal_module_note(params: GearPairParams, pitch: PairDesign, teeth: Toothe
     )
 
 
-def _summary(pitch: PairDesign, teeth: ToothedPairData | None, findings: int) -> str:
+def _summary(pitch: PairDesign, teeth: ToothedPairData | None, findings: int, params: GearPairParams) -> str:
     pair = pitch.pair
     text = (
         f"E = {pair.center_distance:.6f} mm, closure {pair.closure_error:.1e} rad, "
         f"rolling {pair.rolling_residual:.1e} mm"
     )
+    if pitch.motion is not None:
+        text += ", " + motion_phrase(motion_block(pitch.motion, params))
     if teeth is not None:
         z1, z2 = teeth.plan.teeth
         text += f", {z1}/{z2} teeth m = {teeth.plan.module:.4f}, {'meshes' if teeth.mesh.meshes else 'INTERFERES'}"
@@ -342,7 +345,7 @@ def design(params: GearPairParams) -> Draft:
     return Draft(
         params=params,
         mechanism="gear-pair",
-        summary=_summary(pitch, teeth, len(findings)),
+        summary=_summary(pitch, teeth, len(findings), params),
         findings=findings,
         parts=tuple(parts),
         placements=placements,

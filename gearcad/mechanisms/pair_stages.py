@@ -259,6 +259,10 @@ def staged_design(params: GearPairParams, stage: str) -> Design:
         f"stage {stage}: E = {p['center_distance']:.6f} mm, closure {p['closure_error']:.1e} rad, "
         f"rolling {p['rolling_residual']:.1e} mm, ratio {p['ratio_min']:.6g}…{p['ratio_max']:.6g}"
     )
+    if "motion" in pitch.extra:
+        from .pair_motion import motion_phrase
+
+        summary += ", " + motion_phrase(pitch.extra["motion"])
     if toothed:
         for block, teeth in zip(pitch.blocks, _teeth(params, pitch, tol)):
             block["teeth"] = teeth

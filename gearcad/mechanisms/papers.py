@@ -33,6 +33,23 @@ SEEDS = {
     "000": "Kovalevsky & Vikhrenko: a wheel driven through an inclined rack",
     "001": "gear trains on a carrier, the method of stopping",
 }
+CITATIONS = {
+    "004": "N. I. Gorbach, D. V. Yarovenko, «Кинематика зубчатых передач с некруглыми колесами» (Kinematics of "
+    "gear drives with noncircular wheels), on problem 14.6 of I. V. Meshchersky's «Сборник задач по теоретической "
+    "механике» (Moscow: Nauka, 1981)",
+    "002": "A. T. Skoybeda, I. M. Komyak, V. N. Zhukovets, «Применение некруглых зубчатых колес в приводе "
+    "колесно-шагающего движителя» (Noncircular gears in the drive of a wheel-walking mover), Belarusian National "
+    "Technical University, Minsk",
+    "003": "V. A. Gogolin, M. T. Kobylyansky, V. F. Gorbunov, D. M. Kobylyansky, «Геометрия и кинематика тел при "
+    "движении по роликам» (Geometry and kinematics of bodies moving on rollers)",
+    "000": "A. S. Kovalevsky (student), V. S. Vikhrenko (supervisor), «Кинематика привода катящегося колеса» "
+    "(Kinematics of the drive of a rolling wheel), Belarusian State Technological University, department of "
+    "mechanics and design",
+    "001": "a lecture on the method of stopping: three gears on a crank (a transcript; no author or title given)",
+}
+"""Each seed's paper as a reader cites it: authors, title as printed (with a translation) and
+where it comes from, as the seed's own first lines give them."""
+
 _ERRATA_004 = {
     ("table1", 150, 1): "Table 1 prints 1.08; eq. 8 gives 1.0708",
     ("table1", 210, 1): "Table 1 prints 1.08; eq. 8 gives 1.0708",
@@ -109,7 +126,7 @@ def _seed004(params, data: dict) -> dict | None:
     ]
     claim = data.get("claim")  # the type-2 claim: identical ellipses roll at a + b
     claims = _claims([{**claim, "claim": claim["source"], "message": _claim_message(claim)}] if claim else [])
-    return _block("004", paper["source"], tables, claims + _claims(data.get("paper_claims", [])))
+    return _block("004", tables, claims + _claims(data.get("paper_claims", [])))
 
 
 def _claim_message(claim: dict) -> str:
@@ -159,7 +176,7 @@ def _seed002(params, data: dict) -> dict | None:
                 f"that rolls differs from Table 1 by up to {walker['paper_table_offset']:.3g} mm",
             }
         )
-    return _block("002", paper["source"], tables, claims)
+    return _block("002", tables, claims)
 
 
 def _seed003(params, data: dict) -> dict | None:
@@ -189,13 +206,17 @@ def _seed003(params, data: dict) -> dict | None:
     body = params.body
     same = body.m == ex["m"] and math.isclose(body.amplitude * body.scale, ex["a_m"] * 1000)
     if same and centre and math.isclose(centre.get("w", 0.0), 3 * math.pi):
-        rounded = "the paper rounds a·m·w and a·w²(m² + 1) to one significant digit"
+        a, m = ex["a_m"], ex["m"]
+        coarse = (
+            f"to one digit {centre['a_max'] / 1000:.3g} m/s² is {centre['a_max'] / 1000:.0f}; the printed value is "
+            f"a·w²(m² + 1) with w = 3π taken as 10 s⁻¹: {a:g}·10²·{m * m + 1} = {a * 100 * (m * m + 1):g}"
+        )
         example = [
-            _row("centre Vmax, m/s", ex["Vmax_m_s"], centre["v_max"] / 1000, rounded),
-            _row("centre Amax, m/s²", ex["Amax_m_s2"], centre["a_max"] / 1000, rounded),
+            _row("centre Vmax, m/s", ex["Vmax_m_s"], centre["v_max"] / 1000, "a·m·w, printed to one digit"),
+            _row("centre Amax, m/s²", ex["Amax_m_s2"], centre["a_max"] / 1000, coarse),
         ]
         tables.append({"name": "The example: w = 3π s⁻¹, m = 3, a = 0.01 m", "rows": example})
-    return _block("003", paper["source"], tables, _claims(data.get("paper_checks", [])))
+    return _block("003", tables, _claims(data.get("paper_checks", [])))
 
 
 def _seed000(params, data: dict) -> dict | None:
@@ -210,7 +231,7 @@ def _seed000(params, data: dict) -> dict | None:
              "eq. 10 gives the other common tangent here", exact=1e-9),
     ]  # fmt: skip
     checks = data.get("checks", {})
-    return _block("000", "seed 000", [{"name": "Eqs. 2 and 10 against the closed contour", "rows": rows}],
+    return _block("000", [{"name": "Eqs. 2 and 10 against the closed contour", "rows": rows}],
                   _claims(checks.values()))  # fmt: skip
 
 
@@ -231,15 +252,15 @@ def _seed001(params, data: dict) -> dict | None:
         rows.append(_row("ω3 = ω1·r1/r3 + ω·(r1 − r3)/r3, rpm", formula, gears[2]["omega_rpm"], exact=1e-9))
     if not rows:
         return None
-    return _block("001", "seed 001", [{"name": "The method of stopping", "rows": rows}], [])
+    return _block("001", [{"name": "The method of stopping", "rows": rows}], [])
 
 
-def _block(seed: str, source: str, tables: list[dict], claims: list[dict]) -> dict:
+def _block(seed: str, tables: list[dict], claims: list[dict]) -> dict:
     rows = [r for t in tables for r in t["rows"]]
     return {
         "seed": seed,
         "paper": SEEDS[seed],
-        "source": source,
+        "source": CITATIONS[seed],
         "page": "papers.html",
         "agree": sum(r["verdict"] == "agrees" for r in rows),
         "differ": sum(r["verdict"] == "differs" for r in rows),

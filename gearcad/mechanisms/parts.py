@@ -7,6 +7,7 @@ and then verified: every cut ring is simple and within the tolerance of the exac
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from typing import Protocol
 
@@ -124,11 +125,39 @@ def _with_bore(outer: np.ndarray, bore: BoreSpec | None, tolerance: float, *, pa
     if reach + wall >= root:
         key = "bore.keyway_depth" if bore.keyway_depth > 0 and reach > bore.diameter / 2 else "bore.diameter"
         value = bore.keyway_depth if key == "bore.keyway_depth" else bore.diameter
+        largest = _largest_fitting(bore, key, tolerance, root - wall)
+        remedy = f"{key} = {largest:g} fits" if largest > 0 else f"no {key} fits"
         raise DesignError(
             f"{key} = {value:g}: the bore reaches {reach:.3f} mm from the pivot of {part}, whose outline "
-            f"comes within {root:.3f} mm of it; leave at least {wall:.3f} mm of material"
+            f"comes within {root:.3f} mm of it; leave at least {wall:.3f} mm of material: {remedy}, or make "
+            f"the gears larger, so that the outline keeps {reach + wall:.2f} mm from the pivot"
         )
     return Outline((outer, hole))
+
+
+def _largest_fitting(bore: BoreSpec, key: str, tolerance: float, room: float) -> float:
+    """The largest value of ``key`` (bore.diameter or bore.keyway_depth) whose hole reaches less
+    than ``room`` mm from the pivot, rounded down to 0.1 mm (0.01 mm below 0.1; 0 when none fits)."""
+    field = key.split(".")[1]
+
+    def reach(value: float) -> float:
+        sizes = {"diameter": bore.diameter, "keyway_width": bore.keyway_width, "keyway_depth": bore.keyway_depth}
+        sizes[field] = value
+        hole = bore_ring(sizes.pop("diameter"), tolerance, flat=bore.flat, **sizes)
+        return 0.0 if hole is None else float(np.max(np.hypot(hole[:, 0], hole[:, 1])))
+
+    lo, hi = 0.0, float(getattr(bore, field))  # reach(lo) fits (or nothing does), reach(hi) does not
+    if reach(lo) >= room:
+        return 0.0
+    for _ in range(40):
+        mid = (lo + hi) / 2
+        lo, hi = (mid, hi) if reach(mid) < room else (lo, mid)
+    for step in (0.1, 0.01):
+        steps = math.floor(lo / step + 1e-9)
+        for value in (round(steps * step, 2), round((steps - 1) * step, 2)):  # the first may round up to hi
+            if value > 0 and reach(value) < room:
+                return value
+    return 0.0
 
 
 def _circle_arcs(radius: float, *, clockwise: bool) -> ArcRing:

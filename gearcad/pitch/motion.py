@@ -21,7 +21,7 @@ import numpy as np
 from ..errors import DesignError
 from .curve import TWO_PI, harmonic_series
 
-__all__ = ["MotionLimits", "MotionFit", "fit_motion", "follower_from_ratio", "law_functions"]
+__all__ = ["MotionLimits", "MotionFit", "fit_motion", "follower_from_ratio", "law_functions", "smoothest_law"]
 
 GRID = 4096
 """Points per turn on which limits are checked: the laws kept are of order ≤ n/2 ≤ a few
@@ -152,12 +152,37 @@ def fit_motion(
         if best is not None
         else "no law within them exists"
     )
+    allowed = (
+        f"the smallest ratio the teeth allow is {lo:.4g} (the largest {hi:.4g}; {limits.why})"
+        if lo <= hi
+        else f"the teeth allow no ratio ({limits.why})"
+    )
     raise DesignError(
         f"{key}: no closing ratio law meets the motion within {math.degrees(tolerance):g}° and the limits teeth "
-        f"need — {achievable}; the smallest ratio the teeth allow is {lo:.4g} (the largest {hi:.4g}; {limits.why})"
+        f"need — {achievable}; {allowed}"
         + (f", curvature radius ≥ {limits.curvature_radius:.4g} mm" if limits.curvature_radius > 0 else "")
         + f"; the motion asks for ratios from about {given.min():.4g} to {given.max():.4g}"
     )
+
+
+def smoothest_law(
+    psi: np.ndarray, *, lobes: int, mate_lobes: int, tolerance: float
+) -> tuple[float, float, float] | None:
+    """The law :func:`fit_motion` keeps when no limit binds — the lowest order within
+    ``tolerance`` — as (k_min, k_max, smallest convex radius of curvature at a centre distance of
+    1): radii scale with the centre distance, ratios do not.  None if no order meets the tolerance."""
+    psi = np.asarray(psi, dtype=float)
+    n = len(psi)
+    mean = lobes / mate_lobes
+    p = psi - mean * TWO_PI * np.arange(n) / n
+    spectrum = np.fft.rfft(p) / n
+    for order in range(0, (n - 1) // 2 + 1, lobes):
+        keep = np.zeros(len(spectrum), dtype=bool)
+        keep[lobes : order + 1 : lobes] = True
+        kept = np.where(keep, spectrum, 0)
+        if np.max(np.abs(np.fft.irfft(kept * n, n) + spectrum[0].real - p)) <= tolerance:
+            return _law_measures(mean, kept, 1.0)
+    return None
 
 
 def law_functions(fit: MotionFit):

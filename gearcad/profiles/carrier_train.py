@@ -8,6 +8,7 @@ from typing import Annotated, Literal
 from pydantic import Field, model_validator
 
 from .common import BoreParams, OutputParams, ParamsModel, distinct_names
+from .messages import show
 from .process import ProcessParams
 from .values import (
     FASTEST,
@@ -175,7 +176,7 @@ def _check_compound(compound, module, teeth, meshes, names, problems: Problems) 
             "compound.gear",
             compound.gear,
             "must be a gear meshed 'external' with the gear before it and 'internal' with the gear after it, "
-            f"which turns inside it (train.meshes = {list(meshes)}; it allows {which})",
+            f"which turns inside it (train.meshes = {show(list(meshes))}; it allows {which})",
         )
         return None
     inner_module = compound.inner_module if compound.inner_module is not None else module

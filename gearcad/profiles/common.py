@@ -79,7 +79,8 @@ class OutputParams(ParamsModel):
     chamfer: LengthOrZero = 0.0
     """Chamfer on the solid parts' edges, mm (0: none)."""
     kerf: Kerf = 0.0
-    """Width the cutter removes, mm: outlines are offset by half of it."""
+    """Width the cutter removes, mm: outlines are offset by half of it. Under process.kind "laser"
+    process.kerf wins when both are set (they differ: warning kerf-ignored), under "cnc" the tool's diameter."""
     cut_layer: LayerName = "CUT"
     """DXF layer of the outlines to cut."""
     mark_layer: LayerName = "MARK"

@@ -44,7 +44,8 @@ class ProcessParams(ParamsModel):
     kind: choice(*KINDS) = "none"
     """How the parts are made: "laser", "fdm" (printed), "cnc" (router) or "none" (exact parts)."""
     kerf: Small | None = None
-    """Laser: the beam's width (default output.kerf if set, else 0.2); the cut paths are offset by half."""
+    """Laser: the beam's width (default output.kerf if set, else 0.2); the cut paths are offset by half.
+    It wins over output.kerf (both set and different: warning kerf-ignored)."""
     kerf_variation: Small | None = None
     """Laser: how far the kerf strays either way over a sheet (± mm of width; default 0.05)."""
     xy_compensation: number("a length in mm", ge=-2, le=2) | None = None
