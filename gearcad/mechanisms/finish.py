@@ -19,7 +19,7 @@ from ..findings import Finding, finding
 from ..tolerances import budget
 from . import layouts
 from .base import Assembly, Design, Motion, Table, assembly_depth, assembly_overlap
-from .fit import assembly_marks
+from .marks import assembly_marks
 from .papers import papers_block
 from .parts import BoreSpec, Part, Placement, cut_paths, make_part
 
