@@ -18,8 +18,8 @@ from . import batch as _batch
 from . import profiles as _profiles
 from .batch import BuildResult
 from .errors import ProfileError
+from .fitting import design as _design
 from .mechanisms import Design
-from .mechanisms import design as _design
 from .profiles import ProfileParams
 from .publish import check_out
 
@@ -137,13 +137,13 @@ def sweep(profile: str | Path | Mapping[str, Any], vary: Sequence[str] | Mapping
 def coupon(profile: ProfileParams | Design | str | Path | Mapping[str, Any], out: str | Path) -> Path:
     """Write a gear pair's calibration coupon into ``out/<name>-coupon/`` (published atomically):
     ``coupon.dxf``, ``coupon.svg``, ``coupon.3mf`` and ``coupon.txt`` naming the key to set after
-    measuring (see :mod:`gearcad.mechanisms.coupon`); ``profile`` may be its design already.
+    measuring (see :mod:`gearcad.fitting.coupon`); ``profile`` may be its design already.
     Returns the folder.  Raises
     :class:`~gearcad.errors.ProfileError` for a profile that is not a gear pair or names no
     process (``process.kind`` "none")."""
     from .export.coupon import write_coupon
+    from .fitting.coupon import check_coupon, coupon_data
     from .interrupts import interrupt_guard
-    from .mechanisms.coupon import check_coupon, coupon_data
     from .publish import Publisher, check_out
 
     made = profile if isinstance(profile, Design) else None

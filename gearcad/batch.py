@@ -23,8 +23,9 @@ from pathlib import Path
 
 from .errors import GearcadError, OutputError, ProfileError
 from .findings import Finding
+from .fitting import design
 from .interrupts import Interrupted, held_signals, interrupt_guard
-from .mechanisms import Design, design
+from .mechanisms import Design
 from .profiles import ProfileParams
 from .publish import Publisher, _shown, check_out, out_lock
 from .threads import cores, set_threads

@@ -10,7 +10,7 @@ from pathlib import Path
 import pytest
 
 import gearcad
-from gearcad.mechanisms.fit import pair_bands
+from gearcad.fitting.fit import pair_bands
 
 ROOT = Path(__file__).parent.parent
 QUICK = {"output.charts": False, "output.animation": False, "output.formats": ["svg"]}

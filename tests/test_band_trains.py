@@ -14,9 +14,9 @@ import math
 import numpy as np
 import pytest
 
+from gearcad.fitting.band_mesh import mesh_band, mesh_play
+from gearcad.fitting.band_trains import mesh_bands, roller_meshes, train_meshes, with_mesh_bands
 from gearcad.mechanisms import carrier_train, roller_body
-from gearcad.mechanisms.band_mesh import mesh_band, mesh_play
-from gearcad.mechanisms.band_trains import mesh_bands, roller_meshes, train_meshes, with_mesh_bands
 
 from .conftest import drafted
 
@@ -207,7 +207,7 @@ def test_a_backlash_too_large_is_refused_naming_the_key():
 @pytest.fixture(scope="module")
 def laser_train():
     """planetary_internal under a laser's defaults, its backlash left to gearcad (coarse outlines)."""
-    from gearcad.mechanisms import design
+    from gearcad.fitting import design
 
     from .conftest import COARSE, profile
 
@@ -216,8 +216,8 @@ def laser_train():
 
 def _worst(params, backlash):
     """The tightest worst case over a train's meshes (mm less the margin) cut with ``backlash``."""
-    from gearcad.mechanisms.fit import made
-    from gearcad.mechanisms.mesh_fit import with_backlash
+    from gearcad.fitting.fit import made
+    from gearcad.fitting.mesh_fit import with_backlash
 
     bands = mesh_bands(carrier_train.design(with_backlash(made(params), backlash)))
     return min(mb.band.band[0] - mb.band.margin for mb in bands)
@@ -246,7 +246,7 @@ def test_a_fixed_backlash_too_small_warns_with_the_value_needed():
     (about the closed form: the play grows one for one with the backlash)."""
     import re
 
-    from gearcad.mechanisms import design
+    from gearcad.fitting import design
 
     from .conftest import COARSE, profile
 
@@ -262,7 +262,7 @@ def test_a_fixed_backlash_too_small_warns_with_the_value_needed():
 def test_fdm_tips_in_roots_no_backlash_frees_them():
     """FDM's defaults: both edges +0.3 mm (0.1 + the elephant foot) and the centres 0.2 mm off take
     0.8 mm from a radial clearance of 0.25·1.5 = 0.375 mm: the finding says no backlash helps."""
-    from gearcad.mechanisms.band_trains import _jams, radial_room
+    from gearcad.fitting.band_trains import _jams, radial_room
 
     from .conftest import COARSE, profile
 

@@ -15,7 +15,7 @@ from gearcad import load_profile
 from gearcad.errors import DesignError, GearcadError
 from gearcad.export.beside import Beside, can_fork
 from gearcad.export.write import write_design
-from gearcad.mechanisms import design
+from gearcad.fitting import design
 
 from .conftest import ROOT
 

@@ -15,7 +15,7 @@ from matplotlib.textpath import TextPath
 
 import gearcad
 from gearcad.cli import main
-from gearcad.mechanisms.coupon import STEPS, coupon_data
+from gearcad.fitting.coupon import STEPS, coupon_data
 
 from .conftest import read_dxf
 

@@ -201,7 +201,7 @@ def test_a_profile_of_noisy_radii_is_refused_at_once():
     """2000 radii with half a millimetre of noise once took 40 s to refuse (20 000 took 300 s)."""
     import time
 
-    from gearcad.mechanisms import design
+    from gearcad.fitting import design
     from gearcad.profiles import parse_profile
 
     radii = (20 + 0.5 * np.random.default_rng(5).uniform(-1, 1, 2000)).tolist()

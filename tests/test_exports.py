@@ -145,7 +145,7 @@ def _reference_rings(report, gear):
 
 @functools.cache
 def _reference_parts():
-    from gearcad.mechanisms import design
+    from gearcad.fitting import design
     from gearcad.profiles import parse_profile
 
     data_dict = {

@@ -193,7 +193,7 @@ def test_the_fitted_motion_error_is_printed_and_on_the_page(tmp_path, capsys):
     ],
 )
 def test_two_kerfs_follow_one_rule_and_warn_when_they_differ(process, output_kerf, warned):
-    from gearcad.mechanisms import fit
+    from gearcad.fitting import fit
     from gearcad.profiles import load_profile
 
     overrides = {"output.kerf": output_kerf, **({f"process.{k}": v for k, v in process.items()} if process else {})}

@@ -6,9 +6,9 @@ import pytest
 import shapely
 
 from gearcad.errors import DesignError
+from gearcad.fitting import design
 from gearcad.geometry.arcfit import arc_points
 from gearcad.geometry.verify import is_simple, max_distance
-from gearcad.mechanisms import design
 from gearcad.profiles import load_profile
 
 from .conftest import QUICK, ROOT

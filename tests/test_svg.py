@@ -193,7 +193,7 @@ def _gear_drawing():
     """A real part: the toothed elliptic gear of the export tests, cut outline with its bore
     and pitch curve fitted with arcs, and the pivot cross (``export.drawing.part_drawing``)."""
     from gearcad.export.drawing import part_drawing
-    from gearcad.mechanisms import design
+    from gearcad.fitting import design
     from gearcad.profiles import parse_profile
 
     params = parse_profile(

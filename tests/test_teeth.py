@@ -249,7 +249,7 @@ def test_measured_play_matches_the_designed_one(backlash, clearance):
     """Backlash b thins each tooth by b/2: the pair plays b on the pitch circle.  A clearance c
     moves every flank in by c along its normal: 2c between flanks on each side, so 4c/cos α of
     play in all — both measured by turning gear 2 until it touches gear 1."""
-    from gearcad.mechanisms import design
+    from gearcad.fitting import design
     from gearcad.profiles import parse_profile
 
     params = parse_profile(
@@ -270,7 +270,7 @@ def test_printed_clearance_on_an_eccentric_pair_meshes_and_plays_as_designed():
     """The README's printing settings on the focus ellipse (ratio 1/9 … 9): the nudge turns gear 2
     by the same arc at the contact wherever it is, so it neither skips a tooth where gear 2 is
     large nor misses contact where it is small, and the measured play stays near 4c/cos α."""
-    from gearcad.mechanisms import design
+    from gearcad.fitting import design
     from gearcad.profiles import load_profile
 
     params = load_profile(

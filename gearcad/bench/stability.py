@@ -16,7 +16,7 @@ def stability_map(quick: bool = False) -> list[dict]:
     """Hard designs and what gearcad does with each: 'ok', a warning code, or a clear error —
     never NaN, a hang or a silently wrong outline."""
     from ..errors import GearcadError
-    from ..mechanisms import design
+    from ..fitting import design
     from ..profiles import parse_profile
 
     def attempt(label: str, value, data: dict, teeth: bool = True) -> dict:

@@ -10,7 +10,7 @@ from __future__ import annotations
 import time
 from collections.abc import Callable
 
-from ..mechanisms import design
+from ..fitting import design
 from ..profiles import load_profile
 from .commands import PROFILES
 

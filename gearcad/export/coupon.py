@@ -1,5 +1,5 @@
 """The coupon's files: one sheet (``coupon.dxf``, ``coupon.svg``), one plate (``coupon.3mf``)
-and ``coupon.txt``, the key to set after measuring (see :mod:`gearcad.mechanisms.coupon`)."""
+and ``coupon.txt``, the key to set after measuring (see :mod:`gearcad.fitting.coupon`)."""
 
 from __future__ import annotations
 
@@ -9,9 +9,9 @@ import numpy as np
 import shapely
 from shapely import affinity
 
+from ..fitting.coupon import CouponData, Piece
 from ..geometry.arcfit import ArcRing
 from ..geometry.outline import Outline
-from ..mechanisms.coupon import CouponData, Piece
 from .drawing import Drawing
 from .sheet import name_strokes
 

@@ -1,5 +1,6 @@
 """Mechanism designs: one module per mechanism, each a pure ``design(params) -> Draft`` of what
-is its own; :func:`~.finish.finish` makes any draft the complete :class:`Design`.
+is its own; :func:`~.finish.finish` makes any draft the complete :class:`Design` (:func:`gearcad.fitting.design`
+fits the process and checks the bands between the two).
 
 No files are written here; every check a build makes is made here, so ``gearcad check`` and
 ``gearcad build`` refuse and accept the same profiles.
@@ -7,42 +8,9 @@ No files are written here; every check a build makes is made here, so ``gearcad 
 
 from __future__ import annotations
 
-import time
-from dataclasses import replace
-from importlib import import_module
-
-from ..errors import GearcadError
-from ..profiles import ProfileParams
-from . import band_trains, fit, mesh_fit
 from .base import Design
-from .finish import Draft, finish
+from .finish import Draft
 from .parts import Part, Placement
 from .registry import MECHANISMS
 
-__all__ = ["Design", "Draft", "Part", "Placement", "design", "MECHANISMS"]
-
-
-def design(params: ProfileParams, stage: str = "full") -> Design:
-    """The checked design of any mechanism's profile parameters; ``stage`` "pitch" or "teeth"
-    stops a gear pair early (:mod:`.pair_stages`), with no parts."""
-    start = time.perf_counter()
-    if stage != "full":
-        from .pair_stages import staged_design
-
-        if params.mechanism != "gear-pair":
-            raise GearcadError(
-                f"stage = {stage!r}: only a gear pair has stages before 'full' (this is a {params.mechanism})"
-            )
-        return replace(staged_design(fit.made(params), stage), seconds=time.perf_counter() - start)
-    mechanism = import_module(f".{MECHANISMS[params.mechanism].module}", __name__)
-    if params.mechanism in mesh_fit.KEYS:  # a train's meshes, a body's rollers: their backlash and bands
-        return finish(_kerf_noted(mesh_fit.chosen(params, mechanism.design), params), start=start)
-    draft, bands = fit.chosen(params, mechanism.design)  # the process's cutter and the backlash it needs
-    draft = band_trains.with_mesh_bands(fit.with_bands(draft, bands))  # a train's meshes, a body's rollers
-    return finish(_kerf_noted(draft, params), start=start)
-
-
-def _kerf_noted(draft: Draft, params: ProfileParams) -> Draft:
-    """The draft with ``kerf-ignored`` among its findings when the profile's two kerfs differ."""
-    found = fit.kerf_finding(params)
-    return draft if found is None else replace(draft, findings=(*draft.findings, found))
+__all__ = ["Design", "Draft", "Part", "Placement", "MECHANISMS"]

@@ -20,7 +20,7 @@ from ..formats import TABLE
 from ..tolerances import budget
 from . import layouts
 from .base import Assembly, Design, Motion, Table, assembly_depth, assembly_overlap
-from .fit import assembly_marks
+from .marks import assembly_marks
 from .papers import papers_block
 from .parts import BoreSpec, Part, Placement, cut_paths, make_part
 
@@ -201,7 +201,7 @@ def _too_large(plates) -> tuple:
         found.append(
             finding(
                 "bed",
-                f"{name} ({box.width:.1f} × {box.height:.1f} mm) fits on no output.bed = [{w:g}, {h:g}] mm plate, "
+                f"{name} ({box.width:.1f} × {box.height:.1f} mm) fits on no plate of the {w:g} × {h:g} mm bed (output.bed), "
                 f"so no plate holds it: print it alone on a bed of at least {need_w} × {need_h} mm "
                 f"(--set output.bed=[{need_w},{need_h}]), or cut it from the sheet",
                 name,

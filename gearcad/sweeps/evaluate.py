@@ -11,7 +11,7 @@ import logging
 from typing import Any
 
 from ..errors import GearcadError
-from ..mechanisms import design
+from ..fitting import design
 from ..profiles.reading import apply_overrides, parse_profile
 
 __all__ = ["evaluate_chunk", "flatten"]

@@ -24,8 +24,8 @@ import shapely
 from shapely import affinity
 
 from ..errors import ProfileError
+from ..mechanisms.base import Design
 from .band import play_along
-from .base import Design
 from .fit import pair_geometry
 
 __all__ = ["STEPS", "KEYS", "CouponData", "Piece", "check_coupon", "coupon_data", "step_offset"]

@@ -73,7 +73,7 @@ def _shape(spec) -> shapely.Polygon:
 
 def train_meshes(draft, positions: int = 12) -> list[tuple[str, MeshGeometry, bool, ContactData]]:
     """Each mesh of a carrier train: (name, geometry in gear k's frame, internal, contact)."""
-    from .carrier_train import layout
+    from ..mechanisms.carrier_train import layout
 
     p = draft.params
     sides, alpha = layout(p).sides, p.pressure_angle
