@@ -25,7 +25,16 @@ class Constraint(tuple):
     """(key, op, value)."""
 
     def __str__(self) -> str:
-        return f"{self[0]} {self[1]} {self[2]}"
+        """As it would be written (TOML values: ``== false``, ``== "x"``), so that
+        :func:`parse_constraint` reads it back."""
+        value = self[2]
+        if isinstance(value, bool):
+            text = "true" if value else "false"
+        elif isinstance(value, str):
+            text = '"' + value.replace("\\", "\\\\").replace('"', '\\"') + '"'
+        else:
+            text = str(value)
+        return f"{self[0]} {self[1]} {text}"
 
 
 def parse_constraint(text: str) -> Constraint:
