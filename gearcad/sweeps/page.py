@@ -182,9 +182,10 @@ def _scatter(table, xkey: str, ykey: str, linked: set[int]) -> tuple[str, int]:
         f'text-anchor="middle">{html.escape(_titled(ykey) + goal.get(ykey, ""))}</text>'
     )
     shown, left_out = _shown_dots(kinds, plotted)
+    numbers = table["index"].to_numpy()
     dots = []
     for i in shown:
-        number = int(table["index"].iloc[i])
+        number = int(numbers[i])
         tip = html.escape(f"#{number}: {xkey} = {x[i]:.6g}, {ykey} = {y[i]:.6g}")
         mark = f"{_marker(kinds[i], sx(x[i]), sy(y[i]))}"
         if number in linked:
@@ -289,12 +290,14 @@ def sweep_page(table) -> str:
     shown = [*inputs, *[k for k in objectives if k not in inputs]]
     shown += [k for k in _constraint_keys(table) if k not in shown]
     head = "".join(f"<th>{html.escape(_titled(c)).replace('.', '.<wbr>')}</th>" for c in ["#", *shown])
+    columns = list(dict.fromkeys(["index", *shown, *inputs]))
+    records = listed[columns].to_dict("records")  # plain values: far quicker than iterrows
     body = "".join(
         f'<tr id="row-{r["index"]}"><td>{r["index"]}</td>'
         + "".join(f"<td>{html.escape(_cell(r[c]))}</td>" for c in shown)
         + f'</tr><tr class="build"><td></td><td colspan="{len(shown)}"><code>'
         f"{html.escape(build_command(table, r))}</code></td></tr>"
-        for _, r in listed.iterrows()
+        for r in records
     )
     more = (
         f"<p>The first {MAX_ROWS} of {len(rows)} rows; front.csv and sweep.csv hold them all.</p>"
