@@ -15,7 +15,17 @@ import numpy as np
 from ..errors import ProfileError
 from ..profiles.reading import toml_value
 
-__all__ = ["Constraint", "parse_constraint", "feasible", "pareto", "snap", "RunningFront", "BITS", "FLOOR"]
+__all__ = [
+    "Constraint",
+    "parse_constraint",
+    "feasible",
+    "pareto",
+    "snap",
+    "RunningFront",
+    "row_values",
+    "BITS",
+    "FLOOR",
+]
 
 _OPS = {"<=": operator.le, ">=": operator.ge, "==": operator.eq, "!=": operator.ne, "<": operator.lt, ">": operator.gt}
 _PATTERN = re.compile(r"^\s*([A-Za-z0-9_.]+)\s*(<=|>=|==|!=|<|>)\s*(.+?)\s*$")
@@ -216,3 +226,34 @@ class RunningFront:
     def rows(self) -> np.ndarray:
         """The table's rows on the front, in order."""
         return np.sort(self._index)
+
+
+def row_values(
+    rows: list[dict], minimise: list[str], maximise: list[str], constraints: list[Constraint]
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """``(index, values, feasible)`` of rows as a chunk returns them (``{"index", "refusal",
+    <report keys>…}``), for :meth:`RunningFront.add`: what :func:`feasible` and the table's
+    objective columns give, row by row (maximised keys negated; a missing, text or None value
+    is NaN, so the row is on no front)."""
+    keys = [*minimise, *maximise]
+    index = np.array([r["index"] for r in rows], dtype=np.int64)
+    values = np.array(
+        [[_number(r.get(k)) * (1 if k in minimise else -1) for k in keys] for r in rows], dtype=float
+    ).reshape(len(rows), len(keys))
+    ok = np.array(
+        [
+            r.get("refusal") is None
+            and all(
+                (v := r.get(key)) is not None and v == v and bool(_OPS[op](v, value)) for key, op, value in constraints
+            )
+            for r in rows
+        ],
+        dtype=bool,
+    )
+    return index, values, ok
+
+
+def _number(value) -> float:
+    if isinstance(value, (bool, int, float, np.integer, np.floating)):
+        return float(value)
+    return float("nan")
