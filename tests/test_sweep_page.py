@@ -32,7 +32,7 @@ def swept(tmp_path_factory):
         ["gear1.eccentricity=0.1:0.9:25", "gear1.a=20,30"],
         stage="pitch",
         maximise=["pair.ratio_max", "gears.0.r_min"],
-        constraints=["gears.0.r_min >= 5"],
+        constraints=["gears.0.r_min >= 4.5"],
         workers=1,
     )
     out = tmp_path_factory.mktemp("sweep")
@@ -109,8 +109,8 @@ def test_units_on_axes_columns_and_constraints(swept):
     assert "pair.ratio_max (ω₂/ω₁) — maximised" in text and "gears.0.r_min (mm) — maximised" in text
     assert "<th>set.gear1.a (mm)</th>" in text and "<th>set.gear1.eccentricity</th>" in text
     # the constraint with its unit, how many made designs meet it (counted here), and its column
-    met = int((table["gears.0.r_min"] >= 5).sum())
-    assert f"gears.0.r_min >= 5 mm</code>: met by {met} of 50 made designs" in text and 0 < met < 50
+    met = int((table["gears.0.r_min"] >= 4.5).sum())
+    assert f"gears.0.r_min >= 4.5 mm</code>: met by {met} of 50 made designs" in text and 0 < met < 50
     assert int(table["feasible"].sum()) == met
 
 
@@ -292,7 +292,7 @@ def test_running_front_from_chunk_rows_is_the_tables(swept):
     assert front.rows().tolist() == np.flatnonzero(table["pareto"]).tolist()
     # closed form: the ratio (1 + e)/(1 − e) does not depend on a, r_min = a(1 − e) grows with it,
     # so a = 30 beats a = 20 at every e, and along a = 30 a larger ratio costs r_min: the front
-    # is the rows of a = 30 that meet r_min = 30(1 − e) >= 5, e <= 5/6 — 23 of the 25 — although
+    # is the rows of a = 30 that meet r_min = 30(1 − e) >= 4.5, e <= 0.85 — 23 of the 25 — although
     # the two ratios at one e may differ in their last bits (rounding)
     e = table["set.gear1.eccentricity"].to_numpy()
     assert table.loc[table["pareto"], "set.gear1.a"].tolist() == [30] * 23
