@@ -297,7 +297,7 @@ def test_running_front_from_chunk_rows_is_the_tables(swept):
     e = table["set.gear1.eccentricity"].to_numpy()
     assert table.loc[table["pareto"], "set.gear1.a"].tolist() == [30] * 23
     assert (
-        np.flatnonzero(table["pareto"]).tolist() == np.flatnonzero((table["set.gear1.a"] == 30) & (e <= 5 / 6)).tolist()
+        np.flatnonzero(table["pareto"]).tolist() == np.flatnonzero((table["set.gear1.a"] == 30) & (e <= 0.85)).tolist()
     )
     ratios = table["pair.ratio_max"].to_numpy()
     assert np.any((ratios[0::2] != ratios[1::2]) & np.isclose(ratios[0::2], ratios[1::2], rtol=1e-14, atol=0))
