@@ -9,7 +9,7 @@ from hypothesis import strategies as st
 
 from gearcad.sweeps.front import BITS, FLOOR, RunningFront, pareto, snap
 
-FAST = settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+FAST = settings(max_examples=30, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 
 
 def oracle(values: np.ndarray, mask: np.ndarray) -> list[int]:
