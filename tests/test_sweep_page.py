@@ -218,7 +218,8 @@ def test_a_large_sweep_draws_and_lists_at_most_its_caps():
     assert len(markers) == MAX_DOTS and markers.count("front") == 700
     listed, linked = _listed(text), [int(v) for v in re.findall(r'href="#row-(\d+)"', text)]
     assert len(listed) == MAX_ROWS and sorted(linked) == sorted(listed) and set(listed) <= set(np.flatnonzero(pareto))
-    assert f"{n - 600 - MAX_DOTS} of the {n - 600} made designs are not drawn" in text
+    assert f"{n - 600 - MAX_DOTS} of the {n - 600} designs with both values are not drawn" in text
+    assert "600 designs (refused, or without a value of either axis) have no point" in text
     assert "600 × refused here" in text
 
 

@@ -148,7 +148,8 @@ def _shown_dots(kinds: np.ndarray, plotted: np.ndarray) -> tuple[np.ndarray, int
     return shown, int(plotted.sum()) - len(shown)
 
 
-def _scatter(table, xkey: str, ykey: str, linked: set[int]) -> tuple[str, int]:
+def _scatter(table, xkey: str, ykey: str, linked: set[int]) -> tuple[str, int, int]:
+    """The chart, how many rows with both values were left out (thinned), and how many have both."""
     x, y = _numbers(table, xkey), _numbers(table, ykey)
     plotted = np.isfinite(x) & np.isfinite(y)
     kinds = np.where(table["pareto"].to_numpy(bool), "front", np.where(table["feasible"].to_numpy(bool), "ok", "out"))
@@ -197,7 +198,7 @@ def _scatter(table, xkey: str, ykey: str, linked: set[int]) -> tuple[str, int]:
         f'<svg class="chart" xmlns="http://www.w3.org/2000/svg" viewBox="0 0 {W} {H}" width="{W}" height="{H}" '
         f'role="img" aria-label="{html.escape(ykey)} against {html.escape(xkey)}">'
     )
-    return f"{svg}{''.join(grid)}{frame}{titles}{''.join(dots)}</svg>", left_out
+    return f"{svg}{''.join(grid)}{frame}{titles}{''.join(dots)}</svg>", left_out, int(plotted.sum())
 
 
 def _range(values: np.ndarray) -> tuple[float, float]:
@@ -277,13 +278,15 @@ def sweep_page(table) -> str:
     linked = {int(i) for i in listed["index"]}
     axes = _axes(table)
     if len(axes) == 2:
-        chart, left_out = _scatter(table, *axes, linked)
-        thinned = (
-            f" {left_out} of the {int(made)} made designs are not drawn (every k-th is, and the whole front)."
-            if left_out
-            else ""
-        )
-        chart += f'<p class="legend">{_legend(table)}</p><p>Only the rows listed below have a link.{thinned}</p>'
+        chart, left_out, plotted = _scatter(table, *axes, linked)
+        notes = ["Only the rows listed below have a link."]
+        if left_out:
+            notes.append(
+                f"{left_out} of the {plotted} designs with both values are not drawn (every k-th is, and the front)."
+            )
+        if len(table) > plotted:
+            notes.append(f"{len(table) - plotted} designs (refused, or without a value of either axis) have no point.")
+        chart += f'<p class="legend">{_legend(table)}</p><p>{" ".join(notes)}</p>'
     else:
         chart = "<p>(name two objectives, or vary a key, to plot)</p>"
     inputs = list(attrs.get("inputs", []))
