@@ -1,11 +1,11 @@
 """The sweep's Pareto front at scale (issue 35): CPU seconds for 10⁴…10⁶ random rows.
 
 Uniform random rows (a front of a few tens of rows), rows on one falling line or plane (every
-row on the front: the worst case for the sweep and Kung's merges), and two objectives with
-rounding noise (pairs that differ by 1e-15: the ties the front's tolerance merges; of a million random rows on a line a few hundred are
-within the tolerance of a neighbour in one objective, and one of each such pair then dominates).
-The goal:
-a million two-objective rows in ≤ 10 s.
+row on the front: the worst case for the sweep and Kung's merges — though of a million random
+rows on a line a few hundred lie within the tolerance of a neighbour in one objective, and one
+of each such pair then dominates), two objectives with rounding noise (pairs that differ by
+1e-15: the ties the front's tolerance merges), and the running front merged chunk by chunk.
+The goal: a million two-objective rows in ≤ 10 s.
 """
 
 from __future__ import annotations
