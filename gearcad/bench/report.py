@@ -10,7 +10,7 @@ from .goals import goals_table
 
 __all__ = ["write_csv", "markdown", "peers_table", "peer_ratios"]
 
-_OWN_TABLES = ("peers", "goals", "stages")
+_OWN_TABLES = ("peers", "goals", "stages", "front")
 
 
 def write_csv(rows: list[dict], path: Path) -> None:
@@ -99,6 +99,10 @@ def markdown(rows: list[dict], stability: list[dict]) -> str:
         from .stages import stages_table
 
         out += ["", "## Stages (warm, CPU time per design in process)", "", *stages_table(rows_of(rows, "stages"))]
+    if any(r["study"] == "front" for r in rows):
+        from .front import front_lines
+
+        out += ["", "## The sweep's Pareto front (CPU seconds)", "", *front_lines(rows)]
     out += ["", "## Stability map", "", "| case | value | outcome | time (ms) |", "|---|---|---|---|"]
     out += [f"| {s['case']} | {s['value']:g} | {s['outcome']} | {1000 * s['seconds']:.0f} |" for s in stability]
     return "\n".join(out) + "\n"

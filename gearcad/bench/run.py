@@ -10,6 +10,7 @@ from . import stability
 from .builds import bench_builds
 from .commands import PROFILES, gearcad_commands
 from .envelope import bench_envelope
+from .front import bench_front, front_summary
 from .goals import goal_rows, goals_table
 from .helical import helical_benchmark
 from .output import bench_output
@@ -54,7 +55,7 @@ def run_bench(
         peer = None if "peers" in skip else peer_version()
         timed = (3 * runs + 3 if peer else 0) + (0 if "goals" in skip else 6 * runs)
         staged = 0 if "stages" in skip else (6 if quick else 9)
-        progress = Progress(9 + builds + timed + staged)
+        progress = Progress(10 + builds + timed + staged)
         rows = bench_quadrature(quick)
         progress.step("quadrature")
         rows += bench_envelope(quick)
@@ -66,11 +67,13 @@ def run_bench(
         rows += bench_step(quick, work / "step")  # the focus pair's STEP files: time and size
         progress.step("STEP files")
         rows += bench_builds(quick, work, progress.step)
+        rows += bench_front(quick)  # the sweep's Pareto front, 10⁴…10⁶ rows
+        progress.step("Pareto front")
         hard = stability.stability_map(quick)
         progress.step("stability map")
         commands = gearcad_commands(work / "runs")
         labels = {key: text for key, (text, _) in commands.items()}
-        measured, lines = {}, step_lines(rows)
+        measured, lines = {}, [*step_lines(rows), *front_summary(rows)]
         if "peers" not in skip and peer is None:
             lines.append(f"peers: {PEER} is not importable here (pip install {PEER}); the section is skipped")
         elif peer is not None:
