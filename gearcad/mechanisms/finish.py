@@ -201,8 +201,8 @@ def _too_large(plates) -> tuple:
         found.append(
             finding(
                 "bed",
-                f"{name} ({box.width:.1f} × {box.height:.1f} mm) fits on no plate of the {w:g} × {h:g} mm bed (output.bed), "
-                f"so no plate holds it: print it alone on a bed of at least {need_w} × {need_h} mm "
+                f"{name} ({box.width:.1f} × {box.height:.1f} mm) fits on no plate of the {w:g} × {h:g} mm bed "
+                f"(output.bed): print it alone on a bed of at least {need_w} × {need_h} mm "
                 f"(--set output.bed=[{need_w},{need_h}]), or cut it from the sheet",
                 name,
             )
