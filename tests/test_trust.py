@@ -154,3 +154,23 @@ def test_report_numbers_are_finite_for_every_profile(built):
     assert [p.parent.name for p in reports] == sorted(p.stem for p in PROFILES)
     for path in reports:
         json.loads(path.read_text(), parse_constant=lambda c: pytest.fail(f"{c} in {path}"))
+
+
+def test_a_closed_stdout_is_the_null_device(tmp_path):
+    """Issue 34 item 17: ``gearcad build … >&-`` (also ``check``, ``schema``): Python leaves
+    ``sys.stdout`` None and the first write was an AttributeError.  One child runs the three
+    commands with its descriptor 1 really closed (as the shell's ``>&-`` does)."""
+    profile = tmp_path / "circles.toml"
+    profile.write_text('[gear1]\ncurve = "circle"\nradius = 20.0\n[output]\ntolerance = 0.05\n', encoding="utf-8")
+    out = tmp_path / "out"
+    lean = ["--set=output.formats=['dxf']", "--set=output.charts=false", "--set=output.animation=false"]
+    script = (
+        "import sys\nassert sys.stdout is None\nfrom gearcad.cli import main\n"
+        'for args in (["schema"], ["check", sys.argv[1], "--stage", "pitch"],'
+        ' ["build", sys.argv[1], "--out", sys.argv[2], *sys.argv[3:]]):\n'
+        "    code = main(args)\n    print(code, file=sys.stderr)\n"
+    )
+    command = [sys.executable, "-c", script, str(profile), str(out), *lean]
+    run = subprocess.run(command, stderr=subprocess.PIPE, text=True, timeout=120, preexec_fn=lambda: os.close(1))
+    assert run.returncode == 0 and run.stderr.split() == ["0", "0", "0"], run.stderr[-2000:]
+    assert (out / "circles" / "report.json").is_file()
