@@ -174,3 +174,38 @@ def test_a_closed_stdout_is_the_null_device(tmp_path):
     run = subprocess.run(command, stderr=subprocess.PIPE, text=True, timeout=120, preexec_fn=lambda: os.close(1))
     assert run.returncode == 0 and run.stderr.split() == ["0", "0", "0"], run.stderr[-2000:]
     assert (out / "circles" / "report.json").is_file()
+
+
+@pytest.mark.parametrize("n", [5000, 100_000])
+def test_a_motion_of_the_most_samples_fits_in_little_memory(n):
+    """Issue 34 item 8: 100,000 follower angles (the schema's most) ended in a MemoryError near
+    3.7 GB (a law's spectrum kept per candidate order: n²/4 numbers), and any n above 4,096 in a
+    broadcast error.  The focus ellipse's motion (a = 25, b = 15: ratios 1/9 … 9 in closed form)
+    is fitted within its tolerance using a few megabytes."""
+    import math
+    import tracemalloc
+
+    import numpy as np
+
+    from gearcad.pitch.focus_pair import follower_angle
+    from gearcad.pitch.motion import MotionLimits, fit_motion
+
+    psi = follower_angle(2 * np.pi * np.arange(n) / n, 25.0, 15.0)
+    tolerance = math.radians(1e-6)
+    tracemalloc.start()
+    try:
+        fit = fit_motion(
+            psi,
+            lobes=1,
+            mate_lobes=1,
+            center_distance=50.0,
+            tolerance=tolerance,
+            limits=MotionLimits((0.1, 10.0)),
+            key="k",
+        )
+        peak = tracemalloc.get_traced_memory()[1]
+    finally:
+        tracemalloc.stop()
+    assert fit.error <= tolerance
+    assert fit.ratio_range == pytest.approx((1 / 9, 9), rel=1e-5)
+    assert peak < 200 * n  # a few arrays of n numbers: 20 MB at the most samples, not gigabytes
