@@ -10,6 +10,7 @@ import time
 
 import pytest
 
+import gearcad
 from gearcad.cli import main
 
 from .conftest import EXAMPLES, PROFILES, ROOT
@@ -209,3 +210,22 @@ def test_a_motion_of_the_most_samples_fits_in_little_memory(n):
     assert fit.error <= tolerance
     assert fit.ratio_range == pytest.approx((1 / 9, 9), rel=1e-5)
     assert peak < 200 * n  # a few arrays of n numbers: 20 MB at the most samples, not gigabytes
+
+
+def test_follower_angles_in_the_drivers_sense_give_the_same_gears():
+    """Issue 37 item 4: the follower turns the other way, so a reader of docs/mechanisms.md gave
+    its angles negative and was refused ("misses it by 350°").  Falling angles are the same
+    motion: the focus ellipse's ψ and −ψ give one law (e = 0.6: ratios 1/4 … 4 in closed form)."""
+    import numpy as np
+
+    from gearcad.pitch.focus_pair import follower_angle
+
+    phi = 2 * np.pi * np.arange(72) / 72
+    psi = np.degrees(follower_angle(phi, 25.0, 20.0))
+    reports = []
+    for sign in (1, -1):
+        gear1 = {"curve": "motion", "follower_deg": (sign * psi).tolist(), "tolerance_deg": 1e-3}
+        profile = {"name": "m", "gear1": gear1, "pair": {"center_distance": 50.0}, "teeth": {"module": 1.0}}
+        reports.append(gearcad.design(profile, stage="pitch").report()["motion"])
+    assert reports[0] == reports[1]
+    assert (reports[0]["ratio_min"], reports[0]["ratio_max"]) == pytest.approx((1 / 4, 4), rel=1e-3)

@@ -123,12 +123,20 @@ def fit_motion(
 ) -> MotionFit:
     """The smoothest closing law for follower angles ``psi`` (rad) at φ = 2πj/n.
 
+    ψ is measured in the follower's own sense of rotation (it grows as the driver turns); angles
+    measured in the driver's sense (the follower, turning the other way, going negative: ψ falls)
+    are the same motion and are taken as −ψ.
+
     Laws of order up to ``max_order`` are tried (each in O(n log n) time and O(n) memory: the
     100,000 samples a profile may give take about a second).  Raises :class:`DesignError`
     naming ``key`` with the best error the limits allow when no law within them meets
     ``tolerance`` (rad).
     """
     psi = np.asarray(psi, dtype=float)
+    if len(psi) > 1 and psi[-1] < psi[0]:
+        # ψ given in the driver's sense of rotation: the follower, turning the other way, goes
+        # negative.  It is the same motion; the law wants ψ in the follower's own sense.
+        psi = -psi
     n = len(psi)
     mean = lobes / mate_lobes
     phi = TWO_PI * np.arange(n) / n
