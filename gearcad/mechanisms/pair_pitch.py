@@ -40,7 +40,7 @@ from ..profiles import (
     WalkerParams,
 )
 from ..tolerances import DEFAULT, Tolerances
-from .budget import MAX_SAMPLE_ORDER, SAMPLE_NOISE
+from .budget import MAX_SAMPLE_ORDER, MAX_SAMPLE_WORK, SAMPLE_NOISE
 
 __all__ = ["WalkerData", "PairDesign", "pitch_design", "driver_curve"]
 
@@ -110,6 +110,7 @@ def driver_curve(params: GearPairParams) -> tuple[PitchCurve, W.RatioLaw | Motio
                 max_order=MAX_SAMPLE_ORDER,
                 key="gear1.radii",
                 smoothing=g.smoothing,
+                max_work=MAX_SAMPLE_WORK,
             ),
             None,
         )
