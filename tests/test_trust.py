@@ -254,3 +254,23 @@ def test_noisy_radii_are_refused_at_once_with_the_smoothing_that_fits(smoothing)
     assert 0.3 <= fits < 1.0  # at least the noise, and far from flattening a 10 mm eccentric curve
     profile["gear1"]["smoothing"] = fits
     assert gearcad.design(profile, stage="pitch").report()["gears"][0]["smoothing"]["deviation"] <= fits
+
+
+@pytest.mark.parametrize(("samples", "noise"), [(360, 0.0), (720, 0.05)])
+def test_a_spike_in_the_radii_is_named_by_its_sample(samples, noise):
+    """Issue 34 item 19: one radius of 200 mm among a focus ellipse's (a = 25, b = 20: 9 … 41 mm)
+    ended in "the synthesised pair fails its checks …; please report this profile".  The line
+    names the sample, its index and value, and the key."""
+    import numpy as np
+
+    from gearcad.pitch.shapes import ellipse_focus
+
+    phi = 2 * np.pi * np.arange(samples) / samples
+    radii = ellipse_focus(25.0, 20.0).r(phi) + np.random.default_rng(2).uniform(-noise, noise, samples)
+    at = samples // 4 + 3
+    radii[at] = 200.0
+    start = time.process_time()
+    with pytest.raises(gearcad.DesignError) as caught:
+        gearcad.design({"name": "scan", "gear1": {"curve": "samples", "radii": radii.tolist()}}, stage="pitch")
+    assert time.process_time() - start < 10
+    assert str(caught.value).startswith(f"gear1.radii[{at}] = 200: stands out") and "\n" not in str(caught.value)

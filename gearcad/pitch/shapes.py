@@ -18,6 +18,8 @@ __all__ = [
     "from_ratio",
     "harmonic_ratio",
     "from_samples",
+    "outlier",
+    "spike_note",
 ]
 
 
@@ -187,6 +189,44 @@ def _smooth_order(spectrum: np.ndarray, radii: np.ndarray, smoothing: float) -> 
     return lo
 
 
+def outlier(radii) -> tuple[int, float, float] | None:
+    """The one sample that stands out from its neighbours — a misreading, a spike — as (index,
+    value, what its four neighbours predict by the cubic through them), or None.
+
+    A spike of height h makes the cubic through the neighbours of each sample miss by h at the
+    spike, −2h/3 beside it and h/6 two steps away: that signature is asked for (within a margin),
+    and a miss of 20 times the typical sample's and a tenth of the median radius."""
+    radii = np.asarray(radii, dtype=float)
+    n = len(radii)
+    if n < 8:
+        return None
+    predicted = (-np.roll(radii, 2) + 4 * np.roll(radii, 1) + 4 * np.roll(radii, -1) - np.roll(radii, -2)) / 6
+    miss = radii - predicted
+    j = int(np.argmax(np.abs(miss)))
+    h = miss[j]
+    beside = np.array([miss[j - 1], miss[(j + 1) % n]]) / h
+    apart = np.array([miss[j - 2], miss[(j + 2) % n]]) / h
+    tall = abs(h) > max(20 * float(np.median(np.abs(miss))), 0.1 * float(np.median(radii)))
+    if tall and np.all((-0.8 < beside) & (beside < -0.5)) and np.all((0.05 < apart) & (apart < 0.3)):
+        return j, float(radii[j]), float(predicted[j])
+    return None
+
+
+SPIKE_SAMPLES = 64
+"""From this many radii on, a sample with a spike's signature is refused up front: measured
+data that dense does not jump by a tenth of its radius at one sample (coarser samples of a sharp
+curve — an ellipse of e ≥ 0.95 in 64 or fewer — look the same and are left to the checks)."""
+
+
+def spike_note(radii, key: str) -> str:
+    """``key[j] = value: stands out …`` for the sample :func:`outlier` finds, else ``""``."""
+    found = outlier(radii)
+    if found is None:
+        return ""
+    j, value, predicted = found
+    return f"{key}[{j}] = {value:g}: stands out from its neighbours (they give {predicted:.4g} mm there), a misreading?"
+
+
 def _work(small: np.ndarray) -> int:
     """What a series costs: (top order + 1) × (orders held)."""
     held = np.flatnonzero(~small)
@@ -214,6 +254,12 @@ def _refuse_work(spectrum, radii, noise, max_work: int, smoothing: float, key: s
     held = ~noise
     held[0] = False
     name = key.rsplit(".", 1)[0] + ".smoothing" if "." in key else "smoothing"
+    spike = spike_note(radii, key)
+    if spike:
+        raise DesignError(
+            f"{spike} With it the radii keep {int(np.count_nonzero(held))} waves per turn, more than a build "
+            f"cuts in about half a minute; correct that sample, or set {name} = {need:g} mm or more"
+        )
     raise DesignError(
         f"{name} = {smoothing:g}: the radii keep {int(np.count_nonzero(held))} waves up to order "
         f"{int(np.flatnonzero(held)[-1]) if held.any() else 0} per turn (noise or detail), more than a build cuts "
@@ -266,6 +312,8 @@ def from_samples(
     """
     radii = np.asarray(radii, dtype=float)
     n = len(radii)
+    if n > SPIKE_SAMPLES and (spike := spike_note(radii, key)):
+        raise DesignError(f"{spike} Correct that sample (one spike rings through the whole curve)")
     spectrum = np.fft.rfft(radii) / n
     orders = np.arange(len(spectrum))
     weight = np.ones(len(spectrum))
