@@ -274,3 +274,16 @@ def test_a_spike_in_the_radii_is_named_by_its_sample(samples, noise):
         gearcad.design({"name": "scan", "gear1": {"curve": "samples", "radii": radii.tolist()}}, stage="pitch")
     assert time.process_time() - start < 10
     assert str(caught.value).startswith(f"gear1.radii[{at}] = 200: stands out") and "\n" not in str(caught.value)
+
+
+@pytest.mark.parametrize("value", [100_000.123, 123456789.12345679, 7])
+def test_a_long_list_is_shortened_between_its_elements(value):
+    """Issue 34 item 20: a list of 10⁶ elements was shown as "… 100000…", cut inside a number.
+    Every element shown is whole, and the count of those left out is given."""
+    with pytest.raises(gearcad.ProfileError) as caught:
+        gearcad.parse_profile({"gear1": {"curve": "circle", "radius": [value] * 10**6}})
+    line = str(caught.value)
+    shown = line.split(" = [", 1)[1].split("]: ", 1)[0].split(", ")
+    more = shown.pop()
+    assert shown and all(float(text) == value for text in shown), line
+    assert more == f"… {10**6 - len(shown):,} more" and len(line) < 250
