@@ -61,7 +61,7 @@ WIDE = os.environ.get("GEARCAD_FUZZ_WIDE", "") == "1"
 LOG = os.environ.get("GEARCAD_FUZZ_LOG", "")
 SEED = os.environ.get("GEARCAD_FUZZ_SEED", "")
 SECONDS = float(os.environ.get("GEARCAD_FUZZ_SECONDS", "10"))
-"""Time budget of one check on the shared 2-core machine, s."""
+"""Time budget of one check, CPU seconds (not wall: the suite must pass on a loaded machine)."""
 MEMORY = int(float(os.environ.get("GEARCAD_FUZZ_MEMORY_GIB", "2")) * (1 << 30))
 """Memory budget of one check: address space it may add to the process, bytes."""
 
@@ -576,24 +576,25 @@ def _address_space() -> int:
 
 @contextmanager
 def budget(seconds: float, memory: int) -> Iterator[None]:
-    """Raise :class:`OverBudget` after ``seconds`` (SIGALRM) and ``MemoryError`` beyond ``memory``
-    more bytes of address space (RLIMIT_AS), restoring both afterwards."""
+    """Raise :class:`OverBudget` after ``seconds`` of this process's CPU time (ITIMER_PROF: a
+    loaded machine's scheduler does not spend it) and ``MemoryError`` beyond ``memory`` more
+    bytes of address space (RLIMIT_AS), restoring both afterwards."""
 
     def alarm(signum, frame):
-        raise OverBudget(f"over the time budget of {seconds:g} s")
+        raise OverBudget(f"over the time budget of {seconds:g} CPU seconds")
 
-    previous = signal.signal(signal.SIGALRM, alarm)
+    previous = signal.signal(signal.SIGPROF, alarm)
     soft, hard = resource.getrlimit(resource.RLIMIT_AS)
     limit = _address_space() + memory
     if hard != resource.RLIM_INFINITY:
         limit = min(limit, hard)
     resource.setrlimit(resource.RLIMIT_AS, (limit, hard))
-    signal.setitimer(signal.ITIMER_REAL, seconds)
+    signal.setitimer(signal.ITIMER_PROF, seconds)
     try:
         yield
     finally:
-        signal.setitimer(signal.ITIMER_REAL, 0)
-        signal.signal(signal.SIGALRM, previous)
+        signal.setitimer(signal.ITIMER_PROF, 0)
+        signal.signal(signal.SIGPROF, previous)
         resource.setrlimit(resource.RLIMIT_AS, (soft, hard))
 
 
@@ -711,7 +712,8 @@ def _where(exc: BaseException) -> str:
 
 def _isolated(data: dict) -> dict:
     """``run_check(data)`` in a forked child (the campaign): a check that the alarm cannot stop —
-    stuck in C code, or waiting for worker threads — is killed at three times the budget."""
+    stuck in C code, or waiting for worker threads — is killed at ten times the budget of wall
+    time (a generous multiple: the campaign may run on a loaded machine)."""
     read, write = os.pipe()
     pid = os.fork()
     if pid == 0:  # pragma: no cover - the child
@@ -730,12 +732,12 @@ def _isolated(data: dict) -> dict:
         os._exit(0)
     os.close(write)
     with os.fdopen(read, encoding="utf-8") as pipe:
-        ready, _, _ = select.select([pipe], [], [], 3 * SECONDS)
+        ready, _, _ = select.select([pipe], [], [], 10 * SECONDS)
         if ready:
             text = pipe.read()
         else:
             os.kill(pid, signal.SIGKILL)
-            text = json.dumps({"type": "Hang", "message": f"killed after {3 * SECONDS:g} s", "where": "?"})
+            text = json.dumps({"type": "Hang", "message": f"killed after {10 * SECONDS:g} s", "where": "?"})
     os.waitpid(pid, 0)
     return json.loads(text) if text else {"type": "Crash", "message": "the child died", "where": "?"}
 
