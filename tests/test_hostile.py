@@ -682,3 +682,22 @@ def test_new_keeps_the_same_schema_and_replaces_an_old_one(tmp_path):
     schema.write_text("{}")  # an older version's
     assert main(["new", "c", "--dir", str(tmp_path)]) == 0
     assert json.loads(schema.read_text())["title"] == "gearcad profile"
+
+
+def test_a_full_disk_under_a_coupon_is_one_line_and_nothing_published(tmp_path, capsys, monkeypatch):
+    """A coupon whose files the system refuses (ENOSPC: a full disk) ended in an OSError
+    traceback from the DXF writer; now one line, exit 2, and --out as it was."""
+    import errno
+
+    from gearcad.export import coupon as coupon_export
+
+    def full(*args, **kwargs):
+        raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
+
+    monkeypatch.setattr(coupon_export, "write_coupon", full)
+    profile = _circles_toml(tmp_path, '[teeth]\nmodule = 2.0\n[process]\nkind = "laser"\n')
+    out = tmp_path / "out"
+    assert main(["coupon", str(profile), "--out", str(out)]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert err == ["gearcad: error: circles-coupon: cannot write (No space left on device); nothing was published"]
+    assert not out.exists() or list(out.iterdir()) == []
