@@ -17,7 +17,7 @@ from typing import Any
 from . import batch as _batch
 from . import profiles as _profiles
 from .batch import BuildResult
-from .errors import ProfileError
+from .errors import OutputError, ProfileError
 from .fitting import design as _design
 from .mechanisms import Design
 from .profiles import ProfileParams
@@ -154,6 +154,12 @@ def coupon(profile: ProfileParams | Design | str | Path | Mapping[str, Any], out
     output = params.output
     with interrupt_guard(out), Publisher(out) as publisher:
         folder = publisher.folder(f"{params.name}-coupon")
-        write_coupon(data, folder, cut_layer=output.cut_layer, mark_layer=output.mark_layer, flavour=output.dxf)
+        try:
+            write_coupon(data, folder, cut_layer=output.cut_layer, mark_layer=output.mark_layer, flavour=output.dxf)
+        except OSError as exc:  # a full disk, a failing filesystem: one line, nothing published
+            if isinstance(exc, BrokenPipeError):
+                raise
+            why = exc.strerror or exc
+            raise OutputError(f"{params.name}-coupon: cannot write ({why}); nothing was published") from None
         publisher.commit()
     return publisher.path / f"{params.name}-coupon"

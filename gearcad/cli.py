@@ -199,6 +199,22 @@ def _run(args) -> int:
     return _failed([(r.name, f) for r in results for f in r.failures if f.code not in allow])
 
 
+def _closed_streams() -> None:
+    """A standard stream the caller closed (``gearcad build … >&-``) is the null device: Python
+    leaves ``sys.stdout`` None (a write was an AttributeError), and the next file opened would
+    take descriptor 1 (a child's output would go into it)."""
+    for fd, name, mode in ((0, "stdin", os.O_RDONLY), (1, "stdout", os.O_WRONLY), (2, "stderr", os.O_WRONLY)):
+        try:
+            os.fstat(fd)
+        except OSError:
+            null = os.open(os.devnull, mode)
+            if null != fd:  # the lowest free descriptor: fd itself unless a lower one is closed too
+                os.dup2(null, fd)
+                os.close(null)
+        if getattr(sys, name) is None:
+            setattr(sys, name, open(fd, "r" if fd == 0 else "w", encoding="utf-8", closefd=False))
+
+
 def _printable_streams() -> None:
     """A terminal that is not UTF-8 (LC_ALL=C, PYTHONIOENCODING=latin-1) shows β, ω, ² escaped
     rather than ending the build with UnicodeEncodeError."""
@@ -209,6 +225,7 @@ def _printable_streams() -> None:
 
 
 def main(argv: list[str] | None = None) -> int:
+    _closed_streams()
     _printable_streams()
     args = _parser().parse_args(argv)
     logging.basicConfig(level=logging.ERROR, format="%(levelname)s: %(message)s")

@@ -6,14 +6,17 @@ the schema is written beside it, so a TOML editor still completes and checks the
 
 from __future__ import annotations
 
+import errno
 import json
 import os
 import re
+import stat
 import tomllib
+from contextlib import suppress
 from pathlib import Path
 
 from .errors import OutputError, ProfileError
-from .profiles import parse_profile, profile_schema
+from .profiles import parse_profile, profile_schema, read_profile_text
 from .publish import write_files
 
 __all__ = ["SCHEMA_LINE", "example_folders", "new_profile"]
@@ -28,16 +31,100 @@ def example_folders() -> list[Path]:
     return [f for f in dict.fromkeys(folders) if f.is_dir()]
 
 
+def _is_file(path: Path) -> bool:
+    try:
+        return path.is_file()
+    except OSError:  # a name too long for the system, a loop: not a profile
+        return False
+
+
 def _source(name: str) -> Path:
     path = Path(name)
-    if path.suffix == ".toml" and path.is_file():
+    if path.suffix == ".toml" and _is_file(path):
         return path
     for folder in example_folders():
-        if (folder / f"{name}.toml").is_file():
+        if "/" not in name and _is_file(folder / f"{name}.toml"):
             return folder / f"{name}.toml"
     known = sorted({p.stem for folder in example_folders() for p in folder.glob("*.toml")})
     allowed = f"one of {', '.join(known)}" if known else "a profile file's path (no profiles/ folder found)"
-    raise ProfileError(f"--from = {name!r}: no such profile; give {allowed}")
+    raise ProfileError(f"--from = {_shown(name)}: no such profile; give {allowed}")
+
+
+def _writable(path: Path, st: os.stat_result) -> bool:
+    """Writable, and meant to be: a folder or file with no write bit is read-only to root too."""
+    return bool(st.st_mode & 0o222) and os.access(path, os.W_OK)
+
+
+def _folder(folder: Path) -> tuple[Path, list[Path]]:
+    """``--dir`` as the path every write goes to, checked before anything is written, and the
+    folders that ``new`` would make (removed again if it fails).  Refuses (one line) an empty
+    path, a loop, a link to nothing, a name too long, a file, a read-only folder."""
+    text = os.fspath(folder)
+    label = f"--dir {_shown(text)}"
+    if not text.strip():
+        raise ProfileError("--dir '': empty; give a folder (is a shell variable unset?)")
+    if "\0" in text:
+        raise ProfileError(f"{label}: contains a NUL character")
+    missing: list[Path] = []
+    here = Path(text)
+    while True:
+        try:
+            st = os.stat(here)
+            break
+        except OSError as exc:
+            if exc.errno == errno.ELOOP:
+                raise ProfileError(f"{label}: a symbolic link loop; give a folder or a new path") from None
+            if exc.errno == errno.ENAMETOOLONG:
+                raise ProfileError(f"{label}: the path or one of its names is too long for this system") from None
+            if exc.errno == errno.ENOTDIR:
+                raise ProfileError(f"{label}: a file stands where a folder must be") from None
+            if exc.errno != errno.ENOENT:
+                raise ProfileError(f"{label}: cannot use it ({exc.strerror or exc})") from None
+            if os.path.islink(here):
+                raise ProfileError(f"{label}: {_shown(here)} is a symbolic link to nothing; give a folder") from None
+            missing.append(here)
+            here = here.parent
+    which = "" if not missing else f"{_shown(here)}, where it would be made, is "
+    if not stat.S_ISDIR(st.st_mode):
+        raise ProfileError(f"{label}: {which or 'is '}a file, not a folder")
+    if not _writable(here, st):
+        raise ProfileError(f"{label}: {which}read-only; give a folder you can write")
+    resolved = Path(os.path.realpath(text))
+    if len(os.fsencode(resolved)) >= 4096 - 64 or any(len(os.fsencode(c)) > 255 - 32 for c in resolved.parts):
+        raise ProfileError(f"{label}: the path or one of its names is too long for this system")
+    return resolved, [Path(os.path.realpath(m)) for m in missing]
+
+
+def _shown(text) -> str:
+    """A path for a one-line message: control characters escaped, at most 200 characters."""
+    shown = str(text).encode("unicode_escape", "backslashreplace").decode("ascii")
+    return shown if len(shown) <= 200 else shown[:100] + "…" + shown[-99:]
+
+
+def _schema_needed(path: Path, text: bytes) -> bool:
+    """Whether ``profile.schema.json`` must be (re)written; refuses a folder or a read-only file
+    there (a link is replaced, never written through; the same schema is left as it is)."""
+    try:
+        st = os.lstat(path)
+    except FileNotFoundError:
+        return True
+    if stat.S_ISLNK(st.st_mode):
+        return True
+    if stat.S_ISDIR(st.st_mode):
+        raise ProfileError(f"{_shown(path)}: a folder stands where the schema goes; move it or choose another --dir")
+    if not stat.S_ISREG(st.st_mode):
+        raise ProfileError(f"{_shown(path)}: not a regular file; move it or choose another --dir")
+    try:
+        with open(path, "rb") as f:
+            if f.read(len(text) + 1) == text:
+                return False
+    except OSError:
+        pass
+    if not _writable(path, st):
+        raise ProfileError(
+            f"{_shown(path)}: read-only, and not this version's schema; make it writable or choose another --dir"
+        )
+    return True
 
 
 def _retitled(text: str, name: str, source: str) -> str:
@@ -77,30 +164,49 @@ def new_profile(name: str, source: str = "elliptic_focus", folder: str | Path = 
     source : an example's name (``elliptic_focus``) or a profile file's path.
     folder : where to write; made if missing.
 
-    Returns the two paths written. Raises :class:`ProfileError` (nothing written) for a bad
-    name, an unknown source, or a profile that exists already.
+    Returns the two paths written (the schema is left as it is when it is this version's).
+    Raises :class:`ProfileError` or :class:`OutputError` (one line, nothing written) for a bad
+    name, an unknown or unreadable source (16 MiB of UTF-8 TOML at most), a profile that exists
+    already (a link of its name too), a ``folder`` that is no writable folder (a file, a loop, a
+    name too long, read-only) or a schema that cannot be replaced (a folder, a read-only file).
     """
     path = _source(source)
-    text = _retitled(path.read_text(encoding="utf-8"), name, path.stem)
+    text = _retitled(read_profile_text(path), name, path.stem)
     try:
         parse_profile(tomllib.loads(text))  # the copy must be a valid profile (and the name a valid name)
     except tomllib.TOMLDecodeError as exc:
-        raise ProfileError(f"--from = {source!r}: not valid TOML ({exc})") from None
+        raise ProfileError(f"--from = {_shown(source)}: not valid TOML ({exc})") from None
+    except ValueError as exc:  # an integer of more than 4300 digits
+        raise ProfileError(f"--from = {_shown(source)}: not valid TOML ({exc})") from None
+    except RecursionError:
+        raise ProfileError(f"--from = {_shown(source)}: not valid TOML: lists or tables nested hundreds deep") from None
     except ProfileError as exc:
         lines = str(exc).splitlines()
         raise ProfileError("\n".join(ln if ln.startswith("name = ") else f"{path}: {ln}" for ln in lines)) from None
-    folder = Path(folder)
-    target = folder / f"{name}.toml"
-    if os.path.lexists(target):
-        raise ProfileError(f"{target}: exists already; choose another NAME or --dir (nothing was written)")
-    if folder.exists() and not folder.is_dir():
-        raise ProfileError(f"--dir = {str(folder)!r}: is a file, not a folder")
-    schema_text = json.dumps(profile_schema(), indent=2, ensure_ascii=False) + "\n"
-    # the schema replaces a file or link of its name (renamed over it, never written through it)
-    schema = write_files(folder, {"profile.schema.json": schema_text.encode("utf-8")}, what="--dir")
+    shown, target = Path(folder), Path(folder) / f"{name}.toml"
+    folder, made = _folder(Path(folder))
+    if os.path.lexists(folder / f"{name}.toml"):
+        link = " (a symbolic link)" if os.path.islink(folder / f"{name}.toml") else ""
+        raise ProfileError(f"{target}: exists already{link}; choose another NAME or --dir (nothing was written)")
+    schema_text = (json.dumps(profile_schema(), indent=2, ensure_ascii=False) + "\n").encode("utf-8")
+    schema = folder / "profile.schema.json"
+    rewrite = _schema_needed(schema, schema_text)
+    created = False
     try:
-        with open(target, "x", encoding="utf-8") as f:  # O_EXCL: never through a link, never over a file
+        folder.mkdir(parents=True, exist_ok=True)
+        with open(folder / f"{name}.toml", "x", encoding="utf-8") as f:  # O_EXCL: never through a link
+            created = True
             f.write(text)
-    except OSError as exc:
-        raise OutputError(f"{target}: cannot write the profile ({exc.strerror or exc})") from None
-    return target, schema["profile.schema.json"]
+        if rewrite:  # renamed over a file or link of its name, never written through it
+            write_files(folder, {"profile.schema.json": schema_text}, what="--dir")
+    except (OSError, OutputError) as exc:
+        if created:
+            with suppress(OSError):
+                os.unlink(folder / f"{name}.toml")
+        for made_folder in made:  # the innermost first
+            with suppress(OSError):
+                os.rmdir(made_folder)
+        if isinstance(exc, OutputError):
+            raise
+        raise OutputError(f"{target}: cannot write the profile ({exc.strerror or exc}; nothing was written)") from None
+    return target, shown / "profile.schema.json"

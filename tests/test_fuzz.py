@@ -61,7 +61,7 @@ WIDE = os.environ.get("GEARCAD_FUZZ_WIDE", "") == "1"
 LOG = os.environ.get("GEARCAD_FUZZ_LOG", "")
 SEED = os.environ.get("GEARCAD_FUZZ_SEED", "")
 SECONDS = float(os.environ.get("GEARCAD_FUZZ_SECONDS", "10"))
-"""Time budget of one check on the shared 2-core machine, s."""
+"""Time budget of one check, CPU seconds (not wall: the suite must pass on a loaded machine)."""
 MEMORY = int(float(os.environ.get("GEARCAD_FUZZ_MEMORY_GIB", "2")) * (1 << 30))
 """Memory budget of one check: address space it may add to the process, bytes."""
 
@@ -576,24 +576,25 @@ def _address_space() -> int:
 
 @contextmanager
 def budget(seconds: float, memory: int) -> Iterator[None]:
-    """Raise :class:`OverBudget` after ``seconds`` (SIGALRM) and ``MemoryError`` beyond ``memory``
-    more bytes of address space (RLIMIT_AS), restoring both afterwards."""
+    """Raise :class:`OverBudget` after ``seconds`` of this process's CPU time (ITIMER_PROF: a
+    loaded machine's scheduler does not spend it) and ``MemoryError`` beyond ``memory`` more
+    bytes of address space (RLIMIT_AS), restoring both afterwards."""
 
     def alarm(signum, frame):
-        raise OverBudget(f"over the time budget of {seconds:g} s")
+        raise OverBudget(f"over the time budget of {seconds:g} CPU seconds")
 
-    previous = signal.signal(signal.SIGALRM, alarm)
+    previous = signal.signal(signal.SIGPROF, alarm)
     soft, hard = resource.getrlimit(resource.RLIMIT_AS)
     limit = _address_space() + memory
     if hard != resource.RLIM_INFINITY:
         limit = min(limit, hard)
     resource.setrlimit(resource.RLIMIT_AS, (limit, hard))
-    signal.setitimer(signal.ITIMER_REAL, seconds)
+    signal.setitimer(signal.ITIMER_PROF, seconds)
     try:
         yield
     finally:
-        signal.setitimer(signal.ITIMER_REAL, 0)
-        signal.signal(signal.SIGALRM, previous)
+        signal.setitimer(signal.ITIMER_PROF, 0)
+        signal.signal(signal.SIGPROF, previous)
         resource.setrlimit(resource.RLIMIT_AS, (soft, hard))
 
 
@@ -711,7 +712,8 @@ def _where(exc: BaseException) -> str:
 
 def _isolated(data: dict) -> dict:
     """``run_check(data)`` in a forked child (the campaign): a check that the alarm cannot stop —
-    stuck in C code, or waiting for worker threads — is killed at three times the budget."""
+    stuck in C code, or waiting for worker threads — is killed at ten times the budget of wall
+    time (a generous multiple: the campaign may run on a loaded machine)."""
     read, write = os.pipe()
     pid = os.fork()
     if pid == 0:  # pragma: no cover - the child
@@ -730,12 +732,12 @@ def _isolated(data: dict) -> dict:
         os._exit(0)
     os.close(write)
     with os.fdopen(read, encoding="utf-8") as pipe:
-        ready, _, _ = select.select([pipe], [], [], 3 * SECONDS)
+        ready, _, _ = select.select([pipe], [], [], 10 * SECONDS)
         if ready:
             text = pipe.read()
         else:
             os.kill(pid, signal.SIGKILL)
-            text = json.dumps({"type": "Hang", "message": f"killed after {3 * SECONDS:g} s", "where": "?"})
+            text = json.dumps({"type": "Hang", "message": f"killed after {10 * SECONDS:g} s", "where": "?"})
     os.waitpid(pid, 0)
     return json.loads(text) if text else {"type": "Crash", "message": "the child died", "where": "?"}
 
@@ -1010,3 +1012,295 @@ def test_concurrent_builds_into_one_out_all_publish(builds, exists, depth):
         page = (out / "index.html").read_text(encoding="utf-8")
         assert [n for n in names if f"{n}/index.html" not in page] == []
         assert list(Path(root).rglob(".gearcad-*")) == []
+
+
+# ---------------------------------------------------------------------------------------------
+# the other commands: sweep (keys, values, constraints, files), new and coupon (issue 34)
+#
+# Each case runs the command line in this process, on the cheapest profile (two circles) at the
+# pitch stage, one worker: what is under test is what each command accepts and refuses, and
+# that it refuses before any design runs.
+
+_CIRCLES = '[gear1]\ncurve = "circle"\nradius = 20.0\n[output]\ntolerance = 0.05\n'
+_SWEEP_KEYS = ["gear1.radius", "pair.driver_rpm", "gear2.lobes", "output.tolerance"]
+_BAD_KEYS = ["gear1", "..", "gear1..a", "output.formats.0", "", "gear1.nosuch", "nosuch.key", "gear1.radius.x"]
+_NUMBERS = st.one_of(
+    st.sampled_from(["10", "25", "1e-300", "1e300", "nan", "inf", "-inf", "-3", "0", "abc", "", "1_0", "0x10", "25e"]),
+    st.floats(allow_nan=True, allow_infinity=True).map(repr),
+)
+_OPS = ["<", "<=", ">", ">=", "==", "!=", "=", "~", ""]
+
+
+@st.composite
+def _sweep_args(draw: Callable) -> list[str]:
+    """A sweep's command line: a --vary or two (a known key or a malformed one; a list, a grid or
+    a range of any values), a constraint and an objective (a report key or not; any value)."""
+    args = []
+    for _ in range(draw(st.integers(1, 2))):
+        key = draw(st.sampled_from(_SWEEP_KEYS + _BAD_KEYS))
+        form = draw(st.sampled_from(["list", "grid", "range"]))
+        values = draw(st.lists(_NUMBERS, min_size=1, max_size=3))
+        if form == "grid":
+            text = f"{values[0]}:{draw(_NUMBERS)}:{draw(st.sampled_from(['1', '2', '3', '0', '-1', '1e9', 'x']))}"
+        elif form == "range":
+            text = f"{values[0]}:{draw(_NUMBERS)}"
+            args += ["--samples", str(draw(st.integers(0, 3)))]
+        else:
+            text = ",".join(values)
+        args += ["--vary", f"{key}={text}"]
+    if draw(st.booleans()):
+        key = draw(st.sampled_from(["pair.center_distance", "pair.ratio_max", "nosuch", "gears.0.r_min", ""]))
+        value = draw(st.one_of(_NUMBERS, st.sampled_from(["true", "false", '"50"', "[1, 2]", "1979-05-27"])))
+        args += ["--constraint", f"{key} {draw(st.sampled_from(_OPS))} {value}".strip()]
+    if draw(st.booleans()):
+        flag = draw(st.sampled_from(["--minimise", "--maximise"]))
+        args += [flag, draw(st.sampled_from(["pair.center_distance", "nosuch", "", "name", "gears.0.r_max"]))]
+    return args
+
+
+@st.composite
+def _sweep_files(draw: Callable) -> str:
+    """A sweep TOML: its profile, stage, [vary] and the rest, each right or wrong."""
+    lines = [
+        draw(st.sampled_from(['profile = "c.toml"', "profile = 5", 'profile = ["c.toml"]', 'profile = "nosuch.toml"'])),
+        draw(st.sampled_from(['stage = "pitch"', 'stage = "nosuch"', "stage = 1"])),
+        draw(st.sampled_from(["", "samples = 2", "samples = true", "samples = -1", "seed = 1.5", "workers = -3"])),
+        draw(st.sampled_from(["", 'constraints = ["pair.center_distance > 10"]', "constraints = 5"])),
+        draw(st.sampled_from(["", 'minimise = ["pair.center_distance"]', "minimise = [1]"])),
+        "[vary]",
+        draw(
+            st.sampled_from(
+                [
+                    '"gear1.radius" = [10, 20]',
+                    '"gear1.radius" = []',
+                    '"gear1.radius" = [10, "x"]',
+                    '"gear1.radius" = "10:20:2"',
+                    '"gear1..a" = [1]',
+                    '"gear1.radius" = [nan, inf]',
+                    "x = 1",
+                ]
+            )
+        ),
+    ]
+    return "\n".join(lines) + "\n"
+
+
+def _run_cli(args: list[str]) -> tuple[int, list[str]]:
+    """``gearcad ARGS`` here: its exit status and its lines on stderr (progress lines dropped)."""
+    import contextlib
+    import io
+
+    from gearcad.cli import main
+
+    err = io.StringIO()
+    with contextlib.redirect_stderr(err), contextlib.redirect_stdout(io.StringIO()):
+        code = main(args)
+    return code, [line for line in err.getvalue().splitlines() if line and not line.startswith("[")]
+
+
+def _check_refusal(code: int, lines: list[str], allowed=(0, 2)) -> None:
+    assert code in allowed, (code, lines)
+    if code == 2:
+        assert lines and all(line.startswith("gearcad: error: ") for line in lines), lines
+        assert all(len(line) <= _MAX_LINE for line in lines), lines
+
+
+def _sweep_fixed() -> bool:
+    """Whether this checkout holds the sweep's own fixes (issue 34 items 4, 12, 13, 15, 18, on
+    another branch when this test was written): a malformed key is refused before any design.
+    Until then a failure of the sweep cases is expected (xfail); after, it fails the test."""
+    import tempfile
+    from pathlib import Path
+
+    with tempfile.TemporaryDirectory() as root:
+        (Path(root) / "c.toml").write_text(_CIRCLES)
+        args = ["sweep", f"{root}/c.toml", "--stage", "pitch", "--workers", "1", "--out", f"{root}/out"]
+        return _run_cli([*args, "--vary", "gear1..a=1"])[0] == 2
+
+
+def _sweep_case(args: list[str], file_text: str | None) -> None:
+    import csv
+    import tempfile
+    from pathlib import Path
+
+    with tempfile.TemporaryDirectory() as root:
+        (Path(root) / "c.toml").write_text(_CIRCLES)
+        out = Path(root) / "out"
+        command = ["sweep", *([] if file_text else [f"{root}/c.toml"]), "--stage", "pitch", "--workers", "1"]
+        if file_text:
+            (Path(root) / "s.toml").write_text(file_text)
+            command = ["sweep", "--file", f"{root}/s.toml", "--workers", "1"]
+        with budget(SECONDS, MEMORY):
+            code, lines = _run_cli([*command, *args, "--out", str(out)])
+        _check_refusal(code, lines)
+        assert sorted(os.listdir(root)) == sorted(
+            ["c.toml", *(["s.toml"] if file_text else []), *(["out"] * (code == 0))]
+        )
+        if code == 2:
+            assert not out.exists(), "a refused sweep left files"
+            return
+        for row in csv.reader((out / "sweep.csv").read_text(encoding="utf-8").splitlines()):
+            assert not {"nan", "inf", "-inf", "NaN", "Infinity"} & set(row), row
+        if any(f"{key}=" in a for a in args for key in _BAD_KEYS if key):
+            pytest.fail(f"a malformed key swept with exit 0: {args}")
+
+
+@_settings
+@given(args=_sweep_args())
+def test_sweep_arguments_end_in_a_table_or_one_line_each(args):
+    """Any --vary, --constraint and objective: a table without NaN or infinity, or lines of
+    ``gearcad: error:`` and exit 2 with nothing written; a malformed key never sweeps."""
+    try:
+        _sweep_case(args, None)
+    except (AssertionError, Exception) as exc:  # noqa: BLE001 - what the sweep died of is the finding
+        if _sweep_fixed():
+            raise
+        pytest.xfail(f"the sweep's fixes are not on this branch: {type(exc).__name__}: {str(exc)[:200]}")
+
+
+@_settings
+@given(text=_sweep_files())
+def test_sweep_files_end_in_a_table_or_one_line_each(text):
+    """Any sweep TOML (its profile, stage, counts, constraints, [vary]): as for the arguments."""
+    try:
+        _sweep_case([], text)
+    except (AssertionError, Exception) as exc:  # noqa: BLE001 - what the sweep died of is the finding
+        if _sweep_fixed():
+            raise
+        pytest.xfail(f"the sweep's fixes are not on this branch: {type(exc).__name__}: {str(exc)[:200]}")
+
+
+_NEW_NAMES = st.one_of(
+    st.sampled_from(["mine", "a", "../x", "a/b", "", ".hidden", "assembly", "x" * 65, "x" * 300, "é", "a\nb", "-"]),
+    st.text(min_size=0, max_size=12),
+)
+_NEW_DIRS = ["fresh/deep", "here", "file", "loop", "dangling", "read-only", "read-only/sub", "long", "proc"]
+
+
+@_settings
+@given(
+    name=_NEW_NAMES,
+    source=st.sampled_from(
+        ["elliptic_focus", "spur_pair", "nosuch", "binary.toml", "latin1.toml", "c.toml", "x" * 300]
+    ),
+    where=st.sampled_from(_NEW_DIRS),
+    planted=st.sampled_from(["", "schema-folder", "schema-link", "schema-read-only", "name-link"]),
+)
+def test_new_writes_its_two_files_or_nothing(name, source, where, planted):
+    """``gearcad new`` with any name, source and --dir: the profile and the schema written inside
+    --dir (the profile valid), or lines of ``gearcad: error:``, exit 2 and nothing changed."""
+    import tempfile
+    from pathlib import Path
+
+    with tempfile.TemporaryDirectory() as root:
+        base = Path(root)
+        (base / "c.toml").write_text(_CIRCLES)
+        (base / "binary.toml").write_bytes(bytes(range(256)))
+        (base / "latin1.toml").write_bytes('name = "caf\xe9"\n'.encode("latin-1"))
+        (base / "victim.txt").write_text("the user's file")
+        folder = {
+            "fresh/deep": base / "fresh" / "deep",
+            "here": base / "here",
+            "file": base / "victim.txt",
+            "loop": base / "loop" / "sub",
+            "dangling": base / "dangling",
+            "read-only": base / "ro",
+            "read-only/sub": base / "ro" / "sub",
+            "long": base / ("y" * 300),
+            "proc": Path("/proc/self"),
+        }[where]
+        (base / "loop").symlink_to(base / "loop")
+        (base / "dangling").symlink_to(base / "nowhere")
+        (base / "ro").mkdir(mode=0o555)
+        (base / "here").mkdir()
+        plant = base / "here"
+        if planted == "schema-folder":
+            (plant / "profile.schema.json").mkdir()
+        elif planted == "schema-link":
+            (plant / "profile.schema.json").symlink_to(base / "victim.txt")
+        elif planted == "schema-read-only":
+            (plant / "profile.schema.json").write_text("{}")
+            (plant / "profile.schema.json").chmod(0o444)
+        elif planted == "name-link" and name and "/" not in name and "\0" not in name and len(name) < 200:
+            with contextlib_suppress():
+                (plant / f"{name}.toml").symlink_to(base / "victim.txt")
+        source_arg = str(base / source) if source.endswith(".toml") else source
+        before = {p: _entry(p) for p in base.rglob("*")}
+        try:
+            with budget(SECONDS, MEMORY):
+                code, lines = _run_cli(["new", name, "--from", source_arg, "--dir", str(folder)])
+            after = {p: _entry(p) for p in base.rglob("*")}
+        finally:
+            (base / "ro").chmod(0o755)
+        _check_refusal(code, lines)
+        assert (base / "victim.txt").read_text() == "the user's file"
+        if code == 2:
+            assert after == before
+            return
+        written = {p for p in after if p not in before or after[p] != before[p]}
+        resolved = Path(os.path.realpath(folder))
+        assert written <= {resolved / f"{name}.toml", resolved / "profile.schema.json", resolved, *resolved.parents}
+        gearcad.load_profile(resolved / f"{name}.toml")
+
+
+def contextlib_suppress():
+    import contextlib
+
+    return contextlib.suppress(OSError)
+
+
+def _entry(path) -> tuple:
+    info = os.lstat(path)
+    if stat.S_ISLNK(info.st_mode):
+        return ("link", os.readlink(path))
+    if stat.S_ISREG(info.st_mode):
+        with open(path, "rb") as fh:
+            return ("file", fh.read(), info.st_mode)
+    return ("folder", info.st_mode)
+
+
+_COUPON_DEFECTS = {
+    "not-a-pair": "[mechanism]\n",  # replaced below by a roller body
+    "no-process": "",
+    "bad-kerf": '[process]\nkind = "laser"\nkerf = KERF\n',
+    "out-a-file": '[process]\nkind = "laser"\n',
+    "out-empty": '[process]\nkind = "laser"\n',
+    "out-loop": '[process]\nkind = "laser"\n',
+    "bad-set": '[process]\nkind = "laser"\n',
+}
+
+
+@_settings
+@given(
+    defects=st.lists(st.sampled_from(sorted(_COUPON_DEFECTS)), min_size=1, max_size=3, unique=True),
+    kerf=st.sampled_from(["nan", "inf", "-0.1", "1e300", '"0.1"', "[0.1]", "true"]),
+    setting=st.sampled_from(["teeth.module=-1", "process.variation=nan", "gear1.radius=1e309", "process.kind=5"]),
+)
+def test_coupon_refuses_before_any_design(defects, kerf, setting):
+    """``gearcad coupon`` with a profile that is no gear pair or names no process, a bad
+    [process] value or --set, or a bad --out: refused in lines of ``gearcad: error:``, exit 2,
+    nothing written — before any design runs (well within a CPU second)."""
+    import tempfile
+    import time
+    from pathlib import Path
+
+    with tempfile.TemporaryDirectory() as root:
+        base = Path(root)
+        text = '[gear1]\ncurve = "circle"\nradius = 20.0\n[teeth]\nmodule = 1.0\n'
+        if "not-a-pair" in defects:
+            text = 'mechanism = "roller-body"\n'
+        text += next((_COUPON_DEFECTS[d].replace("KERF", kerf) for d in defects if "process" in _COUPON_DEFECTS[d]), "")
+        (base / "p.toml").write_text(text)
+        (base / "file").write_text("x")
+        (base / "loop").symlink_to(base / "loop")
+        out = {"out-a-file": base / "file", "out-empty": "", "out-loop": base / "loop"}
+        given_out = next((str(out[d]) for d in defects if d in out), str(base / "out"))
+        sets = ["--set", setting] if "bad-set" in defects else []
+        before = {p: _entry(p) for p in base.rglob("*")}
+        start = time.process_time()
+        with budget(SECONDS, MEMORY):
+            code, lines = _run_cli(["coupon", str(base / "p.toml"), *sets, "--out", given_out])
+        spent = time.process_time() - start
+        _check_refusal(code, lines, allowed=(2,))
+        assert {p: _entry(p) for p in base.rglob("*")} == before
+        assert spent < 2.0, f"{spent:.2f} CPU s: a design ran before the refusal"

@@ -597,3 +597,107 @@ def test_no_minus_zero_rpm_in_a_summary():
     params = gearcad.load_profile(ROOT / "profiles" / "planetary_external.toml", overrides=rest)
     summary = gearcad.check(params).summary
     assert "idler 0 rpm" in summary and "-0 rpm" not in summary, summary
+
+
+def _snapshot(root: Path) -> dict[str, object]:
+    """Every path under ``root`` with what it is: a link's target, a file's bytes and mode."""
+    seen: dict[str, object] = {}
+    for path in sorted(root.rglob("*")):
+        if path.is_symlink():
+            seen[str(path.relative_to(root))] = ("link", os.readlink(path))
+        elif path.is_file():
+            seen[str(path.relative_to(root))] = ("file", path.read_bytes(), path.stat().st_mode)
+        else:
+            seen[str(path.relative_to(root))] = ("folder", path.stat().st_mode)
+    return seen
+
+
+def _plant_new(case: str, tmp: Path) -> list[str]:
+    """What a careless user or an attacker leaves for ``gearcad new a``; the arguments after it."""
+    folder = tmp / "mine"
+    if case == "name-dangling-link":
+        folder.mkdir()
+        (folder / "a.toml").symlink_to(tmp / "nowhere.toml")
+    elif case == "schema-a-folder":
+        (folder / "profile.schema.json").mkdir(parents=True)
+    elif case == "schema-read-only":
+        folder.mkdir()
+        (folder / "profile.schema.json").write_text("{}")
+        (folder / "profile.schema.json").chmod(0o444)
+    elif case in ("dir-read-only", "parent-read-only"):
+        folder.mkdir(0o555)
+        folder.chmod(0o555)
+        return ["--dir", str(folder / "sub" if case == "parent-read-only" else folder)]
+    elif case == "dir-a-file":
+        folder.write_text("x")
+    elif case == "dir-a-loop":
+        (tmp / "loop1").symlink_to(tmp / "loop2")
+        (tmp / "loop2").symlink_to(tmp / "loop1")
+        return ["--dir", str(tmp / "loop1" / "sub")]
+    elif case == "dir-too-long":
+        return ["--dir", str(tmp / ("x" * 300))]
+    elif case == "dir-path-too-long":
+        return ["--dir", str(tmp / "/".join(["y" * 200] * 25))]
+    elif case == "proc-self":
+        return ["--dir", "/proc/self"]
+    elif case in ("from-binary", "from-latin-1"):
+        source = tmp / "source.toml"
+        source.write_bytes(bytes(range(256)) * 4 if case == "from-binary" else 'name = "caf\xe9"\n'.encode("latin-1"))
+        return ["--from", str(source), "--dir", str(folder)]
+    elif case == "from-too-long":
+        return ["--from", "z" * 300 + ".toml", "--dir", str(folder)]
+    return ["--dir", str(folder)]
+
+
+NEW_CASES = ["name-dangling-link", "schema-a-folder", "schema-read-only", "dir-read-only", "parent-read-only"]
+NEW_CASES += ["dir-a-file", "dir-a-loop", "dir-too-long", "dir-path-too-long", "proc-self"]
+NEW_CASES += ["from-binary", "from-latin-1", "from-too-long"]
+
+
+@pytest.mark.parametrize("case", NEW_CASES)
+def test_new_refuses_what_it_cannot_write_in_one_line_and_writes_nothing(tmp_path, capsys, case):
+    """Issue 34 item 16: each was a traceback, or wrote through or over what was there."""
+    args = _plant_new(case, tmp_path)
+    before = _snapshot(tmp_path)
+    try:
+        code = main(["new", "a", *args])
+        after = _snapshot(tmp_path)
+    finally:
+        for path in tmp_path.rglob("*"):  # pytest must be able to remove what was made read-only
+            if not path.is_symlink():
+                path.chmod(0o755)
+    err = capsys.readouterr().err.strip().splitlines()
+    assert code == 2 and len(err) == 1 and err[0].startswith("gearcad: error: ") and len(err[0]) < 600, err
+    assert after == before
+
+
+def test_new_keeps_the_same_schema_and_replaces_an_old_one(tmp_path):
+    """A second ``new`` in one folder leaves this version's schema as it is (even read-only)."""
+    assert main(["new", "a", "--dir", str(tmp_path)]) == 0
+    schema = tmp_path / "profile.schema.json"
+    schema.chmod(0o444)
+    assert main(["new", "b", "--dir", str(tmp_path)]) == 0
+    assert (tmp_path / "b.toml").is_file() and schema.stat().st_mode & 0o777 == 0o444
+    schema.chmod(0o644)
+    schema.write_text("{}")  # an older version's
+    assert main(["new", "c", "--dir", str(tmp_path)]) == 0
+    assert json.loads(schema.read_text())["title"] == "gearcad profile"
+
+
+def test_a_full_disk_under_a_coupon_is_one_line_and_nothing_published(tmp_path, capsys, monkeypatch):
+    """A coupon whose files the system refuses (ENOSPC: a full disk) ended in an OSError
+    traceback from the DXF writer; now one line, exit 2, and --out as it was."""
+    import errno
+
+    from gearcad.export import coupon as coupon_export
+
+    def full(*args, **kwargs):
+        raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
+
+    monkeypatch.setattr(coupon_export, "write_coupon", full)
+    profile = _circles_toml(tmp_path, '[teeth]\nmodule = 2.0\n[process]\nkind = "laser"\n')
+    out = tmp_path / "out"
+    assert main(["coupon", str(profile), "--out", str(out)]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert err == ["gearcad: error: circles-coupon: cannot write (No space left on device); nothing was published"]
+    assert not out.exists() or list(out.iterdir()) == []

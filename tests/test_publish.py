@@ -36,6 +36,8 @@ slow_write = float(os.environ.get("SLOW_WRITE", "0"))
 
 def say(text):
     os.write(1, f"{text}\n".encode())
+    if text == os.environ.get("STOP_AT"):  # hold here until killed: the kill lands at this step, whatever the load
+        time.sleep(3600)
 
 exchange = (lambda a, b: False) if os.environ.get("NO_EXCHANGE") else publish._exchange
 def slow_exchange(a, b):
@@ -84,7 +86,7 @@ def _spawn(out: Path, gen: str, **env) -> subprocess.Popen:
     )
 
 
-def _wait_for(proc: subprocess.Popen, marker: str, lines: list[str], timeout: float = 10.0) -> None:
+def _wait_for(proc: subprocess.Popen, marker: str, lines: list[str], timeout: float = 120.0) -> None:
     """Read the child's markers into ``lines`` until ``marker`` (or its end)."""
     end = time.monotonic() + timeout
     buffer = b""
@@ -100,7 +102,7 @@ def _wait_for(proc: subprocess.Popen, marker: str, lines: list[str], timeout: fl
 
 
 def _finish(proc: subprocess.Popen, lines: list[str]) -> tuple[int, list[str]]:
-    out, err = proc.communicate(timeout=10)
+    out, err = proc.communicate(timeout=120)  # a hang guard: a generous multiple on a loaded machine
     lines += out.decode().splitlines()
     return proc.returncode, err.decode().splitlines()
 
@@ -147,16 +149,18 @@ def test_every_folder_is_whole_after_a_kill_at_any_moment(tmp_path, exchange):
     kills = 2 * len(targets)  # every target twice
     for k in range(kills):
         gen = f"gen-{k + 2}"
-        proc, lines = _spawn(out, gen, **env), []
         target = targets[k % len(targets)]
+        # a target: the child holds at that step until killed, so each kill lands where it is meant
+        # to whatever the machine's load (not after a race the scheduler may lose)
+        proc, lines = _spawn(out, gen, **env, **({"STOP_AT": target} if target else {})), []
         if target is None:  # anywhere from start-up to the end
             time.sleep(rng.uniform(0.0, 0.08))
         else:
             _wait_for(proc, target, lines)
-            time.sleep(rng.uniform(0.0, 0.002))
         proc.kill()
         _finish(proc, lines)
         phase = lines[-1] if lines else "(python start-up)"
+        assert target is None or phase == target, (target, lines[-3:])
         phases[phase] = phases.get(phase, 0) + 1
         if not exchange and phase.startswith("renamed .old-"):  # the documented gap of two renames
             gone = phase.removeprefix("renamed .old-")
@@ -170,9 +174,6 @@ def test_every_folder_is_whole_after_a_kill_at_any_moment(tmp_path, exchange):
             assert now in (previous[name], gen), (phase, name, now)
             previous[name] = now
         assert {p.name for p in out.iterdir() if not p.name.startswith(".gearcad-staging-")} == set(NAMES)
-    commit = sum(n for p, n in phases.items() if p.startswith(("swap", "renamed", "staged")))
-    assert commit >= kills // 3, phases  # the kills did land inside the commit
-    assert sum(n for p, n in phases.items() if p.startswith("staging")) >= 2, phases
     print(f"{kills} kills, last marker at death: {dict(sorted(phases.items()))}")
     _build(out, "gen-final")
     assert all(_generation(out / name) == "gen-final" for name in NAMES)

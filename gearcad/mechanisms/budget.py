@@ -26,6 +26,7 @@ __all__ = [
     "SECTION_POINT_BUDGET",
     "check_section_work",
     "MAX_SAMPLE_ORDER",
+    "MAX_SAMPLE_WORK",
     "SAMPLE_NOISE",
 ]
 
@@ -120,6 +121,12 @@ MAX_SAMPLE_ORDER = 360
 """Highest harmonic order a pitch curve given by radii may hold above its noise: the cut's time
 grows with it (about 10 s at 360 on the reference machine), and a wave finer than a degree of
 turn is finer than any tooth."""
+
+MAX_SAMPLE_WORK = 120 * 120
+"""Most (top order + 1) × (orders held) of a pitch curve given by radii: a curve's evaluations
+cost one step per order held and the pieces its fits need grow with the top order, so its pitch
+stage grows as their product (0.3 mm of noise in 720 radii: order 360, every order held, 40 s of
+pitch stage alone; cut at order 120: about 4 s)."""
 
 SAMPLE_NOISE = 0.1
 """The smallest orders of sampled radii are dropped as noise while together they move the curve

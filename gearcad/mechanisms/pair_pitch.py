@@ -40,7 +40,7 @@ from ..profiles import (
     WalkerParams,
 )
 from ..tolerances import DEFAULT, Tolerances
-from .budget import MAX_SAMPLE_ORDER, SAMPLE_NOISE
+from .budget import MAX_SAMPLE_ORDER, MAX_SAMPLE_WORK, SAMPLE_NOISE
 
 __all__ = ["WalkerData", "PairDesign", "pitch_design", "driver_curve"]
 
@@ -110,6 +110,7 @@ def driver_curve(params: GearPairParams) -> tuple[PitchCurve, W.RatioLaw | Motio
                 max_order=MAX_SAMPLE_ORDER,
                 key="gear1.radii",
                 smoothing=g.smoothing,
+                max_work=MAX_SAMPLE_WORK,
             ),
             None,
         )
@@ -259,6 +260,12 @@ def pitch_design(params: GearPairParams, *, tol: Tolerances = DEFAULT) -> PairDe
     """Build and check the pitch curves of the pair a profile describes."""
     curve, law, pair = synthesise(params, tol)
     if pair.closure_error > tol.closure_rad or pair.rolling_residual > tol.rolling_mm:
+        spike = shapes.spike_note(params.gear1.radii, "gear1.radii") if isinstance(params.gear1, SamplesParams) else ""
+        if spike:  # a misreading in measured radii: the sample to correct, not a bug
+            raise DesignError(
+                f"{spike} The pair through it fails its checks (closure {pair.closure_error:.3g} rad, rolling "
+                f"{pair.rolling_residual:.3g} mm); correct that sample, or give gear1.smoothing"
+            )
         raise DesignError(  # never expected: a synthesis that fails its own checks is a bug to report
             f"the synthesised pair fails its checks (closure {pair.closure_error:.3g} rad, rolling "
             f"{pair.rolling_residual:.3g} mm); please report this profile"

@@ -28,6 +28,18 @@ GRID = 4096
 hundred, so 4096 points resolve their extremes to well under a per cent of the curvature."""
 
 
+MOST_ORDER = 360
+"""Highest order of a law tried: no tooth follows a finer wiggle (the limit radii given as samples
+have too), and GRID resolves the extremes of every law up to it."""
+
+
+def _kept(spectrum: np.ndarray, lobes: int, order: int) -> np.ndarray:
+    """The law's spectrum of order ``order``: the orders that are multiples of ``lobes``, up to it."""
+    keep = np.zeros(len(spectrum), dtype=complex)
+    keep[lobes : order + 1 : lobes] = spectrum[lobes : order + 1 : lobes]
+    return keep
+
+
 @dataclass(frozen=True)
 class MotionLimits:
     """What teeth need of the law: k within ``ratio`` and radius of curvature ≥ ``curvature_radius``."""
@@ -107,48 +119,62 @@ def fit_motion(
     tolerance: float,
     limits: MotionLimits,
     key: str,
+    max_order: int = MOST_ORDER,
 ) -> MotionFit:
     """The smoothest closing law for follower angles ``psi`` (rad) at φ = 2πj/n.
 
-    Raises :class:`DesignError` naming ``key`` with the best error the limits allow when no
-    law within them meets ``tolerance`` (rad).
+    ψ is measured in the follower's own sense of rotation (it grows as the driver turns); angles
+    measured in the driver's sense (the follower, turning the other way, going negative: ψ falls)
+    are the same motion and are taken as −ψ.
+
+    Laws of order up to ``max_order`` are tried (each in O(n log n) time and O(n) memory: the
+    100,000 samples a profile may give take about a second).  Raises :class:`DesignError`
+    naming ``key`` with the best error the limits allow when no law within them meets
+    ``tolerance`` (rad).
     """
     psi = np.asarray(psi, dtype=float)
+    if len(psi) > 1 and psi[-1] < psi[0]:
+        # ψ given in the driver's sense of rotation: the follower, turning the other way, goes
+        # negative.  It is the same motion; the law wants ψ in the follower's own sense.
+        psi = -psi
     n = len(psi)
     mean = lobes / mate_lobes
     phi = TWO_PI * np.arange(n) / n
     p = psi - mean * phi
-    spectrum = np.fft.rfft(p) / n
-    top = (n - 1) // 2  # below Nyquist: every kept order has both its cosine and its sine
+    top = min((n - 1) // 2, max_order)  # below Nyquist: every kept order has both its cosine and its sine
+    spectrum = (np.fft.rfft(p) / n)[: top + 1]
     candidates = [m for m in range(0, top + 1, lobes)]
-    kept, errors = {}, {}
-    for order in candidates:
-        keep = np.zeros(len(spectrum), dtype=bool)
-        keep[lobes : order + 1 : lobes] = True
-        kept[order] = np.where(keep, spectrum, 0)
-        errors[order] = float(np.max(np.abs(np.fft.irfft(kept[order] * n, n) + spectrum[0].real - p)))
+    errors: dict[int, float] = {}
+
+    def error(order: int) -> float:  # one order's law at a time: memory O(n), not a spectrum per order
+        if order not in errors:
+            law = np.fft.irfft(_kept(spectrum, lobes, order) * n, n) + spectrum[0].real
+            errors[order] = float(np.max(np.abs(law - p)))
+        return errors[order]
 
     def within(order: int) -> MotionFit | None:
-        k_lo, k_hi, rho = _law_measures(mean, kept[order], center_distance)
+        kept = _kept(spectrum, lobes, order)
+        k_lo, k_hi, rho = _law_measures(mean, kept, center_distance)
         if not (limits.ratio[0] <= k_lo and k_hi <= limits.ratio[1] and rho >= limits.curvature_radius):
             return None
-        orders = np.flatnonzero(kept[order])
-        a, b = 2 * kept[order].real[orders], -2 * kept[order].imag[orders]  # p = Σ a_m cos mφ + b_m sin mφ
+        orders = np.flatnonzero(kept)
+        a, b = 2 * kept.real[orders], -2 * kept.imag[orders]  # p = Σ a_m cos mφ + b_m sin mφ
         c, s = orders * b, -orders * a  # k = mean + p'
         harmonics = tuple(zip(orders.tolist(), c.tolist(), s.tolist()))
-        return MotionFit(mean, harmonics, order, errors[order], (k_lo, k_hi), rho)
+        return MotionFit(mean, harmonics, order, error(order), (k_lo, k_hi), rho)
 
     # the smoothest: the lowest order that meets the tolerance within the limits
-    for order in (o for o in candidates if errors[o] <= tolerance):
+    for order in (o for o in candidates if error(o) <= tolerance):
         fit = within(order)
         if fit is not None:
             return fit
     # else the best the limits allow: the smallest error among the orders within them
-    best = next((f for f in map(within, sorted(candidates, key=lambda o: (errors[o], o))) if f is not None), None)
+    best = next((f for f in map(within, sorted(candidates, key=lambda o: (error(o), o))) if f is not None), None)
     lo, hi = limits.ratio
     given = np.gradient(np.unwrap(psi), phi) if n > 2 else np.array([mean])
     achievable = (
-        f"the best law within them misses it by {math.degrees(best.error):.4g}° (order {best.order})"
+        f"the best law within them misses it by {math.degrees(best.error):.4g}° (order {best.order}"
+        + (f"; orders above {max_order} are not tried: no tooth follows a finer wiggle)" if top == max_order else ")")
         if best is not None
         else "no law within them exists"
     )

@@ -18,6 +18,8 @@ __all__ = [
     "from_ratio",
     "harmonic_ratio",
     "from_samples",
+    "outlier",
+    "spike_note",
 ]
 
 
@@ -187,6 +189,85 @@ def _smooth_order(spectrum: np.ndarray, radii: np.ndarray, smoothing: float) -> 
     return lo
 
 
+def outlier(radii) -> tuple[int, float, float] | None:
+    """The one sample that stands out from its neighbours — a misreading, a spike — as (index,
+    value, what its four neighbours predict by the cubic through them), or None.
+
+    A spike of height h makes the cubic through the neighbours of each sample miss by h at the
+    spike, −2h/3 beside it and h/6 two steps away: that signature is asked for (within a margin),
+    and a miss of 20 times the typical sample's and a tenth of the median radius."""
+    radii = np.asarray(radii, dtype=float)
+    n = len(radii)
+    if n < 8:
+        return None
+    predicted = (-np.roll(radii, 2) + 4 * np.roll(radii, 1) + 4 * np.roll(radii, -1) - np.roll(radii, -2)) / 6
+    miss = radii - predicted
+    j = int(np.argmax(np.abs(miss)))
+    h = miss[j]
+    beside = np.array([miss[j - 1], miss[(j + 1) % n]]) / h
+    apart = np.array([miss[j - 2], miss[(j + 2) % n]]) / h
+    tall = abs(h) > max(20 * float(np.median(np.abs(miss))), 0.1 * float(np.median(radii)))
+    if tall and np.all((-0.8 < beside) & (beside < -0.5)) and np.all((0.05 < apart) & (apart < 0.3)):
+        return j, float(radii[j]), float(predicted[j])
+    return None
+
+
+SPIKE_SAMPLES = 64
+"""From this many radii on, a sample with a spike's signature is refused up front: measured
+data that dense does not jump by a tenth of its radius at one sample (coarser samples of a sharp
+curve — an ellipse of e ≥ 0.95 in 64 or fewer — look the same and are left to the checks)."""
+
+
+def spike_note(radii, key: str) -> str:
+    """``key[j] = value: stands out …`` for the sample :func:`outlier` finds, else ``""``."""
+    found = outlier(radii)
+    if found is None:
+        return ""
+    j, value, predicted = found
+    return f"{key}[{j}] = {value:g}: stands out from its neighbours (they give {predicted:.4g} mm there), a misreading?"
+
+
+def _work(small: np.ndarray) -> int:
+    """What a series costs: (top order + 1) × (orders held)."""
+    held = np.flatnonzero(~small)
+    return (int(held[-1]) + 1) * len(held)
+
+
+def _refuse_work(spectrum, radii, noise, max_work: int, smoothing: float, key: str) -> None:
+    """Refuse a series that costs more than ``max_work``, naming the least smoothing (two
+    figures, rounded up) whose cut fits: a bisection on it, as the cut's order falls (if not
+    strictly) as the smoothing grows."""
+    kept = np.where(noise, 0.0, spectrum)
+    orders = np.arange(len(spectrum))
+
+    def cost(allowed: float) -> int:
+        return _work(noise | (orders > _smooth_order(kept, radii, allowed)))
+
+    lo, hi = max(smoothing, 0.0), float(np.max(np.abs(radii - spectrum[0].real)))  # at hi: the mean circle
+    for _ in range(40):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if cost(mid) > max_work else (lo, mid)
+        if hi - lo <= 1e-3 * hi:
+            break
+    need = float(f"{hi:.2g}")
+    need = need if need >= hi else float(f"{hi * 1.05:.2g}")
+    held = ~noise
+    held[0] = False
+    name = key.rsplit(".", 1)[0] + ".smoothing" if "." in key else "smoothing"
+    spike = spike_note(radii, key)
+    if spike:
+        raise DesignError(
+            f"{spike} With it the radii keep {int(np.count_nonzero(held))} waves per turn, more than a build "
+            f"cuts in about half a minute; correct that sample, or set {name} = {need:g} mm or more"
+        )
+    raise DesignError(
+        f"{name} = {smoothing:g}: the radii keep {int(np.count_nonzero(held))} waves up to order "
+        f"{int(np.flatnonzero(held)[-1]) if held.any() else 0} per turn (noise or detail), more than a build cuts "
+        f"in about half a minute (order × waves at most {max_work:,}); set {name} = {need:g} mm or more, "
+        "or give smoother radii"
+    )
+
+
 def _check_lobes(orders: np.ndarray, lobes: int, key: str) -> None:
     """Refuse radii that repeat another number of times per turn than ``lobes`` says: a curve
     with n lobes holds only orders that are multiples of n, so the radii's lobes are the greatest
@@ -211,6 +292,7 @@ def from_samples(
     max_order: int | None = None,
     key: str = "radii",
     smoothing: float = 0.0,
+    max_work: int | None = None,
 ) -> PitchCurve:
     """A smooth curve through radii sampled at equal steps over one turn (trigonometric
     interpolation: spectrally accurate for smooth periodic data).
@@ -223,9 +305,15 @@ def from_samples(
 
     ``smoothing`` (mm, for measured radii with noise): first cut the series at the lowest order
     that passes within this of every sample.
+
+    ``max_work``: the most (top order + 1) × (orders held) the curve may cost — every later
+    evaluation costs one step per order held, and the pieces a fit needs grow with the top
+    order.  Beyond it :class:`DesignError` names the smoothing that would fit, before any work.
     """
     radii = np.asarray(radii, dtype=float)
     n = len(radii)
+    if n > SPIKE_SAMPLES and (spike := spike_note(radii, key)):
+        raise DesignError(f"{spike} Correct that sample (one spike rings through the whole curve)")
     spectrum = np.fft.rfft(radii) / n
     orders = np.arange(len(spectrum))
     weight = np.ones(len(spectrum))
@@ -241,8 +329,9 @@ def from_samples(
     if negligible > 0:
         small |= _noise(cos_c - 1j * sin_c, amplitude, negligible)
     small[0] = False
+    noise = small.copy()
     if smoothing > 0:  # the lowest order whose series passes within ``smoothing`` of every sample
-        small |= orders > _smooth_order(np.where(small, 0.0, spectrum), radii, smoothing)
+        small |= orders > _smooth_order(np.where(noise, 0.0, spectrum), radii, smoothing)
     top = int(np.flatnonzero(~small)[-1])
     if max_order is not None and top > max_order:
         raise DesignError(
@@ -250,6 +339,8 @@ def from_samples(
             f"noise they hold waves up to order {top} per turn (at most order {max_order}); smooth them or give "
             "fewer samples"
         )
+    if max_work is not None and _work(small) > max_work:
+        _refuse_work(spectrum, radii, noise, max_work, smoothing, key)
     _check_lobes(np.flatnonzero(~small[1:]) + 1, lobes, key)
     series = harmonic_series(np.where(small, 0.0, cos_c - 1j * sin_c)[: top + 1])
 

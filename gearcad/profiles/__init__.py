@@ -36,6 +36,7 @@ from .reading import (
     parse_profile,
     profile_error,
     profile_schema,
+    read_profile_text,
     validated,
 )
 from .roller_body import BodyParams, KinematicsParams, RollerBodyParams, RollerTeethParams
@@ -46,6 +47,7 @@ __all__ = [
     # reading
     "parse_profile",
     "load_profile",
+    "read_profile_text",
     "apply_overrides",
     "validated",
     "profile_error",

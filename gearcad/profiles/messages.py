@@ -33,12 +33,30 @@ _BARE_KEY = re.compile(r"[A-Za-z0-9_-]+")  # TOML's bare keys; any other key is 
 
 
 def show(value: Any) -> str:
-    """A value as the profile would write it (strings quoted), kept short."""
-    text = _toml(value, depth=0)
+    """A value as the profile would write it (strings quoted), kept short: a list or table is cut
+    between its elements (``[1, 2, 3, … 999,997 more]``), never inside a number."""
+    text = _toml(value, depth=0, budget=_SHOWN_CHARS)
     return text if len(text) <= _SHOWN_CHARS else text[: _SHOWN_CHARS - 1] + "…"
 
 
-def _toml(value: Any, depth: int) -> str:
+def _elements(texts, count: int, budget: int, brackets: str) -> str:
+    """``[a, b, … N more]`` with as many whole elements as fit in ``budget`` characters (one at
+    least), from the element texts ``texts`` (lazily made) of ``count`` elements."""
+    shown: list[str] = []
+    used = 2
+    for text in texts:
+        more = count - len(shown) - 1
+        tail = len(f", … {more:,} more") if more else 0
+        if shown and used + len(text) + 2 + tail > budget:
+            break
+        shown.append(text)
+        used += len(text) + 2
+    if len(shown) < count:
+        shown.append(f"… {count - len(shown):,} more")
+    return brackets[0] + ", ".join(shown) + brackets[1]
+
+
+def _toml(value: Any, depth: int, budget: int = _SHOWN_CHARS) -> str:
     if isinstance(value, bool):
         return "true" if value else "false"
     if isinstance(value, int):
@@ -53,17 +71,14 @@ def _toml(value: Any, depth: int) -> str:
     if isinstance(value, list | tuple):
         if depth > 2:
             return "[…]"
-        items = [_toml(v, depth + 1) for v in value[:_SHOWN_ITEMS]]
-        if len(value) > _SHOWN_ITEMS:
-            items.append(f"… {len(value)} values")
-        return "[" + ", ".join(items) + "]"
+        texts = (_toml(v, depth + 1, budget // 2) for v in value[:_SHOWN_ITEMS])
+        return _elements(texts, len(value), budget, "[]")
     if isinstance(value, dict):
         if depth > 2:
             return "{…}"
-        items = [f"{_key(k)} = {_toml(v, depth + 1)}" for k, v in list(value.items())[:_SHOWN_ITEMS]]
-        if len(value) > _SHOWN_ITEMS:
-            items.append(f"… {len(value)} keys")
-        return "{" + ", ".join(items) + "}"
+        pairs = list(value.items())[:_SHOWN_ITEMS]
+        texts = (f"{_key(k)} = {_toml(v, depth + 1, budget // 2)}" for k, v in pairs)
+        return _elements(texts, len(value), budget, "{}")
     return str(value)
 
 

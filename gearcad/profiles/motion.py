@@ -35,7 +35,8 @@ class MotionParams(ParamsModel):
     """The gear's name: its files are named after it."""
     curve: Literal["motion"] = "motion"
     follower_deg: Samples | None = None
-    """The follower's angle ψ in degrees at φ = 360°·j/n, j = 0 … n − 1; or give ratio."""
+    """The follower's angle ψ in degrees at φ = 360°·j/n, j = 0 … n − 1, in the follower's own sense
+    of turning (ψ grows; angles that fall, measured in the driver's sense, are read as −ψ); or give ratio."""
     ratio: Ratios | None = None
     """The speed ratio ω2/ω1 at φ = 360°·j/n, j = 0 … n − 1; or give follower_deg."""
     tolerance_deg: number("an angle in degrees", gt=0, le=30) = 0.01

@@ -34,6 +34,7 @@ __all__ = [
     "ProfileParams",
     "parse_profile",
     "load_profile",
+    "read_profile_text",
     "apply_overrides",
     "validated",
     "profile_error",
@@ -215,6 +216,29 @@ def _remove(data: dict, parts: list[str]) -> None:
         node.pop(parts[-1], None)
 
 
+def _where(path: Path) -> str:
+    return str(path) if str(path).isprintable() else str(path).encode("unicode_escape", "backslashreplace").decode()
+
+
+def read_profile_text(path: str | Path) -> str:
+    """A profile file's text: at most 16 MiB of UTF-8 (a byte-order mark is dropped); else
+    :class:`ProfileError`, one line starting with ``path: ``."""
+    where = _where(Path(path))
+    try:
+        with open(path, "rb") as fh:  # at most the limit and a byte: /dev/zero has no end
+            raw = fh.read(_MOST_BYTES + 1)
+    except OSError as exc:
+        raise ProfileError(f"{where}: cannot read the profile ({exc.strerror or exc})") from None
+    if len(raw) > _MOST_BYTES:
+        raise ProfileError(f"{where}: more than {_MOST_BYTES >> 20} MiB, too large for a profile")
+    skip = len(codecs.BOM_UTF8) if raw.startswith(codecs.BOM_UTF8) else 0
+    try:
+        return raw[skip:].decode("utf-8")
+    except UnicodeDecodeError as exc:
+        at = skip + exc.start
+        raise ProfileError(f"{where}: not UTF-8 text (byte 0x{raw[at]:02x} at offset {at})") from None
+
+
 def load_profile(
     path: str | Path,
     overrides: Sequence[str] | Mapping[str, Any] = (),
@@ -226,20 +250,8 @@ def load_profile(
     The file must be UTF-8 (a byte-order mark is accepted); ``name`` defaults to its stem.
     """
     path = Path(path)
-    where = str(path) if str(path).isprintable() else str(path).encode("unicode_escape", "backslashreplace").decode()
-    try:
-        with open(path, "rb") as fh:  # at most the limit and a byte: /dev/zero has no end
-            raw = fh.read(_MOST_BYTES + 1)
-    except OSError as exc:
-        raise ProfileError(f"{where}: cannot read the profile ({exc.strerror or exc})") from None
-    if len(raw) > _MOST_BYTES:
-        raise ProfileError(f"{where}: more than {_MOST_BYTES >> 20} MiB, too large for a profile")
-    skip = len(codecs.BOM_UTF8) if raw.startswith(codecs.BOM_UTF8) else 0
-    try:
-        text = raw[skip:].decode("utf-8")
-    except UnicodeDecodeError as exc:
-        at = skip + exc.start
-        raise ProfileError(f"{where}: not UTF-8 text (byte 0x{raw[at]:02x} at offset {at})") from None
+    where = _where(path)
+    text = read_profile_text(path)
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
