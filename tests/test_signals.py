@@ -163,7 +163,9 @@ def test_a_build_killed_outright_takes_its_workers_with_it(tmp_path):
     profiles = [str(ROOT / "profiles" / f"{n}.toml") for n in ("elliptic_focus", "rolling_wheel")]
     proc, _, workers = _pool_child(tmp_path, "build", *profiles)
     proc.kill()
-    proc.communicate(timeout=30)
+    proc.wait(timeout=30)  # not communicate(): a worker left alive holds the pipes open
+    proc.stdout.close()
+    proc.stderr.close()
     assert _gone(workers) == set()
 
 
@@ -192,15 +194,17 @@ def test_a_sweep_ends_at_once_on_a_signal_with_one_line(tmp_path, sig):
 
 
 def test_sigterm_before_the_build_starts_gives_its_line(tmp_path):
-    """Issue 34 item 20: while the profiles are still being read (the first second of a build),
-    SIGTERM ended the process silently; the guard is now in place from the start of main."""
-    child = CHILD.replace("from gearcad import batch, cli", "from gearcad import api, batch, cli").replace(
-        'if sys.argv[3] == "design":',
-        'if sys.argv[3] == "load":\n    api.load_profile = held\nelif sys.argv[3] == "design":',
+    """Issue 34 item 20: while the profiles are still being read (the first second of a build,
+    before its own guard), SIGTERM ended the process silently; the guard is now in place from
+    the start of main."""
+    child = (
+        "import os, sys, time\nfrom gearcad import cli\n"
+        "def held(*args):\n    os.write(1, b'ready\\n')\n    time.sleep(60)\n"
+        "cli._load_all = held\nsys.exit(cli.main(['build', sys.argv[1], '--out', sys.argv[2]]))\n"
     )
     out = tmp_path / "out"
     proc = subprocess.Popen(
-        [sys.executable, "-c", child, str(ROOT / "profiles" / "rolling_wheel.toml"), str(out), "load"],
+        [sys.executable, "-c", child, str(ROOT / "profiles" / "rolling_wheel.toml"), str(out)],
         stdout=subprocess.PIPE,
         stderr=subprocess.PIPE,
         env={**os.environ, "PYTHONPATH": str(ROOT)},

@@ -239,11 +239,10 @@ def write_sweep(table, out: str | Path) -> dict[str, Path]:
     from ..publish import check_out, write_files
     from .page import sweep_page
 
-    columns = getattr(table, "columns", ())
-    missing = [c for c in ("index", "refusal", "feasible", "pareto") if c not in columns]
-    if missing or not hasattr(table, "to_parquet") or len(table) == 0:
-        why = f"no {missing[0]!r} column" if missing else "no rows" if hasattr(table, "to_parquet") else "not a table"
-        raise ProfileError(f"write_sweep: {why}; give the table gearcad.sweep returns")
+    missing = [c for c in ("index", "refusal", "feasible", "pareto") if c not in getattr(table, "columns", ())]
+    why = "not a table" if not hasattr(table, "to_parquet") else f"no {missing[0]!r} column" if missing else None
+    if why or len(table) == 0:
+        raise ProfileError(f"write_sweep: {why or 'no rows'}; give the table gearcad.sweep returns")
     check_out(out)
     plain = table.copy()
     plain.attrs = {}
