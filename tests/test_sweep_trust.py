@@ -5,6 +5,7 @@ that accepts and never answers, ends the sweep within its ``--scheduler-timeout`
 
 import socket
 
+import numpy as np
 import pytest
 
 import gearcad
@@ -65,6 +66,13 @@ def _refused(capsys, tmp_path, args, says):
         (["--vary", E, "--constraint", 'pair.ratio_max <= "50"'], "'50' must be a finite number"),
         (["--vary", E, "--constraint", "pair.ratio_max <= nan"], "nan must be a finite number"),
         (["--vary", E, "--minimise", "pair.ratio_max", "--maximise", "pair.ratio_max"], "both minimised and"),
+        # issue 35 item 3: report keys and their kind, from one design at the stage, before the sweep
+        (["--vary", E, "--constraint", "pair.ratio_mx <= 3"], "the pitch stage reports no such key (did you mean"),
+        (["--vary", E, "--minimise", "size"], "objective 'size': the pitch stage reports no such key"),
+        (["--vary", E, "--minimise", "pair.method"], "the report gives text"),
+        (["--vary", E, "--constraint", "pair.method < 3"], "the report gives text"),
+        (["--vary", E, "--constraint", "pair.ratio_max >= 3", "--constraint", "pair.ratio_max < 2"], "meets both"),
+        (["--vary", E, "--constraint", "pair.ratio_max > 2", "--constraint", "pair.ratio_max <= 2"], "meets both"),
         # item 14: scheduler addresses other than tcp://HOST:PORT (ValueError, TypeError, 3 EiB)
         *(
             (["--vary", E, "--scheduler", address], "must be tcp://HOST:PORT")
@@ -198,3 +206,29 @@ def test_a_port_that_never_answers_times_out(capsys, tmp_path):
     err = capsys.readouterr().err.splitlines()
     assert err == [f"gearcad: error: --scheduler {address}: no answer within 0.5 s (is it a Dask scheduler?)"]
     assert not out.exists()
+
+
+def test_violations_the_feasible_count_and_the_exit_status_of_none_feasible(capsys, tmp_path):
+    """Issue 35 Deliver 3: how far each design is from each constraint, in the table; the
+    feasible count on stdout; no feasible design is exit 3 (the files written all the same)."""
+    import pandas as pd
+
+    out = tmp_path / "out"
+    args = ["sweep", str(FOCUS), "--vary", "gear1.eccentricity=0.2,0.3,0.5", "--stage", "pitch", "--workers", "1"]
+    limits = ["--constraint", "pair.ratio_max <= 2", "--constraint", "pair.ratio_min >= 0.6"]
+    assert main([*args, *limits, "--out", str(out)]) == 0
+    assert "(3 made, 0 refused, 1 feasible, " in capsys.readouterr().out
+    table = pd.read_parquet(out / "sweep.parquet")
+    e = table["set.gear1.eccentricity"].to_numpy()
+    # closed form: the focus pair's ratio runs from (1 − e)/(1 + e) to (1 + e)/(1 − e)
+    assert table["violation.pair.ratio_max <= 2"].to_numpy() == pytest.approx(np.maximum(0, (1 + e) / (1 - e) - 2))
+    assert table["violation.pair.ratio_min >= 0.6"].to_numpy() == pytest.approx(np.maximum(0, 0.6 - (1 - e) / (1 + e)))
+    assert table["feasible"].tolist() == [True, False, False]
+    assert main([*args, "--constraint", "pair.ratio_max <= 1", "--out", str(out)]) == 3
+    captured = capsys.readouterr()
+    assert "(3 made, 0 refused, 0 feasible, " in captured.out
+    assert captured.err.splitlines()[-1] == (
+        "gearcad: no feasible design: none of the 3 meets every constraint (the violation.* columns say by how "
+        "much each missed)"
+    )  # after the progress bar
+    assert (out / "sweep.csv").is_file()

@@ -18,7 +18,7 @@ from typing import Any
 from ..errors import ProfileError
 from ..profiles.messages import show
 
-__all__ = ["sweep", "write_sweep"]
+__all__ = ["sweep", "write_sweep", "violations"]
 
 
 def _profile_data(profile) -> tuple[dict, str, str | None]:
@@ -125,6 +125,86 @@ def _check_constraint(condition) -> None:
         raise ProfileError(f"--constraint {condition}: {show(value)} must be {allowed}")
 
 
+def _probe(data: dict, name: str, stage: str, first: dict) -> dict[str, Any] | None:
+    """The report's scalars of the sweep's first point, designed here once, at the sweep's stage
+    (at ``teeth`` for ``full``: a full design can take half a minute); None if it is refused."""
+    from ..mechanisms import design
+    from ..profiles.reading import apply_overrides, parse_profile
+    from .evaluate import flatten
+
+    try:
+        params = parse_profile(apply_overrides(data, first), default_name=name)
+        return flatten(design(params, "teeth" if stage == "full" else stage).report())
+    except Exception:  # noqa: BLE001 - a refused first point says nothing of the keys; its row will say why
+        return None
+
+
+def _check_goals(report: dict, stage: str, conditions: list, objectives: list[str], inputs: list[str]) -> None:
+    """Every constraint and objective names a key the stage reports, of a kind it can be judged
+    by (an order or an objective needs a number, not text); one line each, before the first design.
+    At ``full`` a key the teeth stage does not report is left to the table (a full design reports
+    more than its probe)."""
+    import difflib
+
+    known = {"index", "refusal", "warnings", *inputs, *report}
+    for what, key, needs_number in [
+        *(("--constraint", c[0], c[1] not in ("==", "!=")) for c in conditions),
+        *(("objective", k, True) for k in objectives),
+    ]:
+        if key not in known:
+            if stage == "full":
+                continue
+            near = difflib.get_close_matches(key, sorted(known), n=3, cutoff=0.6)
+            hint = f"did you mean {', '.join(near)}?" if near else "any report key of the stage, dotted"
+            raise ProfileError(f"{what} {key!r}: the {stage} stage reports no such key ({hint})")
+        value = report.get(key)
+        if needs_number and isinstance(value, str):
+            raise ProfileError(f"{what} {key!r}: the report gives text ({value!r}), not a number to order by")
+
+
+def _check_bounds(conditions: list) -> None:
+    """Constraints on one key that no value can meet together (``x >= 2`` and ``x <= 1``)."""
+    bounds: dict[str, list] = {}
+    for key, op, value in conditions:
+        if isinstance(value, bool):
+            continue
+        lo, hi = bounds.setdefault(key, [(-math.inf, False, None), (math.inf, False, None)])
+        if op in (">=", ">", "==") and (value > lo[0] or (value == lo[0] and op == ">")):
+            bounds[key][0] = (value, op == ">", f"{key} {op} {value}")
+        if op in ("<=", "<", "==") and (value < hi[0] or (value == hi[0] and op == "<")):
+            bounds[key][1] = (value, op == "<", f"{key} {op} {value}")
+    for key, (lo, hi) in bounds.items():
+        if lo[0] > hi[0] or (lo[0] == hi[0] and (lo[1] or hi[1])):
+            raise ProfileError(f"--constraint {lo[2]} and --constraint {hi[2]}: no value of {key} meets both")
+
+
+def violations(table, conditions: list) -> dict[str, Any]:
+    """How far each row is from meeting each constraint, as columns ``violation.<constraint>``:
+    0 where it is met; for an order the distance to the bound (``x <= 4`` at x = 4.5: 0.5; a
+    strict ``x < 4`` at x = 4: 0, though not met); for ``==``/``!=`` on numbers the distance
+    |x − v| or 1; on true/false 1; empty (null) for a refused design or a missing value."""
+    import pandas as pd
+
+    out = {}
+    for key, op, value in conditions:
+        amounts = []
+        for x in table[key]:
+            if x is None or x != x or isinstance(x, str):
+                amounts.append(None)
+            elif isinstance(value, bool) or isinstance(x, bool):
+                amounts.append(0.0 if (x == value) == (op == "==") else 1.0)
+            elif op in ("<=", "<"):
+                amounts.append(max(0.0, float(x) - value))
+            elif op in (">=", ">"):
+                amounts.append(max(0.0, value - float(x)))
+            elif op == "==":
+                amounts.append(abs(float(x) - value))
+            else:
+                amounts.append(0.0 if x != value else 1.0)
+        out[f"violation.{key} {op} {show(value)}"] = pd.array(amounts, dtype="Float64")
+    return out
+
+
 def sweep(
     profile: str | Path | Mapping[str, Any],
     vary: Sequence[str] | Mapping[str, Any] = (),
@@ -174,10 +254,14 @@ def sweep(
     for v in varies:
         check_key(data, v.key)
         check_values(v)
+    _check_bounds(conditions)
     spec = SweepSpec(vary=varies, stage=stage, samples=samples, sampling=sampling, seed=seed)
     overrides = points(spec)
     if overrides:
         _check_keys_exist(data, name, overrides[0])
+        report = _probe(data, name, stage, overrides[0]) if conditions or minimise or maximise else None
+        if report is not None:
+            _check_goals(report, stage, conditions, [*minimise, *maximise], [f"set.{k}" for k in overrides[0]])
     rows = _run(
         data,
         name,
@@ -201,6 +285,8 @@ def sweep(
     front = pareto(np.column_stack(values), ok) if values else np.zeros(len(table), dtype=bool)
     table.insert(len(inputs.columns) + 1, "feasible", ok)
     table.insert(len(inputs.columns) + 2, "pareto", front)
+    for n, (column, amounts) in enumerate(violations(table, conditions).items()):
+        table.insert(len(inputs.columns) + 3 + n, column, amounts)
     table.attrs.update(
         profile=path,
         name=name,

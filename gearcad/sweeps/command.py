@@ -11,7 +11,11 @@ from pathlib import Path
 
 from ..errors import ProfileError
 
-__all__ = ["add_parser", "run"]
+__all__ = ["add_parser", "run", "EXIT_NONE_FEASIBLE"]
+
+EXIT_NONE_FEASIBLE = 3
+"""The exit status of a sweep in which no design is feasible (as ``build``'s failed check: the
+files are written all the same)."""
 
 
 def add_parser(sub) -> None:
@@ -106,12 +110,17 @@ def _run(args: argparse.Namespace) -> int:
         progress=stderr_progress(),
     )
     files = write_sweep(table, args.out)
-    made = int(table["refusal"].isna().sum())
+    made, feasible = int(table["refusal"].isna().sum()), int(table["feasible"].sum())
     print(
-        f"swept {len(table)} designs ({made} made, {len(table) - made} refused, {int(table['pareto'].sum())} on the "
-        f"front) in {time.perf_counter() - start:.2f} s: {', '.join(str(p) for p in files.values())}"
+        f"swept {len(table)} designs ({made} made, {len(table) - made} refused, {feasible} feasible, "
+        f"{int(table['pareto'].sum())} on the front) in {time.perf_counter() - start:.2f} s: "
+        f"{', '.join(str(p) for p in files.values())}"
     )
-    return 0
+    if feasible:
+        return 0
+    why = "meets every constraint (the violation.* columns say by how much each missed)" if made else "was made"
+    print(f"gearcad: no feasible design: none of the {len(table)} {why}", file=sys.stderr)
+    return EXIT_NONE_FEASIBLE
 
 
 def stderr_progress(every: float = 1.0) -> Callable[[int, int], None]:
