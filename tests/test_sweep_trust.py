@@ -232,3 +232,29 @@ def test_violations_the_feasible_count_and_the_exit_status_of_none_feasible(caps
         "much each missed)"
     )  # after the progress bar
     assert (out / "sweep.csv").is_file()
+
+
+def test_overrides_as_apply_overrides_gives_them_without_copying_the_profile():
+    """Issue 35 Deliver 6: a design's overrides copy only the tables on their paths, and give
+    what ``apply_overrides`` gives (an exclusive key's partner removed, a new name in the title,
+    a missing table made); the profile itself is left as it was."""
+    import copy
+    import tomllib
+
+    from gearcad.profiles.reading import apply_overrides
+    from gearcad.sweeps.evaluate import overridden
+
+    data = tomllib.loads(FOCUS.read_text(encoding="utf-8"))
+    before = copy.deepcopy(data)
+    for overrides in (
+        {"gear1.eccentricity": 0.3},  # removes gear1.b
+        {"teeth.count": 31, "pair.driver_rpm": 60},  # removes teeth.module
+        {"name": "wide", "gear1.a": 30},
+        {"process.kerf": 0.1, "bore.diameter": 3},  # tables the profile does not give
+        {},
+    ):
+        got = overridden(data, overrides)
+        assert got == apply_overrides(data, overrides), overrides
+        assert data == before
+        # the tables off the overrides' paths are shared, not copied
+        assert got["output"] is data["output"] or "output" in {k.split(".")[0] for k in overrides}
