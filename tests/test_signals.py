@@ -194,13 +194,14 @@ def test_a_sweep_ends_at_once_on_a_signal_with_one_line(tmp_path, sig):
 
 
 def test_sigterm_before_the_build_starts_gives_its_line(tmp_path):
-    """Issue 34 item 20: while the profiles are still being read (the first second of a build,
-    before its own guard), SIGTERM ended the process silently; the guard is now in place from
-    the start of main."""
+    """Issue 34 item 20: in the first second of a build (the arguments read, the profiles loaded:
+    before the build's own guard), SIGTERM ended the process silently; the guard is now in place
+    from the start of main."""
     child = (
         "import os, sys, time\nfrom gearcad import cli\n"
         "def held(*args):\n    os.write(1, b'ready\\n')\n    time.sleep(60)\n"
-        "cli._load_all = held\nsys.exit(cli.main(['build', sys.argv[1], '--out', sys.argv[2]]))\n"
+        "parser = cli._parser\ncli._parser = lambda: held() or parser()\n"
+        "sys.exit(cli.main(['build', sys.argv[1], '--out', sys.argv[2]]))\n"
     )
     out = tmp_path / "out"
     proc = subprocess.Popen(

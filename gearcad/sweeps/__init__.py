@@ -234,9 +234,6 @@ def sweep(
     >>> [round(x, 3) for x in t["pair.ratio_max"]]
     [1.5, 2.333, 4.0]
     """
-    import numpy as np
-    import pandas as pd
-
     from .front import check_keys, feasible, pareto, parse_constraint
     from .space import SweepSpec, check_key, check_values, points
 
@@ -272,6 +269,9 @@ def sweep(
         scheduler_timeout=scheduler_timeout,
         progress=progress,
     )
+    import numpy as np
+    import pandas as pd  # once the designs are made: a sweep stopped early never needs it
+
     table = pd.DataFrame(rows)
     inputs = pd.DataFrame([{f"set.{k}": v for k, v in o.items()} for o in overrides], index=table.index)
     table = pd.concat([table[["index"]], inputs, table.drop(columns=["index"])], axis=1)
