@@ -175,8 +175,11 @@ def _stop(pool: ProcessPoolExecutor, before: set) -> None:
     # and any child forked since the pool was made but not yet recorded by it: none may outlive it
     workers += [w for w in multiprocessing.active_children() if w not in workers and w not in before]
     pool.shutdown(wait=False, cancel_futures=True)
+    # SIGKILL, not SIGTERM: a worker forked a moment ago still has the parent's handlers (the
+    # one that holds signals while workers are forked) until its initializer runs, and would
+    # take SIGTERM as held and go on to build a whole profile while this waited for it
     for worker in workers:
-        worker.terminate()
+        worker.kill()
     for worker in workers:
         worker.join()
 
