@@ -215,3 +215,17 @@ def test_sigterm_before_the_build_starts_gives_its_line(tmp_path):
     _, err = proc.communicate(timeout=30)
     assert (proc.returncode, err.decode().splitlines()) == (143, ["gearcad: interrupted"])
     assert not out.exists()
+
+
+def test_a_worker_stopped_before_its_initializer_ran_ends_at_once(monkeypatch):
+    """A worker forked a moment before the pool is stopped still has the parent's handlers (the
+    one holding signals while workers are forked): SIGTERM was taken as held, and the worker went
+    on to run a queued task while the parent waited (a build's SIGTERM once hung for a minute)."""
+    from gearcad import batch
+
+    init = batch._worker_init
+    monkeypatch.setattr(batch, "_worker_init", lambda *args: (time.sleep(1), init(*args)))
+    start = time.monotonic()
+    with batch.worker_pool(2, busy=False) as pool:
+        batch.submit_all(pool, time.sleep, [(120,), (120,)])
+    assert time.monotonic() - start < 60  # the tasks would hold it 120 s: not a timing budget
