@@ -12,6 +12,7 @@ import re
 import socket
 import time
 from collections.abc import Callable
+from concurrent.futures.process import BrokenProcessPool
 from typing import Any
 
 from ..batch import finished, submit_all, worker_pool
@@ -128,7 +129,14 @@ def run_chunks(
             # a process on every core: no threads beside its designs
             with worker_pool(count, busy=count >= cores()) as pool:
                 for job in finished(submit_all(pool, evaluate_chunk, [(data, name, stage, t) for t in tasks])):
-                    collect(job.result())
+                    try:
+                        part = job.result()
+                    except BrokenProcessPool:
+                        raise GearcadError(
+                            f"a sweep's worker process ended abruptly (killed, e.g. by the out-of-memory killer?) "
+                            f"with {total - done} of {total} designs left; nothing was written"
+                        ) from None
+                    collect(part)
     return sorted(rows, key=lambda r: r["index"])
 
 
