@@ -15,22 +15,22 @@ import stat
 import tempfile
 import time
 from collections.abc import Callable, Iterator, Sequence
-from concurrent.futures import ProcessPoolExecutor
+from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wait
 from concurrent.futures.process import BrokenProcessPool
-from contextlib import contextmanager, suppress
+from contextlib import contextmanager, nullcontext, suppress
 from dataclasses import dataclass
 from pathlib import Path
 
 from .errors import GearcadError, OutputError, ProfileError
 from .findings import Finding
 from .fitting import design
-from .interrupts import Interrupted, held_signals, interrupt_guard
+from .interrupts import Interrupted, end_with_parent, held_signals, interrupt_guard
 from .mechanisms import Design
 from .profiles import ProfileParams
 from .publish import Publisher, _shown, check_out, out_lock
 from .threads import cores, set_threads
 
-__all__ = ["BuildResult", "build", "design_all"]
+__all__ = ["BuildResult", "build", "design_all", "worker_pool", "submit_all", "finished"]
 
 
 @dataclass(frozen=True)
@@ -94,7 +94,8 @@ def _write(d: Design, folder: Path, beside: bool) -> dict[str, dict]:
         raise OutputError(f"{where}: cannot write ({exc.strerror or exc}); nothing was published") from None
 
 
-def _worker_init(busy: bool) -> None:
+def _worker_init(parent: int, busy: bool) -> None:
+    end_with_parent(parent)  # killed by any signal, the parent takes its workers with it
     # the parent handles Ctrl-C and SIGTERM for the whole build and ends the workers
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     signal.signal(signal.SIGTERM, signal.SIG_DFL)
@@ -102,9 +103,59 @@ def _worker_init(busy: bool) -> None:
         set_threads(1)
 
 
+@contextmanager
+def worker_pool(count: int, *, busy: bool) -> Iterator[ProcessPoolExecutor]:
+    """A pool of ``count`` worker processes, forked, that never outlive this one.
+
+    Leaving the block — at its end, on an error or an interrupt — cancels the queued work and
+    ends the workers at once (not after their running tasks); a parent killed outright (SIGKILL,
+    the out-of-memory killer) takes them with it (:func:`gearcad.interrupts.end_with_parent`).
+    ``busy``: a worker on every core, so each runs one thread.  Submit with :func:`submit_all`.
+    An executor, not ``multiprocessing.Pool``: a worker killed breaks it, never hangs it.
+    """
+    before = set(multiprocessing.active_children())
+    pool = ProcessPoolExecutor(
+        count, mp_context=multiprocessing.get_context("fork"), initializer=_worker_init, initargs=(os.getpid(), busy)
+    )
+    try:
+        yield pool
+    finally:
+        with held_signals(deliver=False):  # one interrupt is being handled: a second may not cut this short
+            _stop(pool, before)
+
+
+def submit_all(pool: ProcessPoolExecutor, fn: Callable, items: Sequence[tuple]) -> list[Future]:
+    """``pool.submit(fn, *item)`` for each item, every worker forked (from this thread: the main
+    one, as :func:`gearcad.interrupts.end_with_parent` needs) and recorded before an interrupt lands."""
+    with held_signals():
+        return [pool.submit(fn, *item) for item in items]
+
+
+STEP = 0.1
+"""Seconds a wait on the pool's work lasts before it looks for a held signal."""
+
+
+def finished(futures: Sequence[Future], *, ordered: bool = False) -> Iterator[Future]:
+    """Each of ``futures`` once it is done: in the order given, or as they finish.
+
+    Ctrl-C and SIGTERM are held while waiting and delivered between waits (within
+    :data:`STEP` s): raised at any moment, they could land inside the executor's own locks and
+    leave them held, and its shutdown — and the exit — would hang.
+    """
+    pending = list(futures)
+    while pending:
+        with held_signals() as caught:
+            done: set = set()
+            while not caught and not done:
+                done = wait(pending[:1] if ordered else pending, timeout=STEP, return_when=FIRST_COMPLETED).done
+        for future in [f for f in pending if f in done]:
+            pending.remove(future)
+            yield future
+
+
 def _in_order(futures: list, jobs: list) -> Iterator[BuildResult]:
     """The pool's results in the jobs' order; a worker that died is one line naming its profiles."""
-    for future in futures:
+    for future in finished(futures, ordered=True):
         try:
             yield future.result()
         except BrokenProcessPool:
@@ -119,14 +170,17 @@ def _broken(future) -> bool:
     return future.done() and not future.cancelled() and isinstance(future.exception(), BrokenProcessPool)
 
 
-def _stop(pool: ProcessPoolExecutor) -> None:
+def _stop(pool: ProcessPoolExecutor, before: set) -> None:
     """End the pool's workers now (an error or an interrupt in the parent), not after their builds."""
     workers = list((getattr(pool, "_processes", None) or {}).values())  # no public way before 3.14
-    # and any child forked but not yet recorded by the pool: none may outlive the build
-    workers += [w for w in multiprocessing.active_children() if w not in workers]
+    # and any child forked since the pool was made but not yet recorded by it: none may outlive it
+    workers += [w for w in multiprocessing.active_children() if w not in workers and w not in before]
     pool.shutdown(wait=False, cancel_futures=True)
+    # SIGKILL, not SIGTERM: a worker forked a moment ago still has the parent's handlers (the
+    # one that holds signals while workers are forked) until its initializer runs, and would
+    # take SIGTERM as held and go on to build a whole profile while this waited for it
     for worker in workers:
-        worker.terminate()
+        worker.kill()
     for worker in workers:
         worker.join()
 
@@ -158,26 +212,15 @@ def build(
         beside = _workers(len(profiles) + 1) > count
         with _writing(f"--out {_shown(out)}: cannot make a folder to build in"):
             jobs = [(p, publisher.folder(p.name), beside) for p in profiles]
-        pool = None
-        try:
-            if count == 1:
+        with worker_pool(count, busy=count >= cores()) if count > 1 else nullcontext() as pool:
+            if pool is None:
                 built = map(_build_one, jobs)
             else:
-                # an executor, not Pool: a worker killed (OOM killer, kill -9) breaks it, never hangs it
-                context = multiprocessing.get_context("fork")
-                pool = ProcessPoolExecutor(
-                    count, mp_context=context, initializer=_worker_init, initargs=(count >= cores(),)
-                )
-                with held_signals():  # every worker forked and recorded before an interrupt lands
-                    futures = [pool.submit(_build_one, job) for job in jobs]
-                built = _in_order(futures, jobs)
+                built = _in_order(submit_all(pool, _build_one, [(job,) for job in jobs]), jobs)
             for n, result in enumerate(built, 1):
                 results.append(result)
                 if progress:
                     progress(n, len(jobs), result)
-        finally:
-            if pool is not None:
-                _stop(pool)
         publisher.commit()
     with _writing(f"--out {_shown(out)}: the profiles were published, but not index.html over them"):
         _write_index(publisher.path)

@@ -20,6 +20,7 @@ import warnings
 from pathlib import Path
 
 from .errors import GearcadError, OutputError
+from .interrupts import Interrupted, interrupt_guard
 
 __all__ = ["main"]
 
@@ -98,6 +99,8 @@ def _load_all(args) -> list:
     for path in _profile_paths(args.profiles):
         try:
             profiles.append(load_profile(path, args.overrides, unset=args.unset))
+        except Interrupted:  # the command's, not this profile's: its own line and exit status
+            raise
         except GearcadError as exc:
             errors.append(str(exc))
     if errors:
@@ -227,13 +230,20 @@ def _printable_streams() -> None:
 def main(argv: list[str] | None = None) -> int:
     _closed_streams()
     _printable_streams()
-    args = _parser().parse_args(argv)
-    logging.basicConfig(level=logging.ERROR, format="%(levelname)s: %(message)s")
-    with warnings.catch_warnings():
-        # numpy's overflow or invalid-value notes on an extreme profile are no news to the user:
-        # the design is checked, and what is wrong is the one line below
-        warnings.simplefilter("ignore", RuntimeWarning)
-        return _main(args)
+    try:
+        # Ctrl-C and SIGTERM from the first moment, not only once a build starts: one line and
+        # 130 / 143, never a silent end (a build's and a sweep's own guards name their --out)
+        with interrupt_guard():
+            args = _parser().parse_args(argv)
+            logging.basicConfig(level=logging.ERROR, format="%(levelname)s: %(message)s")
+            with warnings.catch_warnings():
+                # numpy's overflow or invalid-value notes on an extreme profile are no news to the
+                # user: the design is checked, and what is wrong is the one line below
+                warnings.simplefilter("ignore", RuntimeWarning)
+                return _main(args)
+    except Interrupted as exc:  # landed outside _main (while the arguments were read)
+        print(f"gearcad: {exc}", file=sys.stderr)
+        return exc.exit_code
 
 
 def _main(args) -> int:

@@ -10,25 +10,27 @@ and CSV with the front and an HTML page.  pandas, pyarrow and dask are imported 
 
 from __future__ import annotations
 
-import tomllib
+import math
 from collections.abc import Callable, Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
 from ..errors import ProfileError
+from ..profiles.messages import show
 
-__all__ = ["sweep", "write_sweep"]
+__all__ = ["sweep", "write_sweep", "violations"]
 
 
 def _profile_data(profile) -> tuple[dict, str, str | None]:
     """The profile as TOML data, its default name and its path (if a file)."""
+    from .space import read_toml
+
     if isinstance(profile, Mapping):
         return dict(profile), str(profile.get("name", "profile")), None
+    if not isinstance(profile, (str, Path)) or not str(profile).strip():
+        raise ProfileError(f"profile = {show(profile)}: must be a profile's path or its data (a dict)")
     path = Path(profile)
-    try:
-        return tomllib.loads(path.read_text(encoding="utf-8-sig")), path.stem, str(path)
-    except (OSError, UnicodeDecodeError, tomllib.TOMLDecodeError) as exc:
-        raise ProfileError(f"{path}: cannot read the profile ({exc})") from None
+    return read_toml(path, "profile"), path.stem, str(path)
 
 
 STAGES = ("pitch", "teeth", "full")
@@ -37,10 +39,20 @@ STAGES = ("pitch", "teeth", "full")
 def _varies(vary) -> tuple:
     from .space import Vary, parse_vary
 
+    if isinstance(vary, str):
+        vary = [vary]
     if isinstance(vary, Mapping):
-        return tuple(
-            Vary(k, tuple(v)) if isinstance(v, (list, tuple)) else parse_vary(f"{k}={v}") for k, v in vary.items()
-        )
+        out = []
+        for k, v in vary.items():
+            if isinstance(v, (list, tuple)):
+                if not v:
+                    raise ProfileError(f"vary {show(k)} = []: give at least one value")
+                out.append(Vary(str(k), tuple(v)))
+            else:
+                out.append(parse_vary(f"{k}={v}"))
+        return tuple(out)
+    if not isinstance(vary, (list, tuple)) or not all(isinstance(v, (str, Vary)) for v in vary):
+        raise ProfileError(f"vary = {show(vary)}: must be KEY=… strings (or a dict of key: values)")
     return tuple(v if isinstance(v, Vary) else parse_vary(v) for v in vary)  # Vary: from a sweep file
 
 
@@ -57,6 +69,142 @@ def _check_keys_exist(data: dict, name: str, first: dict) -> None:
                 raise ProfileError(f"--vary {key}: {lines[0]}") from None
 
 
+def _keys(value, what: str) -> list[str]:
+    """Constraints or objectives: one string, or a list of strings."""
+    items = [value] if isinstance(value, str) else value
+    if not isinstance(items, (list, tuple)) or not all(isinstance(k, str) and k.strip() for k in items):
+        raise ProfileError(f"{what} = {show(value)}: must be a list of report keys (text)")
+    return list(items)
+
+
+def _whole(value, what: str, least: int, *, none: bool = False) -> None:
+    if value is None and none:
+        return
+    if isinstance(value, bool) or not isinstance(value, int) or value < least:
+        raise ProfileError(f"{what} = {show(value)}: must be a whole number ≥ {least}")
+
+
+def _check_arguments(stage, samples, sampling, seed, workers, client, scheduler_timeout, objectives) -> None:
+    """The API's arguments, each refused with one line before any work."""
+    from .space import SAMPLINGS
+
+    if stage not in STAGES:
+        raise ProfileError(f"stage = {show(stage)}: must be one of {', '.join(STAGES)}")
+    if sampling not in SAMPLINGS:
+        raise ProfileError(f"sampling = {show(sampling)}: must be one of {', '.join(SAMPLINGS)}")
+    _whole(samples, "samples", 0)
+    _whole(seed, "seed", 0)
+    _whole(workers, "workers", 1, none=True)
+    if isinstance(scheduler_timeout, bool) or not isinstance(scheduler_timeout, (int, float)):
+        raise ProfileError(f"scheduler_timeout = {show(scheduler_timeout)}: must be a number of seconds")
+    if not 0 < scheduler_timeout <= 86400:
+        raise ProfileError(f"scheduler_timeout = {show(scheduler_timeout)}: must be from 0 to 86400 s (excluded 0)")
+    if client is not None and not isinstance(client, str) and not hasattr(client, "submit"):
+        raise ProfileError(f"client = {show(client)}: must be a distributed.Client or its tcp://HOST:PORT")
+    if isinstance(client, str):
+        from .executors import scheduler_address
+
+        scheduler_address(client)
+    minimise, maximise = objectives
+    for key in {*minimise} & {*maximise}:
+        raise ProfileError(f"objective {key!r}: both minimised and maximised; give it once")
+    for group in objectives:
+        twice = [k for k in group if group.count(k) > 1]
+        if twice:
+            raise ProfileError(f"objective {twice[0]!r}: given twice")
+
+
+def _check_constraint(condition) -> None:
+    """A constraint's value is a number or true/false; an order (< <= > >=) needs a finite number."""
+    key, op, value = condition
+    number = isinstance(value, (int, float)) and not isinstance(value, bool)
+    if op in ("==", "!=") and isinstance(value, bool):
+        return
+    if not number or not math.isfinite(value):
+        allowed = "a finite number" if op not in ("==", "!=") else "a finite number or true/false"
+        raise ProfileError(f"--constraint {condition}: {show(value)} must be {allowed}")
+
+
+def _probe(data: dict, name: str, stage: str, first: dict) -> dict[str, Any] | None:
+    """The report's scalars of the sweep's first point, designed here once, at the sweep's stage
+    (at ``teeth`` for ``full``: a full design can take half a minute); None if it is refused."""
+    from ..mechanisms import design
+    from ..profiles.reading import apply_overrides, parse_profile
+    from .evaluate import flatten
+
+    try:
+        params = parse_profile(apply_overrides(data, first), default_name=name)
+        return flatten(design(params, "teeth" if stage == "full" else stage).report())
+    except Exception:  # noqa: BLE001 - a refused first point says nothing of the keys; its row will say why
+        return None
+
+
+def _check_goals(report: dict, stage: str, conditions: list, objectives: list[str], inputs: list[str]) -> None:
+    """Every constraint and objective names a key the stage reports, of a kind it can be judged
+    by (an order or an objective needs a number, not text); one line each, before the first design.
+    At ``full`` a key the teeth stage does not report is left to the table (a full design reports
+    more than its probe)."""
+    import difflib
+
+    known = {"index", "refusal", "warnings", *inputs, *report}
+    for what, key, needs_number in [
+        *(("--constraint", c[0], c[1] not in ("==", "!=")) for c in conditions),
+        *(("objective", k, True) for k in objectives),
+    ]:
+        if key not in known:
+            if stage == "full":
+                continue
+            near = difflib.get_close_matches(key, sorted(known), n=3, cutoff=0.6)
+            hint = f"did you mean {', '.join(near)}?" if near else "any report key of the stage, dotted"
+            raise ProfileError(f"{what} {key!r}: the {stage} stage reports no such key ({hint})")
+        value = report.get(key)
+        if needs_number and isinstance(value, str):
+            raise ProfileError(f"{what} {key!r}: the report gives text ({value!r}), not a number to order by")
+
+
+def _check_bounds(conditions: list) -> None:
+    """Constraints on one key that no value can meet together (``x >= 2`` and ``x <= 1``)."""
+    bounds: dict[str, list] = {}
+    for key, op, value in conditions:
+        if isinstance(value, bool):
+            continue
+        lo, hi = bounds.setdefault(key, [(-math.inf, False, None), (math.inf, False, None)])
+        if op in (">=", ">", "==") and (value > lo[0] or (value == lo[0] and op == ">")):
+            bounds[key][0] = (value, op == ">", f"{key} {op} {value}")
+        if op in ("<=", "<", "==") and (value < hi[0] or (value == hi[0] and op == "<")):
+            bounds[key][1] = (value, op == "<", f"{key} {op} {value}")
+    for key, (lo, hi) in bounds.items():
+        if lo[0] > hi[0] or (lo[0] == hi[0] and (lo[1] or hi[1])):
+            raise ProfileError(f"--constraint {lo[2]} and --constraint {hi[2]}: no value of {key} meets both")
+
+
+def violations(table, conditions: list) -> dict[str, Any]:
+    """How far each row is from meeting each constraint, as columns ``violation.<constraint>``:
+    0 where it is met; for an order the distance to the bound (``x <= 4`` at x = 4.5: 0.5; a
+    strict ``x < 4`` at x = 4: 0, though not met); for ``==``/``!=`` on numbers the distance
+    |x − v| or 1; on true/false 1; empty (null) for a refused design or a missing value."""
+    import pandas as pd
+
+    out = {}
+    for key, op, value in conditions:
+        amounts = []
+        for x in table[key]:
+            if x is None or x != x or isinstance(x, str):
+                amounts.append(None)
+            elif isinstance(value, bool) or isinstance(x, bool):
+                amounts.append(0.0 if (x == value) == (op == "==") else 1.0)
+            elif op in ("<=", "<"):
+                amounts.append(max(0.0, float(x) - value))
+            elif op in (">=", ">"):
+                amounts.append(max(0.0, value - float(x)))
+            elif op == "==":
+                amounts.append(abs(float(x) - value))
+            else:
+                amounts.append(0.0 if x != value else 1.0)
+        out[f"violation.{key} {op} {show(value)}"] = pd.array(amounts, dtype="Float64")
+    return out
+
+
 def sweep(
     profile: str | Path | Mapping[str, Any],
     vary: Sequence[str] | Mapping[str, Any] = (),
@@ -70,9 +218,15 @@ def sweep(
     maximise: Sequence[str] = (),
     workers: int | None = None,
     client: Any = None,
+    scheduler_timeout: float = 60.0,
     progress: Callable[[int, int], None] | None = None,
 ):
     """Design every point of the sweep and return the table (a pandas DataFrame).
+
+    Everything the sweep is given — keys, values, constraints, objectives, arguments — is
+    checked before the first design (a :class:`ProfileError`, one line).  ``client`` is a
+    ``distributed.Client`` or a scheduler's ``tcp://HOST:PORT`` (connected, then closed); a
+    cluster with no worker for ``scheduler_timeout`` seconds ends the sweep with an error.
 
     >>> import gearcad
     >>> t = gearcad.sweep("profiles/elliptic_focus.toml", ["gear1.eccentricity=0.2:0.6:3"], stage="pitch",
@@ -80,23 +234,45 @@ def sweep(
     >>> [round(x, 3) for x in t["pair.ratio_max"]]
     [1.5, 2.333, 4.0]
     """
-    import numpy as np
-    import pandas as pd
-
     from .front import check_keys, feasible, pareto, parse_constraint
-    from .space import SweepSpec, points
+    from .space import SweepSpec, check_key, check_values, points
 
-    if stage not in STAGES:
-        raise ProfileError(f"stage = {stage!r}: must be one of {', '.join(STAGES)}")
-    data, name, path = _profile_data(profile)
-    spec = SweepSpec(vary=_varies(vary), stage=stage, samples=samples, sampling=sampling, seed=seed)
-    overrides = points(spec)
+    constraints, minimise, maximise = (
+        _keys(constraints, "constraints"),
+        _keys(minimise, "minimise"),
+        _keys(maximise, "maximise"),
+    )
+    _check_arguments(stage, samples, sampling, seed, workers, client, scheduler_timeout, (minimise, maximise))
     conditions = [parse_constraint(c) for c in constraints]
+    for condition in conditions:
+        _check_constraint(condition)
+    data, name, path = _profile_data(profile)
+    varies = _varies(vary)
+    for v in varies:
+        check_key(data, v.key)
+        check_values(v)
+    _check_bounds(conditions)
+    spec = SweepSpec(vary=varies, stage=stage, samples=samples, sampling=sampling, seed=seed)
+    overrides = points(spec)
     if overrides:
         _check_keys_exist(data, name, overrides[0])
-    rows = _run(data, name, stage, overrides, workers=workers, client=client, progress=progress)
+        report = _probe(data, name, stage, overrides[0]) if conditions or minimise or maximise else None
+        if report is not None:
+            _check_goals(report, stage, conditions, [*minimise, *maximise], [f"set.{k}" for k in overrides[0]])
+    rows = _run(
+        data,
+        name,
+        stage,
+        overrides,
+        workers=workers,
+        client=client,
+        scheduler_timeout=scheduler_timeout,
+        progress=progress,
+    )
+    import numpy as np
+    import pandas as pd  # once the designs are made: a sweep stopped early never needs it
+
     table = pd.DataFrame(rows)
-    table = table.rename(columns={k: f"set.{k}" for k in (v.key for v in spec.vary)})
     inputs = pd.DataFrame([{f"set.{k}": v for k, v in o.items()} for o in overrides], index=table.index)
     table = pd.concat([table[["index"]], inputs, table.drop(columns=["index"])], axis=1)
     objectives = [*minimise, *maximise]
@@ -109,6 +285,8 @@ def sweep(
     front = pareto(np.column_stack(values), ok) if values else np.zeros(len(table), dtype=bool)
     table.insert(len(inputs.columns) + 1, "feasible", ok)
     table.insert(len(inputs.columns) + 2, "pareto", front)
+    for n, (column, amounts) in enumerate(violations(table, conditions).items()):
+        table.insert(len(inputs.columns) + 3 + n, column, amounts)
     table.attrs.update(
         profile=path,
         name=name,
@@ -121,19 +299,36 @@ def sweep(
     return table
 
 
-def _run(data, name, stage, overrides, **kwargs) -> list[dict]:
-    from .executors import run_chunks
+def _run(data, name, stage, overrides, *, client, scheduler_timeout, **kwargs) -> list[dict]:
+    from .executors import connect, run_chunks
 
-    return run_chunks(data, name, stage, list(enumerate(overrides)), **kwargs)
+    if not isinstance(client, str):
+        return run_chunks(data, name, stage, list(enumerate(overrides)), client=client, **kwargs)
+    with connect(client, scheduler_timeout) as connected:
+        return run_chunks(
+            data,
+            name,
+            stage,
+            list(enumerate(overrides)),
+            client=connected,
+            scheduler_timeout=scheduler_timeout,
+            **kwargs,
+        )
 
 
 def write_sweep(table, out: str | Path) -> dict[str, Path]:
     """``sweep.parquet``, ``sweep.csv``, ``front.csv`` and ``sweep.html`` in ``out``, each
     written whole under a random name and renamed into place (:func:`gearcad.publish.write_files`:
-    never through a link planted in ``out``, no half-written file left)."""
+    never through a link planted in ``out``, no half-written file left).  The four are written
+    with Ctrl-C and SIGTERM held off (a moment), so that ``out`` holds one sweep's files, not two."""
+    from ..interrupts import held_signals
     from ..publish import check_out, write_files
     from .page import sweep_page
 
+    missing = [c for c in ("index", "refusal", "feasible", "pareto") if c not in getattr(table, "columns", ())]
+    why = "not a table" if not hasattr(table, "to_parquet") else f"no {missing[0]!r} column" if missing else None
+    if why or len(table) == 0:
+        raise ProfileError(f"write_sweep: {why or 'no rows'}; give the table gearcad.sweep returns")
     check_out(out)
     plain = table.copy()
     plain.attrs = {}
@@ -143,4 +338,5 @@ def write_sweep(table, out: str | Path) -> dict[str, Path]:
         "front.csv": plain[plain["pareto"]].to_csv(index=False).encode("utf-8"),
         "sweep.html": sweep_page(table).encode("utf-8"),
     }
-    return write_files(out, contents)
+    with held_signals():
+        return write_files(out, contents)

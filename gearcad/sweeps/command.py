@@ -11,7 +11,11 @@ from pathlib import Path
 
 from ..errors import ProfileError
 
-__all__ = ["add_parser", "run"]
+__all__ = ["add_parser", "run", "EXIT_NONE_FEASIBLE"]
+
+EXIT_NONE_FEASIBLE = 3
+"""The exit status of a sweep in which no design is feasible (as ``build``'s failed check: the
+files are written all the same)."""
 
 
 def add_parser(sub) -> None:
@@ -45,10 +49,25 @@ def add_parser(sub) -> None:
     s.add_argument("--maximise", action="append", default=[], metavar="KEY", help="an objective (a report key)")
     s.add_argument("--workers", type=int, help="local processes (default: every core)")
     s.add_argument("--scheduler", metavar="ADDRESS", help="run on this Dask scheduler, e.g. tcp://10.0.0.5:8786")
+    s.add_argument(
+        "--scheduler-timeout",
+        type=float,
+        metavar="SECONDS",
+        help="give up when the scheduler cannot be reached, or has had no worker, for this long (default: 60)",
+    )
     s.add_argument("--out", default="out/sweep", help="output folder (default: out/sweep)")  # a str: '' is refused
 
 
 def run(args: argparse.Namespace) -> int:
+    """The sweep, with Ctrl-C and SIGTERM one line naming ``--out`` (exit 130 / 143): the work
+    not done is cancelled, the local workers ended at once, and nothing is written."""
+    from ..interrupts import interrupt_guard
+
+    with interrupt_guard(args.out):
+        return _run(args)
+
+
+def _run(args: argparse.Namespace) -> int:
     from . import sweep, write_sweep
     from .space import SweepSpec, parse_vary, read_sweep_file
 
@@ -63,44 +82,45 @@ def run(args: argparse.Namespace) -> int:
     ):
         if value is not None and value < least:
             raise ProfileError(f"{flag} {value}: must be a whole number ≥ {least}")
+    wait = args.scheduler_timeout
+    if wait is not None and not 0 < wait <= 86400:  # NaN fails too
+        raise ProfileError(f"--scheduler-timeout {wait:g}: must be seconds > 0 and ≤ 86400")
     from ..publish import check_out
 
     check_out(args.out)  # before any work: a bad --out is found in a moment
     vary = [*spec.vary, *(parse_vary(v) for v in args.vary)]
-    client = None
-    if args.scheduler:
-        from distributed import Client
+    from .executors import SCHEDULER_TIMEOUT, scheduler_address
 
-        try:
-            client = Client(args.scheduler, timeout="20s")
-        except OSError as exc:
-            raise ProfileError(f"--scheduler {args.scheduler}: cannot reach it ({exc})") from None
+    if args.scheduler is not None:
+        scheduler_address(args.scheduler)  # before any work, as every other value
     start = time.perf_counter()
-    try:
-        table = sweep(
-            profile,
-            vary,
-            stage=args.stage or spec.stage,
-            samples=args.samples if args.samples is not None else spec.samples,
-            sampling=args.sampling or spec.sampling,
-            seed=args.seed if args.seed is not None else spec.seed,
-            constraints=[*spec.constraints, *args.constraint],
-            minimise=[*spec.minimise, *args.minimise],
-            maximise=[*spec.maximise, *args.maximise],
-            workers=args.workers,
-            client=client,
-            progress=stderr_progress(),
-        )
-    finally:
-        if client is not None:
-            client.close()
-    files = write_sweep(table, args.out)
-    made = int(table["refusal"].isna().sum())
-    print(
-        f"swept {len(table)} designs ({made} made, {len(table) - made} refused, {int(table['pareto'].sum())} on the "
-        f"front) in {time.perf_counter() - start:.2f} s: {', '.join(str(p) for p in files.values())}"
+    table = sweep(
+        profile,
+        vary,
+        stage=args.stage or spec.stage,
+        samples=args.samples if args.samples is not None else spec.samples,
+        sampling=args.sampling or spec.sampling,
+        seed=args.seed if args.seed is not None else spec.seed,
+        constraints=[*spec.constraints, *args.constraint],
+        minimise=[*spec.minimise, *args.minimise],
+        maximise=[*spec.maximise, *args.maximise],
+        workers=args.workers,
+        client=args.scheduler,  # an address: sweep connects once everything is checked, and closes
+        scheduler_timeout=SCHEDULER_TIMEOUT if args.scheduler_timeout is None else args.scheduler_timeout,
+        progress=stderr_progress(),
     )
-    return 0
+    files = write_sweep(table, args.out)
+    made, feasible = int(table["refusal"].isna().sum()), int(table["feasible"].sum())
+    print(
+        f"swept {len(table)} designs ({made} made, {len(table) - made} refused, {feasible} feasible, "
+        f"{int(table['pareto'].sum())} on the front) in {time.perf_counter() - start:.2f} s: "
+        f"{', '.join(str(p) for p in files.values())}"
+    )
+    if feasible:
+        return 0
+    why = "meets every constraint (the violation.* columns say by how much each missed)" if made else "was made"
+    print(f"gearcad: no feasible design: none of the {len(table)} {why}", file=sys.stderr)
+    return EXIT_NONE_FEASIBLE
 
 
 def stderr_progress(every: float = 1.0) -> Callable[[int, int], None]:
