@@ -103,7 +103,7 @@ def test_cluster_and_pool_give_the_same_rows(table):
 
     pooled = gearcad.sweep(FOCUS, VARY, stage="teeth", workers=2, **GOALS)
     with (
-        distributed.LocalCluster(n_workers=1, threads_per_worker=1, processes=True, dashboard_address=None) as cluster,
+        distributed.LocalCluster(n_workers=1, threads_per_worker=1, processes=True, dashboard_address=":0") as cluster,
         distributed.Client(cluster) as client,
     ):
         remote = gearcad.sweep(FOCUS, VARY, stage="teeth", client=client, **GOALS)

@@ -128,7 +128,7 @@ def _check_constraint(condition) -> None:
 def _probe(data: dict, name: str, stage: str, first: dict) -> dict[str, Any] | None:
     """The report's scalars of the sweep's first point, designed here once, at the sweep's stage
     (at ``teeth`` for ``full``: a full design can take half a minute); None if it is refused."""
-    from ..mechanisms import design
+    from ..fitting import design
     from ..profiles.reading import apply_overrides, parse_profile
     from .evaluate import flatten
 
