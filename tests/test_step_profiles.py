@@ -148,7 +148,7 @@ def test_every_profile_writes_every_part_and_its_assembly_as_valid_solids(built_
             vertices, circles, length = _runs(cut)
             bound = length * TOLERANCE * thickness
             if twisted:  # ruled through the 3MF's sections: within the bound (the fine checks: test_step.py)
-                assert faces.keys() <= {"plane", "cylinder", "cone", "bspline"} and faces["bspline"] == 4, where
+                assert faces.keys() <= {"plane", "cylinder", "cone", "bspline"} and faces["bspline"] % 4 == 0, where
                 assert abs(files[f"{name}.step"]["volume"] - mesh.volume) <= bound, where
                 assert files[f"{name}.step"]["mid_deviation"] <= TOLERANCE, where
                 checked += 1

@@ -13,7 +13,7 @@ from pathlib import Path
 import shapely
 
 from ..mechanisms import Design
-from .step_brep import StepSolid, ruled_section, straight_solid, twisted_solid, volume
+from .step_brep import StepSolid, flank_section, straight_solid, twisted_solid, volume
 
 __all__ = [
     "write_step_files",
@@ -161,10 +161,18 @@ def _solid(design: Design, part, rings) -> tuple[StepSolid, dict]:
     if twisted is None:
         return straight_solid(rings, out.thickness, name=part.name, chamfer=out.chamfer), {}
     breaks = (out.thickness / 2,) if twisted.hand.startswith("herringbone") else ()
-    solid = twisted_solid(twisted.heights, twisted.rings, rings[1:], name=part.name, chamfer=out.chamfer, breaks=breaks)
+    solid = twisted_solid(
+        twisted.heights,
+        twisted.rings,
+        rings[1:],
+        name=part.name,
+        tolerance=out.tolerance,
+        chamfer=out.chamfer,
+        breaks=breaks,
+    )
     # halfway up the widest interval the flank is read off its B-spline faces and measured
     # against the section finely cut there (the twist between sections is largest there)
-    mid = ruled_section(solid.shape, twisted.mid_height)
+    mid = flank_section(solid.shape, twisted.mid_height)
     deviation = shapely.hausdorff_distance(shapely.LinearRing(mid), shapely.LinearRing(twisted.mid_ring))
     return solid, {
         "sections": len(twisted.heights),
