@@ -153,7 +153,8 @@ def test_every_profile_writes_every_part_and_its_assembly_as_valid_solids(built_
             assert volume == pytest.approx(mesh.volume, rel=1e-3), where
             if twisted:  # fitted through the 3MF's sections: within the bound (the fine checks: test_step.py)
                 assert faces.keys() <= {"plane", "cylinder", "cone", "bspline"} and faces["bspline"] % 2 == 0, where
-                assert files[f"{name}.step"]["volume"] == pytest.approx(volume, rel=1e-9), where
+                # the report's closed form against the default rule
+                assert files[f"{name}.step"]["volume"] == pytest.approx(volume, rel=2e-4), where
                 assert abs(volume - mesh.volume) <= bound, where
                 assert files[f"{name}.step"]["mid_deviation"] <= TOLERANCE, where
                 checked += 1
