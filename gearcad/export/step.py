@@ -10,10 +10,11 @@ from __future__ import annotations
 from collections.abc import Sequence
 from pathlib import Path
 
+import numpy as np
 import shapely
 
 from ..mechanisms import Design
-from .step_brep import StepSolid, ruled_section, straight_solid, twisted_solid, volume
+from .step_brep import StepSolid, flank_section, straight_solid, twisted_solid, volume
 
 __all__ = [
     "write_step_files",
@@ -161,10 +162,18 @@ def _solid(design: Design, part, rings) -> tuple[StepSolid, dict]:
     if twisted is None:
         return straight_solid(rings, out.thickness, name=part.name, chamfer=out.chamfer), {}
     breaks = (out.thickness / 2,) if twisted.hand.startswith("herringbone") else ()
-    solid = twisted_solid(twisted.heights, twisted.rings, rings[1:], name=part.name, chamfer=out.chamfer, breaks=breaks)
+    solid = twisted_solid(
+        twisted.heights,
+        twisted.rings,
+        rings[1:],
+        name=part.name,
+        tolerance=out.tolerance,
+        chamfer=out.chamfer,
+        breaks=breaks,
+    )
     # halfway up the widest interval the flank is read off its B-spline faces and measured
     # against the section finely cut there (the twist between sections is largest there)
-    mid = ruled_section(solid.shape, twisted.mid_height)
+    mid = flank_section(solid.shape, twisted.mid_height)
     deviation = shapely.hausdorff_distance(shapely.LinearRing(mid), shapely.LinearRing(twisted.mid_ring))
     return solid, {
         "sections": len(twisted.heights),
@@ -183,13 +192,41 @@ def write_part_step(design: Design, name: str, folder: Path) -> tuple[StepSolid,
     return solid, {"bytes": path.stat().st_size, "kind": "step", "part": name, **counts, **extra}
 
 
+def _same(design: Design, part) -> bytes | None:
+    """What a straight part's solid is made of (its kerf-less rings, the thickness, the chamfer)
+    as bytes: two parts alike (a self-conjugate pair's gears) make the same solid; None for a
+    twisted part."""
+    if part.name in design.sections:
+        return None
+    out = design.params.output
+    rings = design.made_rings(part.name)
+    data = [np.asarray(r.vertices, dtype=float).tobytes() + np.asarray(r.bulges, dtype=float).tobytes() for r in rings]
+    return b"|".join([*data, np.array([out.thickness, out.chamfer]).tobytes()])
+
+
 def write_step_files(design: Design, folder: Path) -> dict[str, dict]:
     """Every part's ``<name>.step`` and ``assembly.step`` (parts placed as in assembly.3mf) into
-    ``folder``; returns their files entries (faces by type, volume in mm³)."""
+    ``folder``; returns their files entries (faces by type, volume in mm³).  A part alike an
+    earlier one (the same solid) is that one's file with its own name: the bytes OpenCASCADE
+    would write, without transferring the solid again."""
     files: dict[str, dict] = {}
     solids: dict[str, StepSolid] = {}
+    written: dict[bytes, str] = {}
     for part in design.parts():
-        solids[part.name], files[f"{part.name}.step"] = write_part_step(design, part.name, folder)
+        key, path = _same(design, part), folder / f"{part.name}.step"
+        first = written.get(key) if key is not None else None
+        if first is not None:
+            text = (folder / f"{first}.step").read_bytes()
+            old, new = f"'{first}'".encode(), f"'{part.name}'".encode()
+            if text.count(old) == 3 and new not in text:  # FILE_NAME's and PRODUCT's names only
+                solids[part.name] = _solid(design, part, design.made_rings(part.name))[0]  # the assembly's own
+                path.write_bytes(text.replace(old, new))
+                entry = files[f"{first}.step"]
+                files[path.name] = {**entry, "part": part.name, "bytes": path.stat().st_size}
+                continue
+        solids[part.name], files[path.name] = write_part_step(design, part.name, folder)
+        if key is not None:
+            written.setdefault(key, part.name)
     path = folder / "assembly.step"
     count = write_step_assembly(path, solids, design.placements)
     files[path.name] = {"bytes": path.stat().st_size, "kind": "step", "part": "assembly", "components": count}

@@ -22,17 +22,206 @@ import numpy as np
 from ..geometry.arcfit import ArcRing
 from ..geometry.inset import inset_ring
 
-__all__ = ["StepSolid", "straight_solid", "twisted_solid", "ruled_section", "volume"]
+__all__ = ["StepSolid", "straight_solid", "twisted_solid", "flank_section", "volume"]
 
 _MERGE = 1e-9
 """Two arcs are one circle, two lines one line, where centres, radii and offsets agree this
 closely (mm): only runs that are the same curve by construction (a circle's quarter arcs)."""
 
 
+_CORNER = 0.35
+"""A section vertex whose tangent turns by more than this (rad, 20°) is a corner (a tip corner, an
+undercut crossing): the fitted flank keeps it (a knot of full multiplicity there)."""
+
+
+_SMOOTH = 1e-3
+"""Weight of a piece's poles' second differences against its vertices' misses in its fit: small
+(a smooth flank's poles bend by far less than a vertex may miss), but never nothing."""
+
+
+def _turning(rings: np.ndarray) -> np.ndarray:
+    """|turn| of the tangent at every vertex, the largest over the rings (k, m, 2): (m,) rad."""
+    d_in = rings - np.roll(rings, 1, axis=1)
+    d_out = np.roll(rings, -1, axis=1) - rings
+    cross = d_in[..., 0] * d_out[..., 1] - d_in[..., 1] * d_out[..., 0]
+    return np.max(np.abs(np.arctan2(cross, np.einsum("...i,...i->...", d_in, d_out))), axis=0)
+
+
+def _piece_fit(t: np.ndarray, points: np.ndarray, inner: Sequence[float]) -> tuple[np.ndarray, np.ndarray]:
+    """The cubic B-spline, clamped at the piece's ends (its first and last points), through
+    ``points`` ((k, p, 2): k rings, p points at parameters ``t``) by least squares with the
+    interior knots ``inner``: its poles (k, q, 2) and its points at ``t`` and halfway between
+    (k, 2p − 1, 2)."""
+    from scipy.interpolate import BSpline
+
+    knots = np.concatenate([np.full(4, t[0]), np.sort(inner), np.full(4, t[-1])])
+    both = np.empty(2 * len(t) - 1)
+    both[0::2], both[1::2] = t, (t[:-1] + t[1:]) / 2
+    every = BSpline.design_matrix(both, knots, 3).toarray()
+    basis = every[0::2]  # (p, q)
+    k, p = points.shape[:2]
+    q = basis.shape[1]
+    # least squares, and a hair of the poles' second differences (a pole no vertex pins, in a
+    # span between two vertices, goes where the curve stays smooth rather than anywhere)
+    bend = np.diff(np.eye(q), 2, axis=0) * _SMOOTH  # (q − 2, q)
+    rows = np.vstack([basis, bend])
+    fixed = np.concatenate([points[:, :1], points[:, -1:]], axis=1)  # (k, 2, 2)
+    target = np.concatenate([points, np.zeros((k, q - 2, 2))], axis=1) - np.einsum(
+        "jq,nqk->njk", rows[:, [0, -1]], fixed
+    )
+    inside = np.linalg.lstsq(rows[:, 1:-1], target.transpose(1, 0, 2).reshape(p + q - 2, -1), rcond=None)[0]
+    poles = np.concatenate([points[:, :1], inside.reshape(q - 2, k, 2).transpose(1, 0, 2), points[:, -1:]], axis=1)
+    return poles, np.einsum("jq,nqk->njk", every, poles)
+
+
+def _normal_error(points: np.ndarray, fitted: np.ndarray) -> np.ndarray:
+    """How far each fitted point lies off its ring across the ring (the part of the miss normal to
+    the ring's tangent there; a slip along the ring moves no surface): (k, p) mm."""
+    tangent = np.gradient(points, axis=1)
+    tangent /= np.maximum(np.linalg.norm(tangent, axis=2, keepdims=True), 1e-300)
+    miss = fitted - points
+    return np.abs(miss[..., 0] * tangent[..., 1] - miss[..., 1] * tangent[..., 0])
+
+
+def _chord_error(points: np.ndarray, halfway: np.ndarray) -> np.ndarray:
+    """How far the fitted points ``halfway`` ((k, p − 1, 2)) between consecutive ``points`` ((k, p,
+    2)) lie off the chord between them: (k, p − 1) mm (0 for a chord of no length)."""
+    chord = points[:, 1:] - points[:, :-1]
+    off = halfway - points[:, :-1]
+    length = np.linalg.norm(chord, axis=2)
+    cross = np.abs(chord[..., 0] * off[..., 1] - chord[..., 1] * off[..., 0])
+    return np.where(length > 0, cross / np.maximum(length, 1e-300), np.linalg.norm(off, axis=2))
+
+
+@dataclass(frozen=True)
+class _Fit:
+    """Closed rings fitted by cubic B-splines of one knot vector (u in mm of mean chord length)."""
+
+    knots: np.ndarray
+    """Distinct knots, (r,)."""
+    mults: np.ndarray
+    """Their multiplicities, (r,): 4 at the ends, 3 at a corner, 1 between."""
+    poles: np.ndarray
+    """(k, q, 2) each ring's poles, the first equal to the last (a corner, where the ring starts)."""
+    start: int
+    """The rings' vertex at u = 0."""
+    error: float
+    """Largest distance across its ring of a ring vertex from its fitted curve, mm."""
+    t: np.ndarray
+    """(m + 1,) u of every vertex from the start round to it again."""
+    pieces: tuple
+    """(first vertex, last vertex, interior knots) of every piece between corners."""
+
+    def parts(self) -> list[tuple[int, int, tuple, slice]]:
+        """Every piece between corners: its first and last vertex, interior knots, poles' slice."""
+        out, pole = [], 0
+        for a, b, inner in self.pieces:
+            count = len(inner) + 4
+            out.append((a, b, inner, slice(pole, pole + count)))
+            pole += count - 1
+        return out
+
+    def poles_of(self, rings: np.ndarray) -> np.ndarray:
+        """Other rings ((k, m, 2), the same vertices) fitted with these knots: (k, q, 2)."""
+        closed = np.roll(rings, -self.start, axis=1)
+        closed = np.concatenate([closed, closed[:, :1]], axis=1)
+        poles = [closed[:, :1]]
+        for a, b, inner in self.pieces:
+            poles.append(_piece_fit(self.t[a : b + 1], closed[:, a : b + 1], inner)[0][:, 1:])
+        return np.concatenate(poles, axis=1)
+
+
+def _fit_rings(rings: np.ndarray, targets: np.ndarray) -> _Fit:
+    """One cubic B-spline per ring ((k, m, 2), vertex j of each the same tooth point), all with
+    the same knots, each ring within ``targets[i]`` (mm, across the ring) of its own vertices.
+
+    The rings are cut at their corners into pieces (a knot of multiplicity 3: the curve passes
+    through the corner, tangents free either side); a piece gets interior knots one at a time, at
+    the middle vertex of the span where it strays most (a second and third at one vertex where a
+    span has no vertex inside: a kink), until every ring is within its target."""
+    k, m = rings.shape[:2]
+    corners = np.nonzero(_turning(rings) > _CORNER)[0]
+    start = int(corners[0]) if len(corners) else 0
+    closed = np.roll(rings, -start, axis=1)
+    closed = np.concatenate([closed, closed[:, :1]], axis=1)
+    cuts = np.unique(np.concatenate([[0, m], (corners - start) % m]))
+    t = np.concatenate([[0.0], np.cumsum(np.mean(np.linalg.norm(np.diff(closed, axis=1), axis=2), axis=0))])
+    knots, mults, poles, worst, pieces = [0.0], [4], [closed[:, :1]], 0.0, []
+    for a, b in zip(cuts[:-1], cuts[1:]):
+        ts, points = t[a : b + 1], closed[:, a : b + 1]
+        inner: list[float] = []
+        stuck = np.zeros(len(ts), dtype=bool)  # vertices no further knot can help
+        while True:
+            piece, fitted = _piece_fit(ts, points, inner)
+            error = _normal_error(points, fitted[:, 0::2])
+            # halfway between vertices: off the chord by at most the chord's own sag (< the target)
+            # and the target; a loop between two vertices would be far off
+            between = _chord_error(points, fitted[:, 1::2]) / (2 * targets[:, None])
+            over = np.maximum(np.max(error / targets[:, None], axis=0), np.pad(np.max(between, axis=0), (0, 1)))
+            over[stuck] = 0.0
+            if np.max(over) <= 1.0:
+                break
+            j = int(np.argmax(over))
+            lo = max([ts[0], *(u for u in inner if u <= ts[j])])
+            hi = min([ts[-1], *(u for u in inner if u > ts[j])])
+            inside = np.nonzero((ts > lo) & (ts < hi))[0]
+            if len(inside) >= 3:
+                inner.append(float(ts[inside[len(inside) // 2]]))
+            elif 0 < j < len(ts) - 1 and inner.count(float(ts[j])) < 3:
+                inner.append(float(ts[j]))
+            else:
+                stuck[j] = True
+        worst = max(worst, float(np.max(error)))
+        pieces.append((int(a), int(b), tuple(inner)))
+        for u in sorted(set(inner)):
+            knots.append(u)
+            mults.append(inner.count(u))
+        knots.append(float(ts[-1]))
+        mults.append(3)
+        poles.append(piece[:, 1:])
+    mults[-1] = 4
+    return _Fit(np.array(knots), np.array(mults), np.concatenate(poles, axis=1), start, worst, t, tuple(pieces))
+
+
+def _v_fit(rings: np.ndarray, z: np.ndarray, target: float) -> tuple[np.ndarray, np.ndarray, np.ndarray, int]:
+    """Every vertex's path up a band of sections (rings (n, m, 2) at heights z (n,)) as one
+    B-spline in z of degree ≤ 3, through the end sections, least squares between, with as few
+    control rings (evenly spaced knots) as keep every section within ``target`` (mm, across it):
+    the control rings (r, m, 2), the distinct knots, their multiplicities and the degree."""
+    from scipy.interpolate import BSpline
+
+    n = len(z)
+    # the fewest control rings first, the higher degree first among as many
+    options = sorted(((d, c) for d in range(1, min(3, n - 1) + 1) for c in range(n - d)), key=lambda o: (sum(o), -o[0]))
+    for degree, inner in options:
+        between = np.linspace(z[0], z[-1], inner + 2)[1:-1]
+        knots = np.concatenate([np.full(degree + 1, z[0]), between, np.full(degree + 1, z[-1])])
+        basis = BSpline.design_matrix(z, knots, degree).toarray()  # (n, r)
+        r = basis.shape[1]
+        ends = np.einsum("k,mj->kmj", basis[:, 0], rings[0]) + np.einsum("k,mj->kmj", basis[:, -1], rings[-1])
+        rows = [rings[:1]]
+        if r > 2:
+            inside = np.linalg.lstsq(basis[:, 1:-1], (rings - ends).reshape(n, -1), rcond=None)[0]
+            rows.append(inside.reshape(r - 2, *rings.shape[1:]))
+        rows = np.concatenate([*rows, rings[-1:]])
+        if np.max(_normal_error(rings, np.einsum("kr,rmj->kmj", basis, rows))) <= target:
+            break
+    distinct, mults = np.unique(knots, return_counts=True)
+    return rows, distinct, mults, degree
+
+
+def _greville(knots: np.ndarray, mults: np.ndarray, degree: int) -> np.ndarray:
+    """The Greville abscissae of a knot vector (distinct knots and multiplicities): the height of
+    each control row that makes z = v on the surface."""
+    flat = np.repeat(knots, mults)
+    return np.array([np.mean(flat[i + 1 : i + 1 + degree]) for i in range(len(flat) - degree - 1)])
+
+
 @dataclass(frozen=True)
 class StepSolid:
     """A part's B-rep (an OCP ``TopoDS_Shape``) and its name; ``volume`` (mm³) where it is known
-    in closed form (a twisted part's: OpenCASCADE integrates its ruled faces in seconds)."""
+    already (in closed form, or a twisted part's by OpenCASCADE's fixed Gauss rule: its adaptive
+    one takes seconds on hundreds of B-spline faces)."""
 
     name: str
     shape: object
@@ -170,31 +359,86 @@ def _area(ring: ArcRing) -> float:
     return area
 
 
-def _grid_surface(rings: np.ndarray, z: np.ndarray):
-    """The ruled surface through sections ``rings`` ((k, m, 2)) at heights ``z`` ((k,)): degree 1
-    both ways, u = j at vertex j (closed: u = m is vertex 0 again), v = z; vertex j of one
-    section joined straight to vertex j of the next, as the 3MF's loft joins them."""
-    from OCP.collections import Array1_double, Array1_int, Array2_gp_Pnt
+def _insert(flat: np.ndarray, poles: np.ndarray, u: float) -> tuple[np.ndarray, np.ndarray]:
+    """The cubic B-spline (clamped knots ``flat``, poles (…, q, 2) along axis 1) with the knot
+    ``u`` inserted once (Boehm): the same curve."""
+    k = int(np.searchsorted(flat, u, side="right")) - 1
+    alpha = np.ones(poles.shape[1] + 1)
+    for i in range(k - 2, k + 1):
+        alpha[i] = (u - flat[i]) / (flat[i + 3] - flat[i])
+    alpha[k + 1 :] = 0.0
+    before = np.concatenate([poles[:, :1], poles], axis=1)  # P[i − 1]
+    after = np.concatenate([poles, poles[:, -1:]], axis=1)  # P[i]
+    mixed = (1 - alpha)[None, :, None] * before + alpha[None, :, None] * after
+    mixed[:, : k - 2] = poles[:, : k - 2]
+    return np.insert(flat, k + 1, u), mixed
+
+
+def _segments_of(flat: np.ndarray, poles: np.ndarray, spans: int) -> list[tuple[np.ndarray, np.ndarray]]:
+    """A cubic B-spline piece (clamped knots ``flat``, poles (r, q, 2)) cut into pieces of at most
+    ``spans`` knot spans, each cut a knot of multiplicity 3 (the curve unchanged, a pole shared)."""
+    inner = np.unique(flat[4:-4])
+    cuts = inner[spans - 1 :: spans]
+    cuts = cuts[cuts < flat[-1]]
+    for u in cuts:
+        while np.count_nonzero(flat == u) < 3:
+            flat, poles = _insert(flat, poles, float(u))
+    out = []
+    for u in cuts:
+        j = int(np.searchsorted(flat, u, side="left"))
+        out.append((np.concatenate([flat[: j + 3], [u]]), poles[:, :j]))
+        flat, poles = np.concatenate([[u], flat[j:]]), poles[:, j - 1 :]
+    out.append((flat, poles))
+    return out
+
+
+def _surfaces(fit: _Fit, rows: np.ndarray, vknots: np.ndarray, vmults: np.ndarray, vdegree: int) -> list:
+    """The flank band as faces' surfaces, each of at most :data:`_SPANS` knot spans round the
+    section (OpenCASCADE's default volume takes one fixed Gauss rule of at most 61 points across
+    a face: enough for 8 cubic spans): u = z, of degree ``vdegree`` (``rows`` (r, m, 2) the
+    control rings up the band), v cubic round the section (``fit``'s knots, in mm); poles
+    rounded to :data:`_GRID` mm.  Returns (surface, first v, last v) for each."""
+    from OCP.collections import Array2_gp_Pnt
     from OCP.Geom import Geom_BSplineSurface
     from OCP.gp import gp_Pnt
 
-    k, m = rings.shape[:2]
-    poles = Array2_gp_Pnt(1, m + 1, 1, k)
-    for i in range(k):
-        level = float(z[i])
-        for j, (x, y) in enumerate(np.vstack([rings[i], rings[i, :1]]).tolist()):
-            poles.SetValue(j + 1, i + 1, gp_Pnt(x, y, level))
+    poles = fit.poles_of(rows)
+    heights = np.round(_greville(vknots, vmults, vdegree), 12).tolist()
+    uk, um = _knots(vknots, vmults)
+    out = []
+    for a, b, inner, part in fit.parts():
+        flat = np.concatenate([np.full(4, fit.t[a]), np.sort(inner), np.full(4, fit.t[b])])
+        for knots, block in _segments_of(flat, poles[:, part], _SPANS):
+            block = np.round(block / _GRID) * _GRID
+            r, q = block.shape[:2]
+            grid = Array2_gp_Pnt(1, r, 1, q)
+            for i in range(r):
+                for j, (x, y) in enumerate(block[i].tolist()):
+                    grid.SetValue(i + 1, j + 1, gp_Pnt(round(x, 9), round(y, 9), heights[i]))
+            distinct, mults = np.unique(knots, return_counts=True)
+            vk, vm = _knots(distinct, mults)
+            out.append((Geom_BSplineSurface(grid, uk, vk, um, vm, vdegree, 3), float(knots[0]), float(knots[-1])))
+    return out
 
-    def knots(values):
-        knot, mult = Array1_double(1, len(values)), Array1_int(1, len(values))
-        for n, value in enumerate(values):
-            knot.SetValue(n + 1, float(value))
-            mult.SetValue(n + 1, 2 if n in (0, len(values) - 1) else 1)
-        return knot, mult
 
-    uk, um = knots(range(m + 1))
-    vk, vm = knots(z)
-    return Geom_BSplineSurface(poles, uk, vk, um, vm, 1, 1)
+_SPANS = 8
+"""Knot spans round the section per B-spline face."""
+_GRID = 1e-6
+"""The flank's poles are rounded to this, mm (a shorter file; far inside any tolerance)."""
+
+
+"""Pieces of a section (between its corners: a tooth's tip land, the flanks and root beside it)
+per B-spline face."""
+
+
+def _knots(values: np.ndarray, mults: np.ndarray):
+    from OCP.collections import Array1_double, Array1_int
+
+    knot, mult = Array1_double(1, len(values)), Array1_int(1, len(values))
+    for n, (value, count) in enumerate(zip(values.tolist(), mults.tolist())):
+        knot.SetValue(n + 1, float(value))
+        mult.SetValue(n + 1, int(count))
+    return knot, mult
 
 
 def _bands(z: np.ndarray, breaks: Sequence[float]) -> list[slice]:
@@ -209,60 +453,104 @@ def twisted_solid(
     holes: Sequence[ArcRing],
     *,
     name: str,
+    tolerance: float,
     chamfer: float = 0.0,
     breaks: Sequence[float] = (),
 ) -> StepSolid:
     """The solid through the sections ``rings[k]`` ((n, m, 2), counter-clockwise, vertex j of
-    every section the same tooth point) at ``heights[k]``, ruled from section to section as the
-    3MF's loft is (the chamfer's sections inset alike): one B-spline face per band between the
-    chamfer's heights and the ``breaks`` (a herringbone's mid-height); straight ``holes``
-    (clockwise cut rings) through it, their ends chamfered."""
-    from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeFace, BRepBuilderAPI_MakeSolid, BRepBuilderAPI_Sewing
+    every section the same tooth point) at ``heights[k]``, the chamfer's sections inset as the
+    3MF's loft insets them: one B-spline face per band between the chamfer's heights and the
+    ``breaks`` (a herringbone's mid-height), cubic round the section with knots common to all
+    (within a quarter of ``tolerance`` of every section across it; the chamfer's inset end
+    sections within half) and cubic up the band through its end sections (within a quarter);
+    straight ``holes`` (clockwise cut rings) through it, their ends chamfered."""
+    from OCP.BRepBuilderAPI import (
+        BRepBuilderAPI_MakeEdge,
+        BRepBuilderAPI_MakeFace,
+        BRepBuilderAPI_MakeSolid,
+        BRepBuilderAPI_MakeWire,
+        BRepBuilderAPI_Sewing,
+    )
     from OCP.BRepLib import BRepLib
     from OCP.BRepPrimAPI import BRepPrimAPI_MakePrism
     from OCP.gp import gp_Vec
+    from OCP.TopAbs import TopAbs_REVERSED
     from OCP.TopoDS import TopoDS
 
     z = np.asarray(heights, dtype=float)
     rings = np.asarray(rings, dtype=float)
     bottom, top = float(z[0]), float(z[-1])
     levels = list(breaks)
+    targets = np.full(len(z), tolerance / 4)
     if chamfer > 0:
         depth = np.maximum(0.0, np.maximum(chamfer - (z - bottom), chamfer - (top - z)))
         rings = np.stack([inset_ring(r, d) if d > 0 else r for r, d in zip(rings, depth)])
         levels += [bottom + chamfer, top - chamfer]
+        targets[depth > 0] = tolerance / 2
+    fit = _fit_rings(rings, targets)
     sewing = BRepBuilderAPI_Sewing(1e-6)
+    ends = {}
+    flank = 0.0
     for band in _bands(z, levels):
-        surface = _grid_surface(rings[band], z[band])
-        sewing.Add(BRepBuilderAPI_MakeFace(surface, 0.0, float(rings.shape[1]), z[band][0], z[band][-1], 1e-7).Face())
+        rows, vknots, vmults, vdegree = _v_fit(rings[band], z[band], tolerance / 4)
+        flank += _band_volume(fit, rows, vknots, vmults, vdegree)
+        surfaces = _surfaces(fit, rows, vknots, vmults, vdegree)
+        for surface, u0, u1 in surfaces:
+            sewing.Add(BRepBuilderAPI_MakeFace(surface, z[band][0], z[band][-1], u0, u1, 1e-7).Face())
+        if band.start == 0:
+            ends[0] = surfaces
+        ends[len(z) - 1] = surfaces
     for level in (0, len(z) - 1):
-        edge = _ring_edge(rings[level], float(z[level]))
-        face = BRepBuilderAPI_MakeFace(_wire_of(edge), True)
+        wire = BRepBuilderAPI_MakeWire()
+        for surface, _, _ in ends[level]:
+            wire.Add(BRepBuilderAPI_MakeEdge(surface.UIso(float(z[level]))).Edge())
+        face = BRepBuilderAPI_MakeFace(wire.Wire(), True)
         for hole in holes:
             face.Add(_wire(hole, float(z[level])))
         sewing.Add(face.Face())
     for hole in holes:
         sewing.Add(BRepPrimAPI_MakePrism(_wire(hole, bottom), gp_Vec(0.0, 0.0, top - bottom)).Shape())
     sewing.Perform()
-    solid = BRepBuilderAPI_MakeSolid(TopoDS.Shell(sewing.SewedShape())).Solid()
+    shell = TopoDS.Shell(sewing.SewedShape())
+    solid = BRepBuilderAPI_MakeSolid(shell).Solid()
     BRepLib.OrientClosedSolid_s(solid)
+    if solid.Orientation() == TopAbs_REVERSED:  # the faces inward: the shell turned, the solid forward
+        solid = BRepBuilderAPI_MakeSolid(TopoDS.Shell(shell.Reversed())).Solid()
     shape = solid
     if chamfer > 0 and holes:
         shape = _chamfered(shape, chamfer, (bottom, top), lines_and_arcs=True)
-    return StepSolid(name, shape, _ruled_volume(rings, z) - _voids(holes, top - bottom, chamfer))
+    return StepSolid(name, shape, flank - _voids(holes, top - bottom, chamfer))
 
 
-def _ruled_volume(rings: np.ndarray, z: np.ndarray) -> float:
-    """The volume inside the ruled sections (mm³), exact: between two sections every vertex
-    moves linearly with z, so the section's area is quadratic in z and Simpson's rule is exact."""
-    x, y = rings[..., 0], rings[..., 1]
+def _band_volume(fit: _Fit, rows: np.ndarray, vknots: np.ndarray, vmults: np.ndarray, vdegree: int) -> float:
+    """The volume inside a flank band (mm³), in closed form: its section at height z is the
+    closed cubic B-spline of poles P(z) = Σ_i B_i(z)·P_i, of area ½∮(x y′ − y x′) du, a polynomial
+    in u on every knot span and in z on every span up the band: Gauss–Legendre rules of 3 points
+    a span round the section and degree + 1 up it integrate it exactly."""
+    from scipy.interpolate import BSpline
 
-    def areas(x, y):
-        return 0.5 * np.sum(x * np.roll(y, -1, axis=-1) - y * np.roll(x, -1, axis=-1), axis=-1)
+    def rule(flat: np.ndarray, count: int) -> tuple[np.ndarray, np.ndarray]:
+        knots = np.unique(flat)
+        nodes, weights = np.polynomial.legendre.leggauss(count)
+        half = np.diff(knots)[:, None] / 2
+        return ((knots[:-1, None] + knots[1:, None]) / 2 + half * nodes).ravel(), (half * weights).ravel()
 
-    mid_x, mid_y = (x[1:] + x[:-1]) / 2, (y[1:] + y[:-1]) / 2
-    ends = areas(x, y)
-    return float(np.sum(np.diff(z) / 6 * (ends[:-1] + 4 * areas(mid_x, mid_y) + ends[1:])))
+    flat = np.repeat(fit.knots, fit.mults)
+    u, wu = rule(flat, 3)
+    value = BSpline.design_matrix(u, flat, 3)  # (p, q) sparse
+    # N′_j = 3·(M_j / (t_(j+3) − t_j) − M_(j+1) / (t_(j+4) − t_(j+1))), M the quadratic basis on the same knots
+    lower = BSpline.design_matrix(u, flat, 2).toarray()  # (p, q + 1)
+    with np.errstate(divide="ignore"):
+        left = np.where(flat[3:] > flat[:-3], 3 / (flat[3:] - flat[:-3]), 0.0)  # (q + 1,)
+    slope = lower[:, :-1] * left[:-1] - lower[:, 1:] * left[1:]  # (p, q)
+    poles = fit.poles_of(rows)  # (r, q, 2)
+    vflat = np.repeat(vknots, vmults)
+    z, wz = rule(vflat, vdegree + 1)
+    height = BSpline.design_matrix(z, vflat, vdegree).toarray()  # (s, r)
+    at = np.einsum("sr,rqk->sqk", height, poles)  # (s, q, 2): each node's section poles
+    x, y = value @ at[..., 0].T, value @ at[..., 1].T  # (p, s)
+    dx, dy = slope @ at[..., 0].T, slope @ at[..., 1].T
+    return 0.5 * float(wu @ (x * dy - y * dx) @ wz)
 
 
 def _voids(holes: Sequence[ArcRing], thickness: float, chamfer: float) -> float:
@@ -277,59 +565,48 @@ def _voids(holes: Sequence[ArcRing], thickness: float, chamfer: float) -> float:
     return volume(whole) - volume(holed)
 
 
-def _ring_edge(ring: np.ndarray, z: float):
-    """A closed ring (m, 2) as one degree-1 B-spline edge, u = j at vertex j (the sections'
-    surfaces' edge at that height)."""
-    from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeEdge
-    from OCP.collections import Array1_double, Array1_gp_Pnt, Array1_int
-    from OCP.Geom import Geom_BSplineCurve
-    from OCP.gp import gp_Pnt
-
-    m = len(ring)
-    poles = Array1_gp_Pnt(1, m + 1)
-    for j, (x, y) in enumerate(np.vstack([ring, ring[:1]]).tolist()):
-        poles.SetValue(j + 1, gp_Pnt(x, y, z))
-    knots, mults = Array1_double(1, m + 1), Array1_int(1, m + 1)
-    for j in range(m + 1):
-        knots.SetValue(j + 1, float(j))
-        mults.SetValue(j + 1, 2 if j in (0, m) else 1)
-    return BRepBuilderAPI_MakeEdge(Geom_BSplineCurve(poles, knots, mults, 1)).Edge()
-
-
 def _wire_of(edge):
     from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeWire
 
     return BRepBuilderAPI_MakeWire(edge).Wire()
 
 
-def volume(shape, *, relative_error: float = 1e-7) -> float:
+def volume(shape, *, relative_error: float | None = 1e-7) -> float:
     """The shape's volume, mm³, integrated over its faces by OpenCASCADE to ``relative_error``
-    (adaptive: a ruled face of thousands of spans defeats a fixed Gauss rule, and takes seconds)."""
+    (adaptive), or with ``None`` by its fixed Gauss rule (what FreeCAD's ``Shape.Volume`` gives:
+    on a twisted part's faces of ≤ 8 spans within 1e-4 of the adaptive one, in a tenth of the time)."""
     from OCP.BRepGProp import BRepGProp
     from OCP.GProp import GProp_GProps
 
     props = GProp_GProps()
-    BRepGProp.VolumeProperties_s(shape, props, relative_error)
+    if relative_error is None:
+        BRepGProp.VolumeProperties_s(shape, props)
+    else:
+        BRepGProp.VolumeProperties_s(shape, props, relative_error)
     return float(props.Mass())
 
 
-def ruled_section(shape, z: float) -> np.ndarray:
-    """The twisted flank's section at height ``z`` read off its B-spline faces: (m, 2) mm, the
-    surface evaluated at u = j (vertex j of the sections), v = z.  The faces are degree 1 in u,
-    so the polyline through these points is the section itself (bilinear between two sections:
-    halfway up, the midpoints of the vertical edges — not the 3MF's diagonals)."""
+def flank_section(shape, z: float, per_span: int = 8) -> np.ndarray:
+    """The twisted flank's section at height ``z`` read off its B-spline faces: (p, 2) mm, every
+    face spanning ``z`` (in the order of u round the section) evaluated ``per_span`` times in
+    every knot span."""
     from OCP.BRep import BRep_Tool
     from OCP.TopAbs import TopAbs_FACE
     from OCP.TopExp import TopExp_Explorer
     from OCP.TopoDS import TopoDS
 
+    found = []
     explorer = TopExp_Explorer(shape, TopAbs_FACE)
     while explorer.More():
         surface = BRep_Tool.Surface_s(TopoDS.Face(explorer.Current()))
         explorer.Next()
         if not hasattr(surface, "NbUPoles"):  # a plane, cylinder or cone: not the flank
             continue
-        u0, u1, v0, v1 = surface.Bounds()
-        if v0 < z < v1:
-            return np.array([(q.X(), q.Y()) for q in (surface.Value(float(u), z) for u in range(int(u0), int(u1)))])
-    raise ValueError(f"no ruled face spans z = {z:g} mm")
+        z0, z1, v0, _ = surface.Bounds()  # u = z, v round the section
+        if z0 < z < z1:
+            knots = np.array([surface.VKnot(i) for i in range(1, surface.NbVKnots() + 1)])
+            u = (knots[:-1, None] + np.diff(knots)[:, None] * (np.arange(per_span) / per_span)).ravel()
+            found.append((v0, [(q.X(), q.Y()) for q in (surface.Value(z, float(v)) for v in u)]))
+    if not found:
+        raise ValueError(f"no flank face spans z = {z:g} mm")
+    return np.array([p for _, points in sorted(found, key=lambda f: f[0]) for p in points])
