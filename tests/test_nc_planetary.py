@@ -1,0 +1,116 @@
+"""The carrier-less noncircular planetary's kinematics (gearcad.trains.nc_planetary): the makers'
+table (issue 38) reproduced by two computations that share only the curve, the circular set by the
+method of stopping, and the exact closure of the two example sets."""
+
+import math
+
+import numpy as np
+import pytest
+
+from gearcad.errors import DesignError
+from gearcad.trains.carrier import solve_train
+from gearcad.trains.nc_planetary import (
+    Lobed,
+    by_arc_length,
+    by_sun_angle,
+    close_ring,
+    convex_limit,
+    matched_sun,
+    poses,
+)
+
+# The published table: (n, e, natural ring lobe count, orbit-radius change in %).
+PUBLISHED = [
+    (4, 0.03, 12.007, 0.1),
+    (4, 0.06, 12.021, 0.35),
+    (4, 0.09, 12.070, 0.75),
+    (3, 0.03, 9.002, 0.1),
+    (3, 0.06, 9.015, 0.35),
+    (3, 0.09, 9.039, 0.75),
+]
+
+
+@pytest.mark.parametrize(("n", "e", "n_r", "change"), PUBLISHED)
+def test_the_makers_table_two_ways(n, e, n_r, change):
+    """n_r within ±0.005 of the published figure, the orbit-radius change rounding to it (the
+    table's changes are multiples of 0.05 %), the two computations agreeing to 1e-6."""
+    curve = Lobed(1.0, n, e)
+    kennedy = by_sun_angle(curve, steps=200)
+    rolled = by_arc_length(curve)
+    assert kennedy.natural_lobes == pytest.approx(rolled.natural_lobes, abs=1e-6)
+    assert kennedy.orbit_change == pytest.approx(rolled.orbit_change, abs=1e-6)
+    assert abs(rolled.natural_lobes - n_r) <= 0.005
+    assert round(rolled.orbit_change * 100 / 0.05) * 0.05 == pytest.approx(change)
+
+
+def test_the_orbit_change_is_e_squared_to_leading_order():
+    """Perturbation of the rolling: ψ ≈ θ + π/n + (2e/n)·sin nθ makes |C| ≈ 2R(1 + e²·sin² nθ/…),
+    a change of e² (to O(e³)) whatever n — an independent closed form for small e."""
+    for n in (3, 4, 5):
+        change = by_arc_length(Lobed(1.0, n, 0.005)).orbit_change
+        assert change == pytest.approx(0.005**2, rel=0.05)
+
+
+@pytest.mark.parametrize("n", [3, 4])
+def test_circles_are_the_circular_planetary_by_the_method_of_stopping(n):
+    """e = 0: sun, planet radius R, ring 3R; the sun held and the carrier turning at 1 rad/s
+    counter-clockwise (the seed's −1), the ring turns at 1 + 1/3 (carrier.solve_train)."""
+    train = solve_train(
+        (1.0, 1.0, 3.0), ("external", "internal"), omega1=0.0, epsilon1=0.0, carrier=-1.0, carrier_eps=0.0
+    )
+    lobe = 2 * math.pi / n
+    for data in (by_arc_length(Lobed(1.0, n, 0.0)), by_sun_angle(Lobed(1.0, n, 0.0), steps=20)):
+        assert data.ring_turn / lobe == pytest.approx(train.omega[2], abs=1e-12)
+        assert data.natural_lobes == pytest.approx(3 * n, abs=1e-12)
+        assert data.orbit_min == pytest.approx(2.0, abs=1e-12)
+        assert data.orbit_max == pytest.approx(2.0, abs=1e-12)
+
+
+def test_poses_roll_without_slip_and_touch_tangentially():
+    """The pose itself: the planet's point ψ lands on the sun's point θ with opposite tangents,
+    and the arc rolled on each is the same (checked by trapezoid sums, not the Fourier series)."""
+    curve = Lobed(1.0, 4, 0.05)
+    theta = np.linspace(0.0, 0.6, 7)
+    pose = poses(curve, curve, theta)
+    q = curve.point(pose.psi)
+    cb, sb = np.cos(pose.beta), np.sin(pose.beta)
+    landed = pose.centre + np.stack([cb * q[:, 0] - sb * q[:, 1], sb * q[:, 0] + cb * q[:, 1]], -1)
+    assert np.max(np.abs(landed - curve.point(theta))) < 1e-12
+    turn = curve.tangent_angle(pose.psi) + pose.beta - curve.tangent_angle(theta)
+    assert np.max(np.abs(np.mod(turn - np.pi + np.pi, 2 * np.pi) - np.pi)) < 1e-12
+    for t, psi in zip(theta[1:], pose.psi[1:]):
+        x = np.linspace(0.0, t, 20001)
+        y = np.linspace(psi, math.pi / 4, 20001)
+        assert np.trapezoid(curve.speed(x), x) == pytest.approx(np.trapezoid(curve.speed(y), y), abs=1e-8)
+
+
+def test_the_convexity_limit_is_where_the_valley_flattens():
+    for n in (3, 4):
+        limit = convex_limit(n)
+        valley = math.pi / n
+        assert Lobed(1.0, n, limit * (1 - 1e-9)).curvature(valley) > 0
+        assert Lobed(1.0, n, limit * (1 + 1e-9)).curvature(valley) < 0
+
+
+@pytest.mark.parametrize(("n", "e", "ring"), [(4, 0.05, 12), (3, 0.08, 9)])
+def test_the_example_sets_close_exactly(n, e, ring):
+    """The sun's e solved so the ring has exactly 3n lobes: closure ≤ 1e-9 rad by the solver's
+    method and again by the Kennedy integration; the sun's lobe as long as the planet's."""
+    planet = Lobed(1.0, n, e)
+    sun, residual = close_ring(planet, ring)
+    assert residual <= 1e-9
+    check = by_sun_angle(sun, planet, steps=200)
+    assert abs(ring * abs(check.sweep) - 2 * math.pi) <= 1e-6  # RK4 at 200 steps: ~1e-8
+    assert 0 < sun.e < convex_limit(n)
+    x = np.linspace(0.0, 2 * math.pi / n, 40001)
+    assert np.trapezoid(sun.speed(x), x) == pytest.approx(np.trapezoid(planet.speed(x), x), rel=1e-10)
+
+
+def test_a_ring_that_cannot_close_is_refused_naming_the_key():
+    with pytest.raises(DesignError, match=r"^e: no sun eccentricity .* closes the ring at 15 lobes"):
+        close_ring(Lobed(1.0, 4, 0.05), 15)
+
+
+def test_a_matched_sun_of_the_planets_own_e_is_the_planet():
+    planet = Lobed(1.0, 3, 0.08)
+    assert matched_sun(planet, 0.08).radius == pytest.approx(1.0, abs=1e-14)
