@@ -16,6 +16,9 @@ from gearcad.trains.nc_planetary import (
     close_ring,
     convex_limit,
     matched_sun,
+    phasing,
+    planet_gap,
+    planetary_set,
     poses,
 )
 
@@ -114,3 +117,53 @@ def test_a_ring_that_cannot_close_is_refused_naming_the_key():
 def test_a_matched_sun_of_the_planets_own_e_is_the_planet():
     planet = Lobed(1.0, 3, 0.08)
     assert matched_sun(planet, 0.08).radius == pytest.approx(1.0, abs=1e-14)
+
+
+@pytest.fixture(scope="module")
+def square():
+    planet = Lobed(1.0, 4, 0.05)
+    sun, _ = close_ring(planet, 12)
+    return planetary_set(sun, planet, 4, 12)
+
+
+def test_the_ring_closes_lobe_after_lobe_and_turns_as_rolled(square):
+    """γ advances by exactly −2π/12 per sun lobe (the ring closes after 12 of its lobes), the
+    ring's radius repeats with its period, and φ_r at a lobe's end is the rolled sweep's."""
+    lobe = square.lobe
+    assert square.ring_angle(lobe) == pytest.approx(-2 * math.pi / 12, abs=1e-12)
+    gamma = np.linspace(0.0, 2 * math.pi / 12, 7)
+    assert np.max(np.abs(square.ring_radius_at(gamma) - square.ring_radius_at(gamma + 5 * 2 * math.pi / 12))) < 1e-12
+    assert square.ring_turn(3 * lobe) == pytest.approx(3 * square.data.ring_turn, abs=1e-12)
+    # the ring's rate by the Kennedy integration, at a lobe's end
+    assert square.ring_turn(lobe) == pytest.approx(
+        by_sun_angle(square.sun, square.planet, steps=100).ring_turn, abs=1e-6
+    )
+
+
+def test_the_ring_held_moves_every_planet_as_the_first(square):
+    """Ring held: each planet's centre at the same distance from O, evenly spaced, and the sun
+    turned back by φ_r; the planets' orbit (carrier) angle is γ."""
+    state = square.ring_held(0.37)
+    radii = np.hypot(state["centres"][:, 0], state["centres"][:, 1])
+    assert np.ptp(radii) < 1e-12
+    angles = np.unwrap(np.arctan2(state["centres"][:, 1], state["centres"][:, 0]))
+    assert np.allclose(np.diff(angles), 2 * math.pi / 4, atol=1e-12)
+    assert state["sun"] == pytest.approx(-float(square.ring_turn(0.37)), abs=1e-15)
+
+
+def test_the_planets_gap_bounds_the_circles_gap():
+    """e = 0: planets of radius 1 on an orbit of 2, N = 4: the gap is 4·sin(π/4) − 2 exactly; the
+    certified bound lies at most the tolerance under it and never over."""
+    circle = Lobed(1.0, 4, 0.0)
+    bound, least, _ = planet_gap(planetary_set(circle, circle, 4, 12))
+    exact = 4 * math.sin(math.pi / 4) - 2
+    assert bound <= exact + 1e-9
+    assert bound >= exact - 6e-3
+    assert least == pytest.approx(exact, abs=1e-4)
+
+
+def test_the_phasing_rule():
+    assert phasing(4, 12, 4) is None
+    assert phasing(3, 9, 3) is None
+    assert "use 3 or 6 planets" in phasing(6, 18, 4)
+    assert "at least 3" in phasing(4, 12, 2)
