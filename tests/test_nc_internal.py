@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 
 from gearcad.errors import DesignError
+from gearcad.mechanisms import nc_internal
 from gearcad.pitch import shapes
 from gearcad.pitch.internal import internal_pair
 
@@ -69,23 +70,20 @@ def _params(pinion: dict, lobes: int, count: int, backlash: float = 0.1, toleran
 
 @pytest.fixture(scope="module")
 def oval():
-    from gearcad.mechanisms.nc_internal import design
-
-    return design(_params({"curve": "oval", "a": 20.0, "b": 16.0}, 3, 30))
+    return nc_internal.design(_params({"curve": "oval", "a": 20.0, "b": 16.0}, 3, 30))
 
 
 def test_a_circle_in_a_two_lobe_ring_is_an_internal_spur_pair():
     """A circle of radius 15 (24 teeth) in a "two-lobe" ring: ring radius 30, E = 15, 48 teeth
     of module 1.25; the ring's hole is the hole cut on a circle of radius 30, point for point."""
-    from gearcad.mechanisms.nc_internal import _rack, design
     from gearcad.teeth.frame import arc_frame
     from gearcad.teeth.gear import cut_teeth
 
-    draft = design(_params({"curve": "circle", "radius": 15.0}, 2, 24))
+    draft = nc_internal.design(_params({"curve": "circle", "radius": 15.0}, 2, 24))
     assert draft.data["pair"]["center_distance"] == pytest.approx(15.0, abs=1e-12)
     assert draft.data["teeth"]["module"] == pytest.approx(1.25, abs=1e-12)
     assert draft.data["teeth"]["ring_teeth"] == 48
-    rack = _rack(1.25, math.radians(20), 0.1, internal=True)
+    rack = nc_internal._rack(1.25, math.radians(20), 0.1, internal=True)
     circle = cut_teeth(arc_frame(shapes.circle(30.0)), rack, 48, rack.pitch / 2, tolerance=0.0025)
     hole = draft.parts[1].hole
     r_hole, a_hole = np.hypot(*hole.T), np.arctan2(hole[:, 1], hole[:, 0])

@@ -17,6 +17,7 @@ from gearcad.profiles import (
     CircleParams,
     EllipseParams,
     GearPairParams,
+    NcInternalParams,
     RatioParams,
     RollerBodyParams,
     RollingWheelParams,
@@ -34,7 +35,7 @@ from .conftest import PROFILES, ROOT
 
 FOCUS = ROOT / "profiles" / "elliptic_focus.toml"
 SCHEMA = ROOT / "profiles" / "profile.schema.json"
-PARAMS = (GearPairParams, RollerBodyParams, RollingWheelParams, CarrierTrainParams)
+PARAMS = (GearPairParams, RollerBodyParams, RollingWheelParams, CarrierTrainParams, NcInternalParams)
 
 
 def _lines(call, *args, **kwargs) -> list[str]:

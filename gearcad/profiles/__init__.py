@@ -25,6 +25,7 @@ from .curves import (
     WalkerParams,
 )
 from .gear_pair import ClaimParams, Gear2Params, GearPairParams, PairParams, TeethParams
+from .nc_internal import InternalTeethParams, NcInternalParams, RingParams
 from .reading import (
     EXCLUSIVE_KEYS,
     MECHANISMS,
@@ -75,6 +76,9 @@ __all__ = [
     "DriveParams",
     "CarrierTrainParams",
     "TrainParams",
+    "NcInternalParams",
+    "RingParams",
+    "InternalTeethParams",
     # shared
     "OutputParams",
     "BoreParams",
