@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 
 from gearcad.errors import DesignError
+from gearcad.mechanisms import nc_planetary
 from gearcad.trains.carrier import solve_train
 from gearcad.trains.nc_planetary import (
     Lobed,
@@ -167,3 +168,67 @@ def test_the_phasing_rule():
     assert phasing(3, 9, 3) is None
     assert "use 3 or 6 planets" in phasing(6, 18, 4)
     assert "at least 3" in phasing(4, 12, 2)
+
+
+# ----------------------------------------------------------------------------- the mechanism
+
+
+@pytest.fixture(scope="module")
+def square_draft():
+    from .conftest import drafted
+
+    return drafted("nc_square", nc_planetary.design)[1]
+
+
+def test_the_square_set_is_closed_proved_and_phased(square_draft):
+    """The example square set: closed to round-off and again by the Kennedy integration, both
+    meshes without overlap at every position of a sun lobe, biting when nudged, with a play of
+    most of the 0.2 mm backlash; sun, planets, ring carry 24, 24, 72 teeth of one module."""
+    data = square_draft.data
+    assert data["set"]["closure_residual"] <= 1e-9
+    assert data["set"]["closure_by_sun_angle"] <= 1e-9
+    teeth = data["teeth"]
+    assert (teeth["sun"], teeth["planet"], teeth["ring"]) == (24, 24, 72)
+    # the module from the planets' perimeter, by a trapezoid sum (independent of the arc frames)
+    x = np.linspace(0.0, 2 * math.pi, 200001)
+    perimeter = np.trapezoid(Lobed(20.0, 4, 0.05).speed(x), x)
+    assert teeth["module"] == pytest.approx(perimeter / (math.pi * 24), rel=1e-9)
+    for mesh in data["meshes"]:
+        assert mesh["max_overlap"] <= mesh["allowed_overlap"]
+        assert mesh["max_depth"] <= 2 * 0.01
+        assert mesh["nudged_min_overlap"] > mesh["allowed_overlap"]
+        assert 0.1 < mesh["least_play"] <= 0.2 + 4 * 0.01
+    assert not square_draft.findings
+
+
+def test_the_planets_sit_on_their_orbit_evenly(square_draft):
+    """Four planet placements, centres at the orbit radius of θ = 0 (the sun's lobe on a planet's
+    valley: the least, by symmetry, 2R(1 + …) within the orbit's range), a quarter turn apart."""
+    planets = [pl for pl in square_draft.placements if pl.part == "planet"]
+    centres = np.array([pl.offset for pl in planets])
+    radii = np.hypot(centres[:, 0], centres[:, 1])
+    data = square_draft.data["set"]
+    assert np.ptp(radii) < 1e-9
+    assert data["orbit_min"] - 1e-9 <= radii[0] <= data["orbit_max"] + 1e-9
+    angles = np.unwrap(np.arctan2(centres[:, 1], centres[:, 0]))
+    assert np.allclose(np.diff(angles), math.pi / 2, atol=1e-12)
+    assert np.allclose(np.diff([pl.angle for pl in planets]), math.pi / 2, atol=1e-12)
+
+
+def test_bad_sets_are_refused_in_one_line():
+    from gearcad.errors import ProfileError
+    from gearcad.profiles import validated
+    from gearcad.profiles.nc_planetary import NcPlanetaryParams
+
+    def params(**s):
+        base = {"lobes": 4, "e": 0.05, "radius": 20.0, "planets": 4}
+        return validated(NcPlanetaryParams, set={**base, **s}, teeth={"count": 24})
+
+    with pytest.raises(ProfileError, match=r"^set.e = 0.06: must be below 1/\(n² \+ 1\) = 0.05882"):
+        params(e=0.06)
+    with pytest.raises(
+        ProfileError, match=r"^set.planets = 3: must divide gcd\(set.lobes, ring lobes\)"
+    ):
+        params(planets=3)
+    with pytest.raises(ProfileError, match=r"^teeth.count = 26: must be a multiple of set.lobes = 4"):
+        validated(NcPlanetaryParams, set={"lobes": 4, "e": 0.05, "radius": 20.0, "planets": 4}, teeth={"count": 26})

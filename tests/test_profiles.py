@@ -18,6 +18,7 @@ from gearcad.profiles import (
     EllipseParams,
     GearPairParams,
     NcInternalParams,
+    NcPlanetaryParams,
     RatioParams,
     RollerBodyParams,
     RollingWheelParams,
@@ -35,7 +36,7 @@ from .conftest import PROFILES, ROOT
 
 FOCUS = ROOT / "profiles" / "elliptic_focus.toml"
 SCHEMA = ROOT / "profiles" / "profile.schema.json"
-PARAMS = (GearPairParams, RollerBodyParams, RollingWheelParams, CarrierTrainParams, NcInternalParams)
+PARAMS = (GearPairParams, RollerBodyParams, RollingWheelParams, CarrierTrainParams, NcInternalParams, NcPlanetaryParams)
 
 
 def _lines(call, *args, **kwargs) -> list[str]:

@@ -36,5 +36,6 @@ MECHANISMS: dict[str, Mechanism] = {
         Mechanism("rolling-wheel", "rolling_wheel"),
         Mechanism("carrier-train", "carrier_train"),
         Mechanism("nc-internal", "nc_internal"),
+        Mechanism("nc-planetary", "nc_planetary"),
     )
 }

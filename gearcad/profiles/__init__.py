@@ -26,6 +26,7 @@ from .curves import (
 )
 from .gear_pair import ClaimParams, Gear2Params, GearPairParams, PairParams, TeethParams
 from .nc_internal import InternalTeethParams, NcInternalParams, RingParams
+from .nc_planetary import NcPlanetaryParams, PlanetarySetParams, SetTeethParams
 from .reading import (
     EXCLUSIVE_KEYS,
     MECHANISMS,
@@ -79,6 +80,9 @@ __all__ = [
     "NcInternalParams",
     "RingParams",
     "InternalTeethParams",
+    "NcPlanetaryParams",
+    "PlanetarySetParams",
+    "SetTeethParams",
     # shared
     "OutputParams",
     "BoreParams",

@@ -24,6 +24,7 @@ from .docs import document_fields
 from .gear_pair import GearPairParams
 from .messages import error_lines, show
 from .nc_internal import NcInternalParams
+from .nc_planetary import NcPlanetaryParams
 from .roller_body import RollerBodyParams
 from .rolling_wheel import RollingWheelParams
 
@@ -47,6 +48,7 @@ MODELS: tuple[type[ParamsModel], ...] = (
     RollingWheelParams,
     CarrierTrainParams,
     NcInternalParams,
+    NcPlanetaryParams,
 )
 """Every mechanism's profile model, the default first: a new mechanism's model is one more entry
 (its ``mechanism`` field's default is its name)."""

@@ -37,6 +37,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import DesignError
+from ..pitch.curve import PitchCurve, harmonic_series
 from ..roots import brentq
 
 __all__ = [
@@ -54,6 +55,8 @@ __all__ = [
     "planetary_set",
     "phasing",
     "planet_gap",
+    "as_pitch_curve",
+    "ring_pitch_curve",
 ]
 
 TWO_PI = 2.0 * math.pi
@@ -594,3 +597,30 @@ def planet_gap(ps: PlanetarySet, *, points: int = 720, tol: float = 5e-3) -> tup
         intervals = split
     where = min(cache, key=cache.get)
     return max(min(bound, best) - sagitta, 0.0), best, float(where)
+
+
+def as_pitch_curve(curve: Lobed, name: str) -> PitchCurve:
+    """The shared curve as a :class:`~gearcad.pitch.curve.PitchCurve` (for cutting teeth)."""
+    return PitchCurve(name=name, r=curve.r, dr=curve.dr, d2r=curve.d2r, lobes=curve.lobes)
+
+
+def ring_pitch_curve(ps: PlanetarySet, name: str = "ring", *, per_lobe: int = 64) -> PitchCurve:
+    """The ring's pitch curve ρ(γ) in its own frame as a Fourier series (orders multiples of the
+    ring's lobes, spectral: ρ is analytic for a convex planet), from ``per_lobe`` samples a lobe
+    found by Newton on γ(θ) = γ."""
+    m = ps.ring_lobes * per_lobe
+    gamma = np.arange(m) * TWO_PI / m
+    coef = np.fft.rfft(ps.ring_radius_at(gamma)) / m
+    spectrum = 2 * coef
+    spectrum[0] = coef[0]
+    if m % 2 == 0:
+        spectrum[-1] = coef[-1]
+    keep = np.nonzero(np.abs(spectrum) > 1e-15 * abs(spectrum[0]))[0]
+    series = harmonic_series(spectrum[: keep.max() + 1])
+    return PitchCurve(
+        name=name,
+        r=lambda p: series(p),
+        dr=lambda p: series(p, 1),
+        d2r=lambda p: series(p, 2),
+        lobes=ps.ring_lobes,
+    )
