@@ -17,11 +17,9 @@ from gearcad.trains.nc_planetary import (
     close_ring,
     convex_limit,
     matched_sun,
-    phasing,
-    planet_gap,
-    planetary_set,
     poses,
 )
+from gearcad.trains.nc_set import phasing, planet_gap, planetary_set
 
 # The published table: (n, e, natural ring lobe count, orbit-radius change in %).
 PUBLISHED = [
@@ -226,9 +224,7 @@ def test_bad_sets_are_refused_in_one_line():
 
     with pytest.raises(ProfileError, match=r"^set.e = 0.06: must be below 1/\(n² \+ 1\) = 0.05882"):
         params(e=0.06)
-    with pytest.raises(
-        ProfileError, match=r"^set.planets = 3: must divide gcd\(set.lobes, ring lobes\)"
-    ):
+    with pytest.raises(ProfileError, match=r"^set.planets = 3: must divide gcd\(set.lobes, ring lobes\)"):
         params(planets=3)
     with pytest.raises(ProfileError, match=r"^teeth.count = 26: must be a multiple of set.lobes = 4"):
         validated(NcPlanetaryParams, set={"lobes": 4, "e": 0.05, "radius": 20.0, "planets": 4}, teeth={"count": 26})

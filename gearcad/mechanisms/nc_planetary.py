@@ -30,6 +30,7 @@ from ..teeth.frame import arc_frame
 from ..teeth.gear import cut_teeth
 from ..tolerances import budget
 from ..trains import nc_planetary as NP
+from ..trains import nc_set as NS
 from .finish import Contact, Draft, PartSpec
 from .nc_internal import _rack
 from .parts import Placement
@@ -107,13 +108,13 @@ def design(p: NcPlanetaryParams) -> Draft:
     n, big_n, ring_lobes = s.lobes, s.planets, p.ring_lobes
     planet = NP.Lobed(s.radius, n, s.e)
     sun, closure = NP.close_ring(planet, ring_lobes, key="set.e")
-    ps = NP.planetary_set(sun, planet, big_n, ring_lobes)
+    ps = NS.planetary_set(sun, planet, big_n, ring_lobes)
     check = NP.by_sun_angle(sun, planet, steps=400)  # RK4: ~1e-10 rad (200 steps: ~1e-9)
-    gap_bound, gap_least, gap_at = NP.planet_gap(ps)
+    gap_bound, gap_least, gap_at = NS.planet_gap(ps)
     z = p.teeth.count
     z_ring = z * ring_lobes // n
-    sun_curve, planet_curve = NP.as_pitch_curve(sun, s.sun), NP.as_pitch_curve(planet, s.planet)
-    ring_curve = NP.ring_pitch_curve(ps, s.ring)
+    sun_curve, planet_curve = NS.as_pitch_curve(sun, s.sun), NS.as_pitch_curve(planet, s.planet)
+    ring_curve = NS.ring_pitch_curve(ps, s.ring)
     frames = [arc_frame(c) for c in (sun_curve, planet_curve, ring_curve)]
     module = frames[1].perimeter / (math.pi * z)
     gap_teeth = gap_bound - 2 * module  # each planet's tips stand an addendum (1 m) off its pitch curve
