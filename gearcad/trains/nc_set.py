@@ -77,8 +77,9 @@ class PlanetarySet:
         """γ(θ) = θ − φ_r(θ): where that contact is round the ring, in the ring's frame."""
         return np.asarray(theta, dtype=float) - self.ring_turn(theta)
 
-    def ring_radius_at(self, gamma, *, iterations: int = 60) -> np.ndarray:
-        """The ring's pitch radius at polar angle γ of its own frame (Newton on γ(θ) = γ)."""
+    def ring_radius_at(self, gamma, *, iterations: int = 20) -> np.ndarray:
+        """The ring's pitch radius at polar angle γ of its own frame (Newton on γ(θ) = γ, to
+        round-off: quadratic from the linear guess, a handful of steps)."""
         gamma = np.asarray(gamma, dtype=float)
         slope = self.data.sweep / self.lobe
         theta = gamma / slope
@@ -86,7 +87,7 @@ class PlanetarySet:
             rate = 1.0 - self._rate(np.mod(theta, self.lobe))
             step = (self.ring_angle(theta) - gamma) / rate
             theta = theta - step
-            if np.max(np.abs(step)) < 1e-15:
+            if np.max(np.abs(step)) < 1e-14 * (1.0 + np.max(np.abs(theta))):
                 break
         return self.rho(theta)
 
@@ -209,22 +210,22 @@ def as_pitch_curve(curve: Lobed, name: str) -> PitchCurve:
 
 
 def ring_pitch_curve(ps: PlanetarySet, name: str = "ring", *, per_lobe: int = 64) -> PitchCurve:
-    """The ring's pitch curve ρ(γ) in its own frame as a Fourier series (orders multiples of the
-    ring's lobes, spectral: ρ is analytic for a convex planet), from ``per_lobe`` samples a lobe
-    found by Newton on γ(θ) = γ."""
-    m = ps.ring_lobes * per_lobe
-    gamma = np.arange(m) * TWO_PI / m
-    coef = np.fft.rfft(ps.ring_radius_at(gamma)) / m
+    """The ring's pitch curve ρ(γ) in its own frame as a Fourier series in u = L·γ (L the ring's
+    lobes: ρ repeats every 2π/L; spectral, ρ being analytic for a convex planet), from
+    ``per_lobe`` samples of one lobe found by Newton on γ(θ) = γ; derivatives by the chain rule."""
+    lobes = ps.ring_lobes
+    gamma = np.arange(per_lobe) * TWO_PI / lobes / per_lobe
+    coef = np.fft.rfft(ps.ring_radius_at(gamma)) / per_lobe
     spectrum = 2 * coef
     spectrum[0] = coef[0]
-    if m % 2 == 0:
+    if per_lobe % 2 == 0:
         spectrum[-1] = coef[-1]
     keep = np.nonzero(np.abs(spectrum) > 1e-15 * abs(spectrum[0]))[0]
     series = harmonic_series(spectrum[: keep.max() + 1])
     return PitchCurve(
         name=name,
-        r=lambda p: series(p),
-        dr=lambda p: series(p, 1),
-        d2r=lambda p: series(p, 2),
-        lobes=ps.ring_lobes,
+        r=lambda p: series(lobes * np.asarray(p, dtype=float)),
+        dr=lambda p: lobes * series(lobes * np.asarray(p, dtype=float), 1),
+        d2r=lambda p: lobes * lobes * series(lobes * np.asarray(p, dtype=float), 2),
+        lobes=lobes,
     )
