@@ -127,6 +127,14 @@ def _polar(ring):
     return angle[order], radius[order]
 
 
+def test_a_ring_too_close_in_teeth_to_its_pinion_is_caught_by_the_proof():
+    """20 teeth in 30: the tips of the two toothings cross away from the pitch point (an internal
+    pair needs the ring well ahead in teeth); the proof over the cycle finds it and says so."""
+    draft = nc_internal.design(_params({"curve": "oval", "a": 30.0, "b": 24.0}, 3, 20, backlash=0.2))
+    assert draft.data["mesh"]["max_depth"] > 0.1
+    assert [f.code for f in draft.findings] == ["interference"]
+
+
 def test_bad_counts_are_refused_in_one_line():
     from gearcad.errors import ProfileError
 

@@ -181,16 +181,16 @@ def square_draft():
 def test_the_square_set_is_closed_proved_and_phased(square_draft):
     """The example square set: closed to round-off and again by the Kennedy integration, both
     meshes without overlap at every position of a sun lobe, biting when nudged, with a play of
-    most of the 0.2 mm backlash; sun, planets, ring carry 24, 24, 72 teeth of one module."""
+    most of the 0.2 mm backlash; sun, planets, ring carry 16, 16, 48 teeth of one module."""
     data = square_draft.data
     assert data["set"]["closure_residual"] <= 1e-9
     assert data["set"]["closure_by_sun_angle"] <= 1e-9
     teeth = data["teeth"]
-    assert (teeth["sun"], teeth["planet"], teeth["ring"]) == (24, 24, 72)
+    assert (teeth["sun"], teeth["planet"], teeth["ring"]) == (16, 16, 48)
     # the module from the planets' perimeter, by a trapezoid sum (independent of the arc frames)
     x = np.linspace(0.0, 2 * math.pi, 200001)
     perimeter = np.trapezoid(Lobed(20.0, 4, 0.05).speed(x), x)
-    assert teeth["module"] == pytest.approx(perimeter / (math.pi * 24), rel=1e-9)
+    assert teeth["module"] == pytest.approx(perimeter / (math.pi * 16), rel=1e-9)
     for mesh in data["meshes"]:
         assert mesh["max_overlap"] <= mesh["allowed_overlap"]
         assert mesh["max_depth"] <= 2 * 0.01
