@@ -17,6 +17,8 @@ from gearcad.profiles import (
     CircleParams,
     EllipseParams,
     GearPairParams,
+    NcInternalParams,
+    NcPlanetaryParams,
     RatioParams,
     RollerBodyParams,
     RollingWheelParams,
@@ -34,7 +36,7 @@ from .conftest import PROFILES, ROOT
 
 FOCUS = ROOT / "profiles" / "elliptic_focus.toml"
 SCHEMA = ROOT / "profiles" / "profile.schema.json"
-PARAMS = (GearPairParams, RollerBodyParams, RollingWheelParams, CarrierTrainParams)
+PARAMS = (GearPairParams, RollerBodyParams, RollingWheelParams, CarrierTrainParams, NcInternalParams, NcPlanetaryParams)
 
 
 def _lines(call, *args, **kwargs) -> list[str]:

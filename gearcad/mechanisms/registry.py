@@ -35,5 +35,7 @@ MECHANISMS: dict[str, Mechanism] = {
         Mechanism("roller-body", "roller_body"),
         Mechanism("rolling-wheel", "rolling_wheel"),
         Mechanism("carrier-train", "carrier_train"),
+        Mechanism("nc-internal", "nc_internal"),
+        Mechanism("nc-planetary", "nc_planetary"),
     )
 }

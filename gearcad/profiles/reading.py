@@ -23,6 +23,8 @@ from .common import ParamsModel
 from .docs import document_fields
 from .gear_pair import GearPairParams
 from .messages import error_lines, show
+from .nc_internal import NcInternalParams
+from .nc_planetary import NcPlanetaryParams
 from .roller_body import RollerBodyParams
 from .rolling_wheel import RollingWheelParams
 
@@ -41,7 +43,14 @@ __all__ = [
     "profile_schema",
 ]
 
-MODELS: tuple[type[ParamsModel], ...] = (GearPairParams, RollerBodyParams, RollingWheelParams, CarrierTrainParams)
+MODELS: tuple[type[ParamsModel], ...] = (
+    GearPairParams,
+    RollerBodyParams,
+    RollingWheelParams,
+    CarrierTrainParams,
+    NcInternalParams,
+    NcPlanetaryParams,
+)
 """Every mechanism's profile model, the default first: a new mechanism's model is one more entry
 (its ``mechanism`` field's default is its name)."""
 MECHANISMS = tuple(model.model_fields["mechanism"].default for model in MODELS)
