@@ -1105,19 +1105,6 @@ def _check_refusal(code: int, lines: list[str], allowed=(0, 2)) -> None:
         assert all(len(line) <= _MAX_LINE for line in lines), lines
 
 
-def _sweep_fixed() -> bool:
-    """Whether this checkout holds the sweep's own fixes (issue 34 items 4, 12, 13, 15, 18, on
-    another branch when this test was written): a malformed key is refused before any design.
-    Until then a failure of the sweep cases is expected (xfail); after, it fails the test."""
-    import tempfile
-    from pathlib import Path
-
-    with tempfile.TemporaryDirectory() as root:
-        (Path(root) / "c.toml").write_text(_CIRCLES)
-        args = ["sweep", f"{root}/c.toml", "--stage", "pitch", "--workers", "1", "--out", f"{root}/out"]
-        return _run_cli([*args, "--vary", "gear1..a=1"])[0] == 2
-
-
 def _sweep_case(args: list[str], file_text: str | None) -> None:
     import csv
     import tempfile
@@ -1150,24 +1137,14 @@ def _sweep_case(args: list[str], file_text: str | None) -> None:
 def test_sweep_arguments_end_in_a_table_or_one_line_each(args):
     """Any --vary, --constraint and objective: a table without NaN or infinity, or lines of
     ``gearcad: error:`` and exit 2 with nothing written; a malformed key never sweeps."""
-    try:
-        _sweep_case(args, None)
-    except (AssertionError, Exception) as exc:  # noqa: BLE001 - what the sweep died of is the finding
-        if _sweep_fixed():
-            raise
-        pytest.xfail(f"the sweep's fixes are not on this branch: {type(exc).__name__}: {str(exc)[:200]}")
+    _sweep_case(args, None)
 
 
 @_settings
 @given(text=_sweep_files())
 def test_sweep_files_end_in_a_table_or_one_line_each(text):
     """Any sweep TOML (its profile, stage, counts, constraints, [vary]): as for the arguments."""
-    try:
-        _sweep_case([], text)
-    except (AssertionError, Exception) as exc:  # noqa: BLE001 - what the sweep died of is the finding
-        if _sweep_fixed():
-            raise
-        pytest.xfail(f"the sweep's fixes are not on this branch: {type(exc).__name__}: {str(exc)[:200]}")
+    _sweep_case([], text)
 
 
 _NEW_NAMES = st.one_of(
