@@ -32,6 +32,7 @@ CODES: dict[str, str] = {
     "jams": "a mesh's play falls below zero somewhere over the process's tolerances: the made pair can bind",
     "loose": "a mesh's worst-case play exceeds what a maker would accept (process.max_play)",
     "backlash-fixed": "the profile fixes teeth.backlash below what the process's worst case needs",
+    "pressure-angle": "a pair's working pressure angle exceeds teeth.max_pressure_angle_deg (45° by default)",
 }
 """Every warning code gearcad emits, with what it means.  Codes never change meaning."""
 
