@@ -116,6 +116,13 @@ def placement(part: Path, assembly: Path) -> tuple[float, np.ndarray, float]:
     largest distance (mm) of any of the part's mark vertices from the assembly's so moved."""
     from scipy.spatial import cKDTree
 
+    cut = max(read_loops(part, raw=True), key=len)  # without a kerf, the outline itself is there
+    for other in read_loops(assembly, raw=True):
+        if len(other) == len(cut):
+            angle, shift = _kabsch(cut, other)
+            err = float(np.max(np.hypot(*(_turn(cut, angle) + shift - other).T)))
+            if err < 1e-9:
+                return angle, shift, err
     mine, theirs = _marks(part), _marks(assembly)
     tree = cKDTree(np.concatenate(theirs))
     everything = np.concatenate(mine)
@@ -137,7 +144,8 @@ def placement(part: Path, assembly: Path) -> tuple[float, np.ndarray, float]:
 
 def tooth_count(shape: shapely.Polygon, ring: str = "exterior") -> int:
     """The teeth of a loop (its exterior, or its largest hole's): the strongest harmonic of its
-    radius about the origin (the pivot)."""
+    radius's derivative about the origin (the pivot), below the 600th: a noncircular pitch
+    curve's own harmonics fall off geometrically, the teeth's stand out once weighted by k."""
     loop = shape.exterior if ring == "exterior" else max(shape.interiors, key=lambda r: shapely.Polygon(r).area)
     xy = np.asarray(loop.coords)
     angle = np.unwrap(np.arctan2(xy[:, 1], xy[:, 0]))
@@ -145,7 +153,8 @@ def tooth_count(shape: shapely.Polygon, ring: str = "exterior") -> int:
     theta, radius = np.mod(angle, 2 * np.pi)[order], np.hypot(xy[:, 0], xy[:, 1])[order]
     grid = np.linspace(0, 2 * np.pi, 4096, endpoint=False)
     r = np.interp(grid, theta, radius, period=2 * np.pi)
-    spectrum = np.abs(np.fft.rfft(r - r.mean()))
+    k = np.arange(len(grid) // 2 + 1)
+    spectrum = (np.abs(np.fft.rfft(r - r.mean())) * k)[:600]  # of r': the teeth stand out
     return int(np.argmax(spectrum[3:]) + 3)
 
 
@@ -177,7 +186,12 @@ class Mesh:
     period: float
     """Driver angle over which the mesh repeats (rad)."""
     pitch2: float
-    """Gear 2's angular pitch (rad): no free turn is sought beyond it."""
+    """Gear 2's angular pitch (rad) where its pitch radius is least: no free turn is sought
+    beyond its pitch at the contact, π·m over its pitch radius there (:meth:`pitch_at`)."""
+
+    def pitch_at(self, phi):
+        """Gear 2's angular pitch at the contact at driver angle ``phi`` (rad): π·m / r2."""
+        return math.pi * self.module / np.asarray(self.arm(phi), dtype=float)
 
     @property
     def center_distance(self) -> float:
@@ -185,7 +199,8 @@ class Mesh:
 
 
 def _kinematics(folder: Path):
-    rows = list(csv.DictReader((folder / "kinematics.csv").open()))
+    with (folder / "kinematics.csv").open(encoding="utf-8") as f:
+        rows = list(csv.DictReader(f))
     d = np.array([float(r["driver_angle_rad"]) for r in rows])
     f = np.array([float(r["follower_angle_rad"]) for r in rows])
     i = np.array([float(r["ratio"]) for r in rows])
@@ -230,8 +245,7 @@ def pair_mesh(folder: Path, gear1: str, gear2: str, driver: str, pressure_angle_
 
     period = float(turns * cycle)
     first_is_driver = gear1 == driver
-    shape2 = shapes[1]
-    pitch2 = 2 * math.pi / tooth_count(shape2)
+    pitch2 = 0.0  # set below, from the pitch radius
     mesh = Mesh(shapes, tuple(poses), None, None, None, False, math.radians(pressure_angle_deg), module, period, pitch2)
     # the turning senses: the ones under which the parts stay apart as they roll
     best = None
@@ -249,6 +263,7 @@ def pair_mesh(folder: Path, gear1: str, gear2: str, driver: str, pressure_angle_
                 best = (area, turns)
     mesh.turns = best[1]
     mesh.arm = r_driver if not first_is_driver else r_follower
+    mesh.pitch2 = float(np.max(mesh.pitch_at(np.linspace(0, period, 721))))
     mesh.contact_radius1 = r_driver if first_is_driver else r_follower
     return mesh
 
@@ -428,25 +443,37 @@ def play_at(made: Made, phi: float, samples: int = 41) -> tuple[float, float]:
     """Free play at driver angle ``phi`` (mm on gear 2's pitch curve; negative: jammed, as the
     shrink that frees it) and the turn of gear 2 it was measured from (rad)."""
     mesh = made.mesh
-    p1, p2, pivot = _placed(mesh, phi, 0.0, made.shift, made.parts)
+    _, _, pivot = _placed(mesh, phi, 0.0, made.shift, (shapely.Point(0, 0), shapely.Point(0, 0)))
     near = _contact(mesh, phi, pivot)
     reach = 5.0 * mesh.module
     window = shapely.Point(near).buffer(reach, quad_segs=32)
+    # each part cut about the contact in its own frame, wide enough for gear 2 turned half a pitch
+    t1, t2 = mesh.turns(phi)
+    (a1, c1), (a2, _) = mesh.pose0
+    own = (_turn(near - c1, -(a1 + float(t1))), _turn(near - pivot, -(a2 + float(t2))))
+    pieces = tuple(
+        part.intersection(shapely.Point(*o).buffer(reach + 2.5 * mesh.module, quad_segs=32))
+        for part, o in zip(made.parts, own)
+    )
+    cut = Made.__new__(Made)
+    cut.mesh, cut.edge, cut.cut, cut.shift, cut.parts = mesh, made.edge, made.cut, made.shift, pieces
+    p1, p2, pivot = _placed(mesh, phi, 0.0, made.shift, pieces)
     arm = float(mesh.arm(phi))
-    cap = mesh.pitch2
+    cap = float(mesh.pitch_at(phi))
     start = 0.0
     if _overlap(p1, p2, window) > 1e-14:
-        start = _free_start(mesh, phi, made.parts, made.shift, window, samples)
+        start = _free_start(mesh, phi, pieces, made.shift, window, samples)
         if start is None:
-            return -_jam_shrink(made, phi, window, samples) * 4 / math.cos(mesh.pressure_angle), float("nan")
-        p1, p2, pivot = _placed(mesh, phi, start, made.shift, made.parts)
+            return -_jam_shrink(cut, phi, window, samples) * 4 / math.cos(mesh.pressure_angle), float("nan")
+        p1, p2, pivot = _placed(mesh, phi, start, made.shift, pieces)
     plus, minus = free_turns(p1, p2, pivot, near, reach, cap)
     return (plus + minus) * arm, start
 
 
 def _free_start(mesh, phi, parts, shift, window, samples):
     """A turn of gear 2 within a pitch where it overlaps gear 1 not at all, nearest the assembled one."""
-    turns = np.linspace(-mesh.pitch2 / 2, mesh.pitch2 / 2, samples)
+    half = float(mesh.pitch_at(phi)) / 2
+    turns = np.linspace(-half, half, samples)
     areas = []
     for t in turns:
         p1, p2, _ = _placed(mesh, phi, float(t), shift, parts)
@@ -491,7 +518,7 @@ def _jam_shrink(made: Made, phi, window, samples) -> float:
         lo, hi = hi, hi * 2
         if hi > mesh.module:
             return hi
-    while hi - lo > 1e-8:
+    while hi - lo > 2e-7:
         mid = (lo + hi) / 2
         lo, hi = (lo, mid) if frees(mid) else (mid, hi)
     return hi
@@ -634,7 +661,7 @@ class Sweep:
         y1 = _turn(_turn(s1[i1], big1[k1]) + c1 - pivot, -big2[k1])  # gear 1's vertices in gear 2's frame
         pivot1 = _turn(np.broadcast_to(pivot - c1, (n, 2)), -big1)  # gear 2's pivot in gear 1's frame
         far = np.hypot(own2[:, 0], own2[:, 1]) + self.reach
-        cap = mesh.pitch2
+        cap = mesh.pitch_at(phis)
         best = np.full((2, n), cap)
         todo = np.ones(n, bool)
         grow = np.full(n, 5e-3)
