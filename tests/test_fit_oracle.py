@@ -60,12 +60,21 @@ def _module(report: dict, gear: str) -> float:
     return block["teeth"]["module"]
 
 
-BUILT = [
+HEAVY = pytest.mark.skipif(
+    not ALL, reason="overlapping as written: every position a jam to measure; GEARCAD_ORACLE=all"
+)
+BUILT = [  # the walker's grid: 240 driver angles in the suite (its sampled band misses by 5.7 µm), 1920 with ALL
     pytest.param(
-        "walker", "pair", "wheel", "pinion", "pinion", 480, marks=pytest.mark.xfail(strict=True, reason=SAMPLED)
+        "walker",
+        "pair",
+        "wheel",
+        "pinion",
+        "pinion",
+        1920 if ALL else 240,
+        marks=pytest.mark.xfail(strict=True, reason=SAMPLED),
     ),
-    pytest.param("compound_ring", "train", "ring", "gear3", None, 720),
-    pytest.param("planetary_internal", "train", "planet", "ring", None, 720),
+    pytest.param("compound_ring", "train", "ring", "gear3", None, 720, marks=HEAVY),
+    pytest.param("planetary_internal", "train", "planet", "ring", None, 720, marks=HEAVY),
 ]
 
 
