@@ -115,6 +115,8 @@ def _progress(out: Path):
     def line(n: int, total: int, result) -> None:
         replaces = f", replaces {out / result.name}" if result.name in earlier else ""
         print(f"[{n}/{total}] {result.name}: {result.summary} ({1000 * result.seconds:.0f} ms{replaces})", flush=True)
+        for f in result.findings:  # each warning in one line, as check prints them
+            print(f"  warning [{f.code}] {f.message}", flush=True)
 
     return line
 

@@ -9,6 +9,7 @@ and build the :class:`Design` whole.
 
 from __future__ import annotations
 
+import re
 import time
 from dataclasses import dataclass, field
 from typing import Any
@@ -169,7 +170,7 @@ def finish(draft: Draft, *, start: float | None = None) -> Design:
     return Design(
         params=draft.params,
         mechanism=draft.mechanism,
-        summary=draft.summary,
+        summary=counted(draft.summary, len(findings)),
         findings=findings,
         part_list=parts,
         placements=draft.placements,
@@ -208,6 +209,13 @@ def _too_large(plates) -> tuple:
             )
         )
     return tuple(found)
+
+
+def counted(summary: str, findings: int) -> str:
+    """The summary with its "N warning(s)" saying how many findings the design ends with: a
+    mechanism counts its own when it draws, and the fit's bands and the assembly's proof may
+    add more (the headline, report.json, the page and ``Design.findings`` agree)."""
+    return re.sub(r"\b\d+ warning\(s\)", f"{findings} warning(s)", summary)
 
 
 def _made_rings(blanks, out) -> dict:

@@ -227,6 +227,37 @@ def _normal_module_note(params: GearPairParams, pitch: PairDesign, teeth: Toothe
     )
 
 
+def _pressure_angle(params: GearPairParams, pitch: PairDesign, alpha: float) -> tuple:
+    """A ``pressure-angle`` warning where the pair's working pressure angle (``alpha``, the
+    rack's transverse one, plus the pitch curves' tilt) exceeds ``teeth.max_pressure_angle_deg``:
+    how far, where (the driver's angle), and over which stretches of gear 1's turn."""
+    from ..findings import finding
+    from ..teeth.contact import working_pressure
+
+    limit = params.teeth.max_pressure_angle_deg
+    pair, (one, two) = pitch.pair, (g.name for g in pitch.gears)
+    w = working_pressure(pair, alpha, math.radians(limit))
+    if not w.above:
+        return ()
+    largest = math.degrees(w.largest)
+    if pitch.kinematics.driver == 2:  # the driver is gear 2: its angle where gear 1 stands at φ1
+        turn = float(pair.angle_map(np.array([w.phi1]))[0]) % (2 * math.pi)
+        where = f"driver angle {math.degrees(turn):.1f}° ({two}; {one} at {math.degrees(w.phi1):.1f}°)"
+    else:
+        where = f"driver angle {math.degrees(w.phi1):.1f}° ({one})"
+    spans = ", ".join(f"{math.degrees(a):.1f}°–{math.degrees(b):.1f}°" for a, b in w.above)
+    total = sum((b - a) % (2 * math.pi) or 2 * math.pi for a, b in w.above)
+    return (
+        finding(
+            "pressure-angle",
+            f"{one}/{two}: the working pressure angle reaches {largest:.1f}° at {where}, {largest - limit:.1f}° over "
+            f"teeth.max_pressure_angle_deg = {limit:g}; above it over {math.degrees(total):.0f}° of {one}'s turn "
+            f"({spans}): the tooth force pushes the shafts apart more than it turns the mate",
+            "teeth",
+        ),
+    )
+
+
 def _summary(pitch: PairDesign, teeth: ToothedPairData | None, findings: int, params: GearPairParams) -> str:
     pair = pitch.pair
     text = (
@@ -333,6 +364,8 @@ def design(params: GearPairParams) -> Draft:
         parts.append(PartSpec("shoe", papers.shoe))
         placements += (Placement("shoe", 0.0, tuple(S.crank_pin(papers.geometry, 0.0)[0])),)
     findings = pitch.findings + (teeth.findings if teeth is not None else ()) + papers.findings
+    if teeth is not None:
+        findings += _pressure_angle(params, pitch, teeth.gears[0].rack.params.pressure_angle)
     cycle = pitch.pair.cycle
     phi1 = np.linspace(0.0, cycle, frames_for(cycle, teeth.plan.teeth[0] if teeth else None), endpoint=False)
     kin = pitch.kinematics
