@@ -21,6 +21,7 @@ from dataclasses import dataclass
 
 import numpy as np
 import shapely
+import shapely.ops
 from shapely import affinity
 
 from ..errors import ProfileError
@@ -28,14 +29,31 @@ from ..mechanisms.base import Design
 from .band import play_along
 from .fit import pair_geometry
 
-__all__ = ["STEPS", "KEYS", "CouponData", "Piece", "check_coupon", "coupon_data", "step_offset"]
+__all__ = [
+    "STEPS",
+    "KEYS",
+    "CouponData",
+    "Jig",
+    "Piece",
+    "StepPlay",
+    "check_coupon",
+    "coupon_data",
+    "free_turn",
+    "pin_hole",
+    "step_offset",
+]
 
 STEPS = (-0.1, -0.05, 0.0, 0.05, 0.1)
 """The steps about the nominal compensation, mm."""
 KEYS = {"laser": "process.kerf", "fdm": "process.xy_compensation", "cnc": "process.xy_compensation"}
 """The one key a maker sets after measuring the coupon, per process."""
 PIN_HOLE_MM = 2.0
-"""The pin hole of a sector whose gear has no bore or pilot hole (a Ø2 mm pin or drill)."""
+"""The pin hole of a sector whose gear has no bore (a Ø2 mm pin, or a drill's shank); a router's
+is at least 1.25 tool diameters, rounded up to 0.5 mm (it cannot cut a smaller one)."""
+JIG_RIM_MM = 5.0
+"""The jig's plate reaches this far beyond its larger hole."""
+FEELER_STEP_MM = 0.05
+"""The feeler gauges named: multiples of 0.05 mm (a common set's blades)."""
 _TEETH_EACH_SIDE = 1.6
 """The sector reaches this many pitches either side of the contact (about three teeth)."""
 
@@ -59,6 +77,41 @@ class Piece:
     turn: float
     """The turn (rad) from the gear's frame to the sector's (teeth up)."""
     offset: tuple[float, float]
+    hole: float = 0.0
+    """The pivot hole's diameter (mm, as drawn): the bore, or the pin hole."""
+    mark: tuple[tuple[float, float], ...] = ()
+    """A follower's engraved triangle pointing at the tooth where the feeler gauge goes (sector's
+    frame, mm); () for a driver's sector."""
+
+
+@dataclass(frozen=True)
+class Jig:
+    """The plate that holds a step's two sectors at the pair's centre distance: the driver's hole
+    at the origin, the follower's at (E, 0), each the diameter of the sectors' pivot holes, so that
+    one pin (or dowel) through each carries the sector on its pivot.  ``path`` is the plate cut at
+    the nominal kerf or compensation (its holes come out the drawn size)."""
+
+    nominal: shapely.Polygon
+    path: shapely.Polygon
+    center_distance: float
+    diameters: tuple[float, float]
+    label: str
+    offset: tuple[float, float] = (0.0, 0.0)
+
+
+@dataclass(frozen=True)
+class StepPlay:
+    """What one step's pair does on the jig, made by the nominal process: the follower's free turn
+    (driver held at the place's angle) as play on its pitch curve, and the gap a feeler gauge meets
+    between the flanks at the marked tooth with the follower turned anticlockwise to its stop; each
+    a proven (lower, upper) bracket, mm.  ``play`` None: the pair binds (proven: touching or
+    overlapping everywhere within ±``bound`` mm of the rolling position, on the pitch curve)."""
+
+    place: str
+    value: float
+    play: tuple[float, float] | None
+    feeler: tuple[float, float] | None
+    bound: float
 
 
 @dataclass(frozen=True)
@@ -77,6 +130,9 @@ class CouponData:
     size: tuple[float, float]
     thickness: float
     tolerance: float
+    jig: Jig
+    plays: tuple[StepPlay, ...]
+    """Per place and step (the pieces' order): the play as made with the nominal value."""
 
 
 def check_coupon(params) -> None:
@@ -129,9 +185,25 @@ def _root_angle(ring: np.ndarray, around: float, within: float) -> float:
     return around + ((theta[k] - around + np.pi) % (2 * np.pi) - np.pi)
 
 
-def _sector(part, theta: float, pitch_radius: float, module: float) -> tuple[shapely.Polygon, float, float]:
-    """The part's sector about polar angle ``theta`` with its hub and pivot hole, turned so
-    ``theta`` points up; the hub's radius (mm) and the turn (rad)."""
+def pin_hole(kind: str, tool: float = 0.0) -> float:
+    """The pivot hole (mm) of a coupon's sector whose gear has no bore, and of the jig for it."""
+    if kind != "cnc":
+        return PIN_HOLE_MM
+    return max(PIN_HOLE_MM, math.ceil(2 * 1.25 * tool) / 2)
+
+
+def _circle(centre: tuple[float, float], radius: float, tol: float) -> shapely.Polygon:
+    """A circle as a polygon whose chords stray at most ``tol`` inside it."""
+    step = 2 * math.acos(max(1 - tol / radius, -1.0))
+    return shapely.Point(centre).buffer(radius, quad_segs=max(8, math.ceil(math.pi / 2 / step)))
+
+
+def _sector(
+    part, theta: float, pitch_radius: float, module: float, pin: float, tol: float
+) -> tuple[shapely.Polygon, float, float, float]:
+    """The part's sector about polar angle ``theta`` with its hub and pivot hole (the bore, else a
+    pin hole of ``pin`` mm), turned so ``theta`` points up; the hub's radius (mm), the turn (rad)
+    and the pivot hole's diameter (mm)."""
     ring = part.outline.outer
     radius = np.hypot(ring[:, 0], ring[:, 1])
     pitch = math.pi * module / pitch_radius  # one pitch as an angle at the contact
@@ -140,8 +212,11 @@ def _sector(part, theta: float, pitch_radius: float, module: float) -> tuple[sha
     angle = np.arctan2(ring[:, 1], ring[:, 0])
     inside = np.abs((angle - (lo + hi) / 2 + np.pi) % (2 * np.pi) - np.pi) <= (hi - lo) / 2
     inner = 0.85 * float(radius[inside].min())  # inside every root of the sector
-    holes = part.outline.rings[1:]
-    reach = max((float(np.hypot(h[:, 0], h[:, 1]).max()) for h in holes), default=PIN_HOLE_MM / 2)
+    origin = shapely.Point(0, 0)
+    pivots = [h for h in part.outline.rings[1:] if shapely.Polygon(h).contains(origin)]
+    bore = part.pivot == "bore" and bool(pivots)
+    holes = [h for h in part.outline.rings[1:] if bore or not shapely.Polygon(h).contains(origin)]
+    reach = max(float(np.hypot(h[:, 0], h[:, 1]).max()) for h in pivots) if bore else pin / 2
     hub = min(reach + 2.5, 0.8 * inner)
     outer = float(radius.max()) + 1.0
     arc = np.linspace(lo, hi, 64)
@@ -160,11 +235,11 @@ def _sector(part, theta: float, pitch_radius: float, module: float) -> tuple[sha
     )
     gear = shapely.Polygon(ring, holes)
     piece = shapely.intersection(gear, shapely.union(fan, neck))
-    if part.pivot == "cross":  # no hole to pin it by: a pin hole
-        piece = shapely.difference(piece, shapely.Point(0, 0).buffer(PIN_HOLE_MM / 2, quad_segs=32))
+    if not bore:  # a pilot hole or a cross: the coupon's pin hole
+        piece = shapely.difference(piece, _circle((0.0, 0.0), pin / 2, tol))
     piece = max(getattr(piece, "geoms", [piece]), key=lambda p: p.area)
     turned = affinity.rotate(piece, math.pi / 2 - theta, origin=(0, 0), use_radians=True)
-    return shapely.geometry.polygon.orient(turned, 1.0), hub, math.pi / 2 - theta
+    return shapely.geometry.polygon.orient(turned, 1.0), hub, math.pi / 2 - theta, 2 * reach
 
 
 def _offset(polygon: shapely.Polygon, distance: float, tol: float) -> shapely.Polygon:
@@ -177,36 +252,225 @@ def _offset(polygon: shapely.Polygon, distance: float, tol: float) -> shapely.Po
     return shapely.geometry.polygon.orient(grown, 1.0)
 
 
+def _turned(polygon: shapely.Polygon, pivot: tuple[float, float], angle: float) -> shapely.Polygon:
+    return affinity.rotate(polygon, angle, origin=pivot, use_radians=True)
+
+
+def _reach(polygon: shapely.Polygon, pivot: tuple[float, float]) -> float:
+    """The farthest any point of ``polygon`` lies from ``pivot`` (a vertex's distance), mm."""
+    xy = shapely.get_coordinates(polygon) - np.asarray(pivot)
+    return float(np.hypot(xy[:, 0], xy[:, 1]).max())
+
+
+def free_turn(
+    fixed: shapely.Polygon,
+    moving: shapely.Polygon,
+    pivot: tuple[float, float],
+    sigma: int,
+    start: float,
+    lever: float,
+    *,
+    eps: float = 1e-6,
+) -> tuple[float, float]:
+    """Turn ``moving`` about ``pivot`` from ``start`` (rad, where it is apart from ``fixed``) in the
+    sense ``sigma`` (+1 anticlockwise) until it touches: (a, b) with every turn from ``start`` to
+    ``a`` proven apart and the two touching or overlapping at ``b`` (so the first contact lies in
+    (a, b]).  Each step turns by the gap over the farthest reach of ``moving``: no point of it moves
+    farther than the gap, so it never passes through ``fixed``; the gap shrinks by about
+    lever/reach each step (``lever``: the contact's arm, mm); under ``eps`` mm, ``b`` is tried at a
+    few multiples of gap/lever until the two meet."""
+    reach = _reach(moving, pivot)
+    shapely.prepare(fixed)
+    turn, last = start, start
+    for _ in range(400):
+        gap = float(shapely.distance(fixed, _turned(moving, pivot, turn)))
+        if gap <= 0:  # touching where the last step ended: [start, last] was apart
+            return last, turn
+        if gap <= eps:
+            break
+        last, turn = turn, turn + sigma * gap / reach
+    else:
+        raise RuntimeError("the follower turns a whole cycle free: no mesh to measure")
+    for k in (4, 16, 64, 256, 1024, 4096):
+        far = turn + sigma * k * gap / lever
+        if shapely.intersects(fixed, _turned(moving, pivot, far)):
+            return turn, far
+    raise RuntimeError("no contact found past the last gap")
+
+
+def _depth(fixed: shapely.Polygon, moving: shapely.Polygon) -> float:
+    """How deep a vertex of either lies inside the other (mm; 0 where none does): turned by less
+    than that over its reach, the two still overlap."""
+    deepest = 0.0
+    for a, b in ((fixed, moving), (moving, fixed)):
+        xy = shapely.get_coordinates(b)
+        inside = shapely.contains_xy(a, xy[:, 0], xy[:, 1])
+        if inside.any():
+            deepest = max(deepest, float(shapely.distance(a.boundary, shapely.points(xy[inside])).max()))
+    return deepest
+
+
+def _free_start(fixed, moving, pivot, bound: float) -> float | None:
+    """A turn within ±``bound`` (rad) where ``moving`` is apart from ``fixed``: 0 if it is as
+    placed, else the sample farthest apart; None when proven to touch or overlap at every turn
+    within ±``bound`` (each overlapping sample covers the turns less than its depth over the reach
+    away; the gaps between are bisected until covered)."""
+    if not shapely.intersects(fixed, moving):
+        return 0.0
+    reach = _reach(moving, pivot)
+    turns = list(np.linspace(-bound, bound, 17))
+    gaps = [float(shapely.distance(fixed, _turned(moving, pivot, t))) for t in turns]
+    if max(gaps) > 0:
+        return float(turns[int(np.argmax(gaps))])
+    covered = [(t - d / reach, t + d / reach) for t in turns for d in [_depth(fixed, _turned(moving, pivot, t))]]
+    for _ in range(400):
+        covered.sort()
+        edge, hole = -bound, None
+        for lo, hi in covered:
+            if lo > edge:
+                hole = (edge, lo)
+                break
+            edge = max(edge, hi)
+        if hole is None and edge < bound:
+            hole = (edge, bound)
+        if hole is None:
+            return None
+        t = (hole[0] + hole[1]) / 2
+        placed = _turned(moving, pivot, t)
+        if not shapely.intersects(fixed, placed):
+            return t
+        d = _depth(fixed, placed)
+        covered.append((t - d / reach, t + d / reach) if d > 0 else (t, t))
+        if d <= 0 and hole[1] - hole[0] < 1e-12:
+            raise RuntimeError("cannot decide whether the pair binds")
+    raise RuntimeError("cannot decide whether the pair binds")
+
+
+@dataclass(frozen=True)
+class _Placed:
+    """One place's pair on the jig: the world frame has the driver's pivot at the origin and the
+    follower's at (E, 0); a sector placed is turned by its ``angle`` (rad) about its pivot."""
+
+    center_distance: float
+    angles: tuple[float, float]
+    radius: float
+    """The follower's pitch radius at the contact (mm): turns times it are play on its pitch curve."""
+    lever: float
+    module: float
+
+    def world(self, polygon: shapely.Polygon, gear: int) -> shapely.Polygon:
+        turned = _turned(polygon, (0.0, 0.0), self.angles[gear])
+        return affinity.translate(turned, self.center_distance, 0.0) if gear else turned
+
+
+def _play_of(pair: _Placed, driver: shapely.Polygon, follower: shapely.Polygon):
+    """(play, up, contact) of a step's pieces as made (world frame, follower at turn 0): the
+    follower's free turn as a bracket (mm on its pitch curve), its anticlockwise stop's bracket
+    (rad), and the clockwise contact (the driver's point, and the follower's at turn 0); all None
+    where it binds."""
+    pivot = (pair.center_distance, 0.0)
+    start = _free_start(driver, follower, pivot, pair.module / pair.radius)
+    if start is None:
+        return None, None, None
+    up = free_turn(driver, follower, pivot, +1, start, pair.lever)
+    down = free_turn(driver, follower, pivot, -1, start, pair.lever)
+    play = ((up[0] - down[0]) * pair.radius, (up[1] - down[1]) * pair.radius)
+    line = shapely.shortest_line(driver, _turned(follower, pivot, down[0]))
+    p_driver, p_follower = shapely.get_coordinates(line)
+    back = _turned(shapely.Point(p_follower), pivot, -down[0]).coords[0]
+    return play, up, (tuple(p_driver), back)
+
+
+def _feeler(pair: _Placed, driver, follower, up: tuple[float, float], at) -> tuple[float, float]:
+    """The gap (mm, a bracket) a feeler gauge meets at the marked flank: from the follower's edge
+    point nearest ``at`` (world, follower at turn 0: where it touched turned clockwise) to the
+    driver, with the follower at its anticlockwise stop (``up``: its bracket, rad)."""
+    pivot = (pair.center_distance, 0.0)
+    point = shapely.ops.nearest_points(follower.boundary, shapely.Point(at))[0]
+    gap = float(shapely.distance(driver, _turned(point, pivot, up[0])))
+    slack = math.dist(point.coords[0], pivot) * abs(up[1] - up[0])  # how far it moves over the bracket
+    return max(0.0, gap - slack), gap + slack
+
+
+def _mark(piece: shapely.Polygon, point: tuple[float, float], module: float) -> tuple[tuple[float, float], ...]:
+    """A small triangle inside ``piece`` (its frame) pointing at ``point`` on a tooth's flank: on
+    the line from the pivot, below the tooth's root."""
+    x, y = point
+    r = math.hypot(x, y)
+    u = np.array([x, y]) / r
+    v = np.array([-u[1], u[0]])
+    room = piece.buffer(-0.3)
+    for depth in 1.6 * module + 0.4 * np.arange(1, 12):
+        apex = np.array([x, y]) - u * depth
+        base = apex - 1.2 * u
+        tri = [tuple(apex), tuple(base + 0.6 * v), tuple(base - 0.6 * v)]
+        if room.contains(shapely.Polygon(tri)):
+            return tuple((float(a), float(b)) for a, b in tri)
+    return ()
+
+
 def coupon_data(design: Design) -> CouponData:
-    """The coupon of a (made) gear-pair design: its pieces at every step, laid out on one sheet."""
+    """The coupon of a (made) gear-pair design: its pieces at every step, the jig, laid out on one
+    sheet, and the play each step shows made with the nominal value."""
     params = design.params
     check_coupon(params)
     g = pair_geometry(design)
     out, process = params.output, params.process
+    kind, tol = process.kind, out.tolerance
     nominal = _nominal_value(params)
-    steps = tuple(sorted({round(max(0.0, nominal + s) if process.kind == "laser" else nominal + s, 6) for s in STEPS}))
-    tool = process.value("tool_diameter")
+    steps = tuple(sorted({round(max(0.0, nominal + s) if kind == "laser" else nominal + s, 6) for s in STEPS}))
+    tool = process.value("tool_diameter") if kind == "cnc" else 0.0
+    pin = pin_hole(kind, tool)
+    made = -step_offset(kind, nominal, tool)  # the made edge lies this far outside the path
     parts = design.parts()
     places = _places(design, g)
-    pieces = []
+    pieces, plays, holes = [], [], [0.0, 0.0]
+    e = g.center_distance
     for place, phi1, phi2 in places:
         r1 = float(np.interp(phi1, g.phi1, g.r1))
         sectors = (
-            _sector(parts[0], phi1, r1, g.module),
-            _sector(parts[1], math.pi - phi2, g.center_distance - r1, g.module),
+            _sector(parts[0], phi1, r1, g.module, pin, tol),
+            _sector(parts[1], math.pi - phi2, e - r1, g.module, pin, tol),
         )
-        for gear, (sector, hub, turn) in enumerate(sectors):
+        pair = _Placed(
+            e,
+            (-sectors[0][2] - phi1, -sectors[1][2] + phi2),
+            e - r1,
+            (e - r1) * math.cos(params.teeth.pressure_angle),
+            g.module,
+        )
+        row: list[list[Piece]] = [[], []]
+        for gear, (sector, hub, turn, hole) in enumerate(sectors):
+            holes[gear] = hole
             for value in steps:
-                text = f"{value:.2f}" if process.kind == "laser" else f"{value:+.2f}"
+                text = f"{value:.2f}" if kind == "laser" else f"{value:+.2f}"
                 label = text if place == "any" else f"{text} {place[0].upper()}"
-                path = _offset(sector, step_offset(process.kind, value, tool), out.tolerance)
+                path = _offset(sector, step_offset(kind, value, tool), tol)
                 name = f"{parts[gear].name} {place} {text}"
-                pieces.append(Piece(name, gear, place, value, label, sector, path, hub, turn, (0.0, 0.0)))
-    laid, size = _layout(pieces, len(steps), out.gap)
+                row[gear].append(Piece(name, gear, place, value, label, sector, path, hub, turn, (0.0, 0.0), hole))
+        made_pairs = [
+            (pair.world(_offset(d.path, made, tol), 0), pair.world(_offset(f.path, made, tol), 1)) for d, f in zip(*row)
+        ]
+        measured = [_play_of(pair, *two) for two in made_pairs]
+        # the feeler's place: the clockwise contact of the nominal step (else the nearest free one)
+        order = sorted(range(len(steps)), key=lambda k: (abs(steps[k] - nominal), k))
+        first = next((k for k in order if measured[k][0] is not None), None)
+        mark = ()
+        if first is not None:
+            on_follower = at = measured[first][2][1]
+            back = affinity.translate(shapely.Point(on_follower), -e, 0.0)  # into the sector's frame
+            mark = _mark(row[1][0].nominal, _turned(back, (0.0, 0.0), -pair.angles[1]).coords[0], g.module)
+        row[1] = [Piece(**{**p.__dict__, "mark": mark}) for p in row[1]]
+        for k, (play, up, _) in enumerate(measured):
+            feeler = None if play is None else _feeler(pair, *made_pairs[k], up, at)
+            plays.append(StepPlay(place, steps[k], play, feeler, g.module))
+        pieces += row[0] + row[1]
+    jig = _jig(e, tuple(holes), kind, nominal, tool, tol)
+    laid, size, jig = _layout(pieces, len(steps), out.gap, jig)
     return CouponData(
         params.name,
-        process.kind,
-        KEYS[process.kind],
+        kind,
+        KEYS[kind],
         nominal,
         steps,
         tuple((p, phi1) for p, phi1, _ in places),
@@ -214,14 +478,30 @@ def coupon_data(design: Design) -> CouponData:
         laid,
         size,
         out.thickness,
-        out.tolerance,
+        tol,
+        jig,
+        tuple(plays),
     )
 
 
-def _layout(pieces: list[Piece], columns: int, gap: float) -> tuple[tuple[Piece, ...], tuple[float, float]]:
+def _jig(e: float, holes: tuple[float, float], kind: str, nominal: float, tool: float, tol: float) -> Jig:
+    """The plate: the hull of two discs :data:`JIG_RIM_MM` beyond the larger hole about the pivots,
+    less the sectors' two pivot holes."""
+    rim = max(holes) / 2 + JIG_RIM_MM
+    plate = shapely.convex_hull(shapely.union(_circle((0.0, 0.0), rim, tol), _circle((e, 0.0), rim, tol)))
+    plate = shapely.difference(
+        plate, shapely.union(_circle((0.0, 0.0), holes[0] / 2, tol), _circle((e, 0.0), holes[1] / 2, tol))
+    )
+    plate = shapely.geometry.polygon.orient(plate, 1.0)
+    return Jig(plate, _offset(plate, step_offset(kind, nominal, tool), tol), e, holes, f"{e:.2f} mm")
+
+
+def _layout(
+    pieces: list[Piece], columns: int, gap: float, jig: Jig
+) -> tuple[tuple[Piece, ...], tuple[float, float], Jig]:
     """Pieces in a grid: one column per step (smallest on the left), one row per gear and place
-    (the first at the bottom); ``gap`` mm between paths and around them.  Returns the pieces
-    placed and the sheet's size (mm)."""
+    (the first at the bottom), the jig above them; ``gap`` mm between paths and around them.
+    Returns the pieces placed, the sheet's size (mm) and the jig placed."""
     rows = len(pieces) // columns
     bounds = np.array([p.path.bounds for p in pieces]).reshape(rows, columns, 4)
     widths = (bounds[:, :, 2] - bounds[:, :, 0]).max(axis=0)
@@ -233,5 +513,8 @@ def _layout(pieces: list[Piece], columns: int, gap: float) -> tuple[tuple[Piece,
         row, col = divmod(k, columns)
         b = bounds[row, col]
         placed.append(Piece(**{**p.__dict__, "offset": (float(x0[col] - b[0]), float(y0[row] - b[1]))}))
-    size = (float(x0[-1] + widths[-1] + gap), float(y0[-1] + heights[-1] + gap))
-    return tuple(placed), size
+    top = float(y0[-1] + heights[-1] + gap)
+    jb = jig.path.bounds
+    jig = Jig(**{**jig.__dict__, "offset": (gap - jb[0], top - jb[1])})
+    width = max(float(x0[-1] + widths[-1] + gap), jb[2] - jb[0] + 2 * gap)
+    return tuple(placed), (width, top + jb[3] - jb[1] + gap), jig
