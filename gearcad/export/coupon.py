@@ -3,19 +3,19 @@ and ``coupon.txt``, the key to set after measuring (see :mod:`gearcad.fitting.co
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 
 import numpy as np
 import shapely
 from shapely import affinity
 
-from ..fitting.coupon import CouponData, Piece
+from ..fitting.coupon import FEELER_STEP_MM, CouponData, Jig, Piece
 from ..geometry.arcfit import ArcRing
 from ..geometry.outline import Outline
 from .drawing import Drawing
-from .sheet import name_strokes
 
-__all__ = ["COUPON_FILES", "coupon_drawing", "label_region", "write_coupon"]
+__all__ = ["COUPON_FILES", "LABEL_MM", "coupon_drawing", "label_region", "label_strokes", "play_lines", "write_coupon"]
 
 COUPON_FILES = ("coupon.dxf", "coupon.svg", "coupon.3mf", "coupon.txt")
 _CLEAR_MM = 0.8  # the engraving kept this far inside the drawn sector and off the hub's hole
@@ -31,27 +31,131 @@ def _rings(polygon: shapely.Polygon) -> list[np.ndarray]:
     return [np.asarray(r.coords)[:-1] for r in (polygon.exterior, *polygon.interiors)]
 
 
+LABEL_MM = (1.5, 4.0)
+"""The engraved labels' letter height (mm): the text's extents, digits and capitals."""
+
+
 def label_region(piece: Piece) -> shapely.Polygon:
     """Where the piece's value is engraved (placed on the sheet): its drawn sector kept
-    :data:`_CLEAR_MM` inside, and off the hub."""
+    :data:`_CLEAR_MM` inside, off the hub and off the follower's tooth mark."""
     body = piece.nominal.buffer(-_CLEAR_MM).difference(shapely.Point(0, 0).buffer(piece.hub + _CLEAR_MM))
+    if piece.mark:
+        body = body.difference(shapely.Polygon(piece.mark).buffer(_CLEAR_MM))
     return _placed(body, piece)
 
 
+def _jig_region(jig: Jig) -> shapely.Polygon:
+    body = jig.nominal.buffer(-_CLEAR_MM)
+    for x, d in zip((0.0, jig.center_distance), jig.diameters):
+        body = body.difference(shapely.Point(x, 0.0).buffer(d / 2 + 1.5))
+    return affinity.translate(body, *jig.offset)
+
+
+def label_strokes(text: str, region: shapely.Polygon) -> list[np.ndarray]:
+    """``text`` in outline letters ((k, 2) closed strokes, mm) inside ``region``, as tall as fits up
+    to :data:`LABEL_MM`'s largest, along x or (where the region is narrow) along y reading upwards;
+    [] where not even :data:`LABEL_MM`'s smallest fits.  The letters' box is placed by scanning rows
+    of the region shrunk by half its height, and kept only if the region contains it."""
+    from matplotlib.textpath import TextPath  # only when a coupon is written
+
+    glyphs = TextPath((0.0, 0.0), text, size=1.0)
+    e = glyphs.get_extents()
+    polygons = [p for p in glyphs.to_polygons(closed_only=False) if len(p) >= 3]
+    pieces = list(getattr(region, "geoms", [region]))
+    region = max(pieces, key=lambda g: g.area) if pieces else region
+    if region.is_empty:
+        return []
+    for height in np.arange(LABEL_MM[1], LABEL_MM[0] - 1e-9, -0.25):
+        scale = height / e.height
+        width = e.width * scale
+        for angle in (0.0, 90.0):
+            turned = affinity.rotate(region, -angle, origin=(0, 0))
+            room = turned.buffer(-height / 2)
+            if room.is_empty:
+                continue
+            x0, y0, x1, y1 = room.bounds
+            rows = np.linspace(y0, y1, 24)[1:-1]
+            lines = shapely.intersection(shapely.linestrings([[[x0 - 1, y], [x1 + 1, y]] for y in rows]), room)
+            best = None
+            for y, line in zip(rows, lines):
+                for seg in getattr(line, "geoms", [line]):
+                    if seg.is_empty or seg.geom_type != "LineString" or seg.length < width:
+                        continue
+                    (ax, _), (bx, _) = seg.coords[0], seg.coords[-1]
+                    box = shapely.box((ax + bx - width) / 2, y - height / 2, (ax + bx + width) / 2, y + height / 2)
+                    if turned.contains(box) and (best is None or seg.length > best[0]):
+                        best = (seg.length, (ax + bx) / 2, y)
+            if best is None:
+                continue
+            shift = np.array([best[1] - width / 2 - e.x0 * scale, best[2] - height / 2 - e.y0 * scale])
+            cos, sin = np.cos(np.radians(angle)), np.sin(np.radians(angle))
+            turn = np.array([[cos, sin], [-sin, cos]])  # row vectors: turn back by +angle
+            return [(np.vstack([p, p[:1]]) * scale + shift) @ turn for p in polygons]
+    return []
+
+
 def coupon_drawing(data: CouponData, *, cut_layer: str, mark_layer: str) -> Drawing:
-    """Every piece's path (cut layer) and its engraved value (mark layer), as laid out."""
+    """Every piece's and the jig's path (cut layer), their engraved values and the follower's
+    tooth marks (mark layer), as laid out."""
     closed: dict[str, list] = {cut_layer: [], mark_layer: []}
     strokes: dict[str, list] = {mark_layer: []}
+    labels: dict[tuple, list] = {}
     for piece in data.pieces:
         closed[cut_layer] += [ArcRing(r, np.zeros(len(r))) for r in _rings(_placed(piece.path, piece))]
-        strokes[mark_layer] += name_strokes(piece.label, label_region(piece))
+        key = (piece.gear, piece.place, piece.label)  # a row's sectors are alike: one fit each
+        if key not in labels:
+            labels[key] = (label_strokes(piece.label, label_region(piece)), piece.offset)
+        found, at = labels[key]
+        move = np.subtract(piece.offset, at)
+        strokes[mark_layer] += [s + move for s in found]
+        if piece.mark:
+            strokes[mark_layer].append(np.vstack([piece.mark, piece.mark[:1]]) + np.asarray(piece.offset))
+    jig = data.jig
+    closed[cut_layer] += [ArcRing(r, np.zeros(len(r))) for r in _rings(affinity.translate(jig.path, *jig.offset))]
+    strokes[mark_layer] += label_strokes(jig.label, _jig_region(jig))
     what = "kerf" if data.kind == "laser" else "XY compensation"
-    descriptions = {cut_layer: f"calibration coupon of {data.name}: {what} steps " + ", ".join(_values(data))}
+    descriptions = {
+        cut_layer: f"calibration coupon of {data.name}: {what} steps "
+        + ", ".join(_values(data))
+        + f"; jig {jig.center_distance:.3f} mm"
+    }
     return Drawing(closed, strokes, descriptions)
 
 
 def _values(data: CouponData) -> list[str]:
-    return [f"{v:.2f}" if data.kind == "laser" else f"{v:+.2f}" for v in data.steps]
+    return [_value(data, v) for v in data.steps]
+
+
+def _value(data: CouponData, v: float) -> str:
+    return f"{v:.2f}" if data.kind == "laser" else f"{v:+.2f}"
+
+
+def _feeler(gap: tuple[float, float], module: float) -> str:
+    """What a feeler gauge set says of a gap (a proven bracket, mm)."""
+    cap = 0.5 * module
+    if gap[0] >= cap:
+        return f"feeler {cap:.2f} fits"
+    fits = math.floor(gap[0] / FEELER_STEP_MM + 1e-9) * FEELER_STEP_MM
+    above = math.floor(gap[1] / FEELER_STEP_MM + 1e-9) * FEELER_STEP_MM + FEELER_STEP_MM
+    if fits <= 0:
+        return f"gap {gap[0]:.3f} mm: no {FEELER_STEP_MM:.2f} feeler fits"
+    return f"feeler {fits:.2f} fits, {above:.2f} does not"
+
+
+def play_lines(data: CouponData) -> list[str]:
+    """One line per place and step: the play and the feeler gap the pair shows, made with the
+    nominal value."""
+    mark = {"tight": "T", "loose": "L", "any": ""}
+    lines = []
+    for p in data.plays:
+        step = f"step {_value(data, p.value)}" + (f" {mark[p.place]}" if mark[p.place] else "")
+        if p.play is None:
+            lines.append(f"  {step}: binds (no free turn within ±{p.bound:.2f} mm of the rolling position)")
+            continue
+        lines.append(
+            f"  {step}: turns with {p.play[0]:.2f} mm of play, {_feeler(p.feeler, p.bound)} at the marked tooth"
+        )
+    return lines
 
 
 def _text(data: CouponData) -> str:
@@ -62,16 +166,31 @@ def _text(data: CouponData) -> str:
         "any": "(the play is the same all round)",
     }
     places = "; ".join(f"driver angle {np.degrees(phi) % 360:.1f}° {where[p]}" for p, phi in data.places)
+    jig, nominal = data.jig, _value(data, data.nominal)
+    holes = " and ".join(f"Ø{d:.2f}" for d in jig.diameters)
+    designed = [p for p in data.plays if abs(p.value - data.nominal) < 1e-9 and p.play is not None]
+    target = "; ".join(
+        f"{p.play[0]:.2f} mm" + ("" if p.place == "any" else f" at {p.place[0].upper()}") for p in designed
+    )
     lines = [
         f"Calibration coupon of {data.name} ({data.kind}): sectors of {data.gears[0]} and {data.gears[1]}",
         f"at {places},",
-        f"one column per {what} step: {', '.join(_values(data))} mm (nominal {data.nominal:.2f} mm);",
-        "each sector is engraved with its step. Pin the two sectors of a step through their hub holes",
-        "at the pair's centre distance and turn one against the other: the step that meshes with the",
-        "designed play (neither binding nor loose) is your process's value.",
+        f"one column per {what} step: {', '.join(_values(data))} mm (nominal {nominal} mm);",
+        "each sector is engraved with its step, the follower's with a triangle under the tooth to measure.",
+        f"The jig (top): holes {holes} mm, {jig.center_distance:.3f} mm apart (engraved): driver's hole on the left.",
         "",
-        f"After measuring, set {data.key} = <that step's value> in the profile's [process] table",
-        f"(or: gearcad build PROFILE --set {data.key}=<value>).",
+        "Put a pin (or dowel) in each of the jig's holes, a step's driver sector on the left pin and its",
+        "follower sector on the right (engraved faces up, teeth in mesh). Hold the driver; turn the",
+        "follower clockwise and anticlockwise between its stops: that is the play (mm on its pitch",
+        "curve). Turned anticlockwise to its stop, a feeler gauge slides between the flanks at the",
+        "marked tooth.",
+        "",
+        f"Play per step, made with the nominal {what} ({nominal} mm):",
+        *play_lines(data),
+        f"The step whose pair turns with the designed play ({target}; the nominal step's) is your {what}:",
+        f"set {data.key} = <that step's value> in the profile's [process] table"
+        + (" (it wins over output.kerf)" if data.kind == "laser" else "")
+        + f" (or: gearcad build PROFILE --set {data.key}=<value>).",
         "",
     ]
     return "\n".join(lines)
@@ -101,6 +220,8 @@ def write_coupon(data: CouponData, folder: Path, *, cut_layer: str, mark_layer: 
         SolidItem(extrude(Outline(tuple(_rings(p.path))), data.thickness, name=p.name), 0.0, (*p.offset, 0.0))
         for p in data.pieces
     ]
+    jig = extrude(Outline(tuple(_rings(data.jig.path))), data.thickness, name="jig")
+    items.append(SolidItem(jig, 0.0, (*data.jig.offset, 0.0)))
     files["coupon.3mf"] = {"triangles": write_3mf(folder / "coupon.3mf", items)}
     (folder / "coupon.txt").write_text(_text(data), encoding="utf-8")
     files["coupon.txt"] = {"key": data.key}
