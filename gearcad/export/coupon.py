@@ -10,7 +10,7 @@ import numpy as np
 import shapely
 from shapely import affinity
 
-from ..fitting.coupon import FEELER_STEP_MM, CouponData, Jig, Piece
+from ..fitting.coupon import FEELER_STEP_MM, LABEL_CLEAR_MM, CouponData, Jig, Piece, fit_box
 from ..geometry.arcfit import ArcRing
 from ..geometry.outline import Outline
 from .drawing import Drawing
@@ -18,7 +18,7 @@ from .drawing import Drawing
 __all__ = ["COUPON_FILES", "LABEL_MM", "coupon_drawing", "label_region", "label_strokes", "play_lines", "write_coupon"]
 
 COUPON_FILES = ("coupon.dxf", "coupon.svg", "coupon.3mf", "coupon.txt")
-_CLEAR_MM = 0.8  # the engraving kept this far inside the drawn sector and off the hub's hole
+_CLEAR_MM = LABEL_CLEAR_MM  # the engraving kept this far inside the drawn sector and off the hub
 
 
 def _placed(polygon: shapely.Polygon, piece: Piece) -> shapely.Polygon:
@@ -53,44 +53,23 @@ def _jig_region(jig: Jig) -> shapely.Polygon:
 
 def label_strokes(text: str, region: shapely.Polygon) -> list[np.ndarray]:
     """``text`` in outline letters ((k, 2) closed strokes, mm) inside ``region``, as tall as fits up
-    to :data:`LABEL_MM`'s largest, along x or (where the region is narrow) along y reading upwards;
-    [] where not even :data:`LABEL_MM`'s smallest fits.  The letters' box is placed by scanning rows
-    of the region shrunk by half its height, and kept only if the region contains it."""
+    to :data:`LABEL_MM`'s largest, along x or (where the region is narrow) along y reading upwards
+    (:func:`~gearcad.fitting.coupon.fit_box`); [] where not even :data:`LABEL_MM`'s smallest fits."""
     from matplotlib.textpath import TextPath  # only when a coupon is written
 
     glyphs = TextPath((0.0, 0.0), text, size=1.0)
     e = glyphs.get_extents()
     polygons = [p for p in glyphs.to_polygons(closed_only=False) if len(p) >= 3]
-    pieces = list(getattr(region, "geoms", [region]))
-    region = max(pieces, key=lambda g: g.area) if pieces else region
-    if region.is_empty:
-        return []
     for height in np.arange(LABEL_MM[1], LABEL_MM[0] - 1e-9, -0.25):
         scale = height / e.height
-        width = e.width * scale
-        for angle in (0.0, 90.0):
-            turned = affinity.rotate(region, -angle, origin=(0, 0))
-            room = turned.buffer(-height / 2)
-            if room.is_empty:
-                continue
-            x0, y0, x1, y1 = room.bounds
-            rows = np.linspace(y0, y1, 24)[1:-1]
-            lines = shapely.intersection(shapely.linestrings([[[x0 - 1, y], [x1 + 1, y]] for y in rows]), room)
-            best = None
-            for y, line in zip(rows, lines):
-                for seg in getattr(line, "geoms", [line]):
-                    if seg.is_empty or seg.geom_type != "LineString" or seg.length < width:
-                        continue
-                    (ax, _), (bx, _) = seg.coords[0], seg.coords[-1]
-                    box = shapely.box((ax + bx - width) / 2, y - height / 2, (ax + bx + width) / 2, y + height / 2)
-                    if turned.contains(box) and (best is None or seg.length > best[0]):
-                        best = (seg.length, (ax + bx) / 2, y)
-            if best is None:
-                continue
-            shift = np.array([best[1] - width / 2 - e.x0 * scale, best[2] - height / 2 - e.y0 * scale])
-            cos, sin = np.cos(np.radians(angle)), np.sin(np.radians(angle))
-            turn = np.array([[cos, sin], [-sin, cos]])  # row vectors: turn back by +angle
-            return [(np.vstack([p, p[:1]]) * scale + shift) @ turn for p in polygons]
+        where = fit_box(region, e.width * scale, height)
+        if where is None:
+            continue
+        x, y, angle = where
+        centre = np.array([(e.x0 + e.x1) / 2, (e.y0 + e.y1) / 2]) * scale
+        c, s = np.cos(np.radians(angle)), np.sin(np.radians(angle))
+        turn = np.array([[c, s], [-s, c]])  # row vectors: turned by +angle
+        return [(np.vstack([p, p[:1]]) * scale - centre) @ turn + (x, y) for p in polygons]
     return []
 
 
@@ -134,12 +113,12 @@ def _feeler(gap: tuple[float, float], module: float) -> str:
     """What a feeler gauge set says of a gap (a proven bracket, mm)."""
     cap = 0.5 * module
     if gap[0] >= cap:
-        return f"feeler {cap:.2f} fits"
+        return f"a {cap:.2f} feeler fits"
     fits = math.floor(gap[0] / FEELER_STEP_MM + 1e-9) * FEELER_STEP_MM
     above = math.floor(gap[1] / FEELER_STEP_MM + 1e-9) * FEELER_STEP_MM + FEELER_STEP_MM
     if fits <= 0:
-        return f"gap {gap[0]:.3f} mm: no {FEELER_STEP_MM:.2f} feeler fits"
-    return f"feeler {fits:.2f} fits, {above:.2f} does not"
+        return f"the gap is {gap[0]:.3f} mm: no {FEELER_STEP_MM:.2f} feeler fits"
+    return f"a {fits:.2f} feeler fits, {above:.2f} does not"
 
 
 def play_lines(data: CouponData) -> list[str]:
@@ -152,8 +131,14 @@ def play_lines(data: CouponData) -> list[str]:
         if p.play is None:
             lines.append(f"  {step}: binds (no free turn within ±{p.bound:.2f} mm of the rolling position)")
             continue
+        if p.feeler is None:
+            lines.append(f"  {step}: turns more than {p.play[0]:.2f} mm (a pitch): the teeth slip out of mesh")
+            continue
+        if p.play[1] > math.pi * p.bound / 4:  # past a quarter pitch the marked point leaves its flank
+            lines.append(f"  {step}: turns with {p.play[0]:.2f} mm of play (too loose for a feeler gauge)")
+            continue
         lines.append(
-            f"  {step}: turns with {p.play[0]:.2f} mm of play, {_feeler(p.feeler, p.bound)} at the marked tooth"
+            f"  {step}: turns with {p.play[0]:.2f} mm of play; at the marked tooth {_feeler(p.feeler, p.bound)}"
         )
     return lines
 
@@ -168,7 +153,7 @@ def _text(data: CouponData) -> str:
     places = "; ".join(f"driver angle {np.degrees(phi) % 360:.1f}° {where[p]}" for p, phi in data.places)
     jig, nominal = data.jig, _value(data, data.nominal)
     holes = " and ".join(f"Ø{d:.2f}" for d in jig.diameters)
-    designed = [p for p in data.plays if abs(p.value - data.nominal) < 1e-9 and p.play is not None]
+    designed = [p for p in data.plays if abs(p.value - data.nominal) < 1e-9 and p.feeler is not None]
     target = "; ".join(
         f"{p.play[0]:.2f} mm" + ("" if p.place == "any" else f" at {p.place[0].upper()}") for p in designed
     )
@@ -189,7 +174,7 @@ def _text(data: CouponData) -> str:
         *play_lines(data),
         f"The step whose pair turns with the designed play ({target}; the nominal step's) is your {what}:",
         f"set {data.key} = <that step's value> in the profile's [process] table"
-        + (" (it wins over output.kerf)" if data.kind == "laser" else "")
+        + (", which wins over output.kerf" if data.kind == "laser" else "")
         + f" (or: gearcad build PROFILE --set {data.key}=<value>).",
         "",
     ]

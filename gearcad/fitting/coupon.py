@@ -38,6 +38,7 @@ __all__ = [
     "StepPlay",
     "check_coupon",
     "coupon_data",
+    "fit_box",
     "free_turn",
     "pin_hole",
     "step_offset",
@@ -52,6 +53,11 @@ PIN_HOLE_MM = 2.0
 is at least 1.25 tool diameters, rounded up to 0.5 mm (it cannot cut a smaller one)."""
 JIG_RIM_MM = 5.0
 """The jig's plate reaches this far beyond its larger hole."""
+LABEL_CLEAR_MM = 0.8
+"""An engraved label is kept this far inside its piece and off the hub."""
+LABEL_CHAR_MM = 1.2
+"""A label's letters (1.5 mm tall) are taken as at most this wide per 1 mm of height, spaces and
+signs included, when deciding whether a sector's arm holds its label or it gets a tab."""
 FEELER_STEP_MM = 0.05
 """The feeler gauges named: multiples of 0.05 mm (a common set's blades)."""
 _TEETH_EACH_SIDE = 1.6
@@ -105,7 +111,9 @@ class StepPlay:
     (driver held at the place's angle) as play on its pitch curve, and the gap a feeler gauge meets
     between the flanks at the marked tooth with the follower turned anticlockwise to its stop; each
     a proven (lower, upper) bracket, mm.  ``play`` None: the pair binds (proven: touching or
-    overlapping everywhere within ±``bound`` mm of the rolling position, on the pitch curve)."""
+    overlapping everywhere within ±``bound`` mm of the rolling position, on the pitch curve);
+    ``play[1]`` infinite: it turns more than ``play[0]`` (a pitch) free, out of mesh, and
+    ``feeler`` is None."""
 
     place: str
     value: float
@@ -242,6 +250,51 @@ def _sector(
     return shapely.geometry.polygon.orient(turned, 1.0), hub, math.pi / 2 - theta, 2 * reach
 
 
+def fit_box(region, width: float, height: float) -> tuple[float, float, float] | None:
+    """Where a ``width`` × ``height`` box (mm) lies inside ``region``: its centre and its angle
+    (0: along x; 90: along y), the first row found of the region shrunk by half the height whose
+    longest run takes the width, checked by containment; None where none does."""
+    pieces = list(getattr(region, "geoms", [region]))
+    region = max(pieces, key=lambda g: g.area) if pieces else region
+    if region.is_empty:
+        return None
+    for angle in (0.0, 90.0):
+        turned = affinity.rotate(region, -angle, origin=(0, 0))
+        room = turned.buffer(-height / 2)
+        if room.is_empty:
+            continue
+        x0, y0, x1, y1 = room.bounds
+        rows = np.linspace(y0, y1, 24)[1:-1]
+        lines = shapely.intersection(shapely.linestrings([[[x0 - 1, y], [x1 + 1, y]] for y in rows]), room)
+        best = None
+        for y, line in zip(rows, lines):
+            for seg in getattr(line, "geoms", [line]):
+                if seg.is_empty or seg.geom_type != "LineString" or seg.length < width:
+                    continue
+                mid = (seg.coords[0][0] + seg.coords[-1][0]) / 2
+                box = shapely.box(mid - width / 2, y - height / 2, mid + width / 2, y + height / 2)
+                if turned.contains(box) and (best is None or seg.length > best[0]):
+                    best = (seg.length, mid, y)
+        if best is not None:
+            x, y = best[1:]
+            c, s_ = math.cos(math.radians(angle)), math.sin(math.radians(angle))
+            return x * c - y * s_, x * s_ + y * c, angle
+    return None
+
+
+def _with_tab(sector: shapely.Polygon, hub: float, hole: float, label: str) -> shapely.Polygon:
+    """``sector`` as it is where its arm holds ``label`` (1.5 mm letters), else with a tab below its
+    hub, away from its teeth, long enough for it."""
+    width = LABEL_CHAR_MM * 1.5 * len(label)
+    arm = sector.buffer(-LABEL_CLEAR_MM).difference(shapely.Point(0, 0).buffer(hub + LABEL_CLEAR_MM))
+    if fit_box(arm, width, 1.6) is not None:
+        return sector
+    side = max(2 * hub, 1.6 + 2 * LABEL_CLEAR_MM + 1.0)
+    end = hub + 2 * LABEL_CLEAR_MM + width + 0.5
+    tab = shapely.box(-side / 2, -end, side / 2, -(hole / 2 + 0.5))
+    return shapely.geometry.polygon.orient(shapely.union(sector, tab), 1.0)
+
+
 def _offset(polygon: shapely.Polygon, distance: float, tol: float) -> shapely.Polygon:
     """``polygon`` grown by ``distance`` mm (negative: shrunk), corners rounded within ``tol``."""
     if distance == 0:
@@ -271,14 +324,15 @@ def free_turn(
     lever: float,
     *,
     eps: float = 1e-6,
-) -> tuple[float, float]:
+    limit: float = math.inf,
+) -> tuple[float, float] | None:
     """Turn ``moving`` about ``pivot`` from ``start`` (rad, where it is apart from ``fixed``) in the
     sense ``sigma`` (+1 anticlockwise) until it touches: (a, b) with every turn from ``start`` to
     ``a`` proven apart and the two touching or overlapping at ``b`` (so the first contact lies in
     (a, b]).  Each step turns by the gap over the farthest reach of ``moving``: no point of it moves
     farther than the gap, so it never passes through ``fixed``; the gap shrinks by about
     lever/reach each step (``lever``: the contact's arm, mm); under ``eps`` mm, ``b`` is tried at a
-    few multiples of gap/lever until the two meet."""
+    few multiples of gap/lever until the two meet.  None: it turned more than ``limit`` (rad) free."""
     reach = _reach(moving, pivot)
     shapely.prepare(fixed)
     turn, last = start, start
@@ -288,6 +342,8 @@ def free_turn(
             return last, turn
         if gap <= eps:
             break
+        if abs(turn - start) > limit:
+            return None
         last, turn = turn, turn + sigma * gap / reach
     else:
         raise RuntimeError("the follower turns a whole cycle free: no mesh to measure")
@@ -372,8 +428,11 @@ def _play_of(pair: _Placed, driver: shapely.Polygon, follower: shapely.Polygon):
     start = _free_start(driver, follower, pivot, pair.module / pair.radius)
     if start is None:
         return None, None, None
-    up = free_turn(driver, follower, pivot, +1, start, pair.lever)
-    down = free_turn(driver, follower, pivot, -1, start, pair.lever)
+    limit = math.pi * pair.module / pair.radius  # a pitch: further, the sectors' teeth slip out of mesh
+    up = free_turn(driver, follower, pivot, +1, start, pair.lever, limit=limit)
+    down = free_turn(driver, follower, pivot, -1, start, pair.lever, limit=limit)
+    if up is None or down is None:
+        return (math.pi * pair.module, math.inf), None, None
     play = ((up[0] - down[0]) * pair.radius, (up[1] - down[1]) * pair.radius)
     line = shapely.shortest_line(driver, _turned(follower, pivot, down[0]))
     p_driver, p_follower = shapely.get_coordinates(line)
@@ -442,9 +501,10 @@ def coupon_data(design: Design) -> CouponData:
         row: list[list[Piece]] = [[], []]
         for gear, (sector, hub, turn, hole) in enumerate(sectors):
             holes[gear] = hole
-            for value in steps:
-                text = f"{value:.2f}" if kind == "laser" else f"{value:+.2f}"
-                label = text if place == "any" else f"{text} {place[0].upper()}"
+            texts = [f"{value:.2f}" if kind == "laser" else f"{value:+.2f}" for value in steps]
+            labels = [text if place == "any" else f"{text} {place[0].upper()}" for text in texts]
+            sector = _with_tab(sector, hub, hole, max(labels, key=len))
+            for value, text, label in zip(steps, texts, labels):
                 path = _offset(sector, step_offset(kind, value, tool), tol)
                 name = f"{parts[gear].name} {place} {text}"
                 row[gear].append(Piece(name, gear, place, value, label, sector, path, hub, turn, (0.0, 0.0), hole))
@@ -454,7 +514,7 @@ def coupon_data(design: Design) -> CouponData:
         measured = [_play_of(pair, *two) for two in made_pairs]
         # the feeler's place: the clockwise contact of the nominal step (else the nearest free one)
         order = sorted(range(len(steps)), key=lambda k: (abs(steps[k] - nominal), k))
-        first = next((k for k in order if measured[k][0] is not None), None)
+        first = next((k for k in order if measured[k][1] is not None), None)
         mark = ()
         if first is not None:
             on_follower = at = measured[first][2][1]
@@ -462,7 +522,7 @@ def coupon_data(design: Design) -> CouponData:
             mark = _mark(row[1][0].nominal, _turned(back, (0.0, 0.0), -pair.angles[1]).coords[0], g.module)
         row[1] = [Piece(**{**p.__dict__, "mark": mark}) for p in row[1]]
         for k, (play, up, _) in enumerate(measured):
-            feeler = None if play is None else _feeler(pair, *made_pairs[k], up, at)
+            feeler = None if up is None else _feeler(pair, *made_pairs[k], up, at)
             plays.append(StepPlay(place, steps[k], play, feeler, g.module))
         pieces += row[0] + row[1]
     jig = _jig(e, tuple(holes), kind, nominal, tool, tol)
