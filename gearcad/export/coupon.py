@@ -15,7 +15,16 @@ from ..geometry.arcfit import ArcRing
 from ..geometry.outline import Outline
 from .drawing import Drawing
 
-__all__ = ["COUPON_FILES", "LABEL_MM", "coupon_drawing", "label_region", "label_strokes", "play_lines", "write_coupon"]
+__all__ = [
+    "COUPON_FILES",
+    "LABEL_MM",
+    "coupon_drawing",
+    "label_box",
+    "label_region",
+    "label_strokes",
+    "play_lines",
+    "write_coupon",
+]
 
 COUPON_FILES = ("coupon.dxf", "coupon.svg", "coupon.3mf", "coupon.txt")
 _CLEAR_MM = LABEL_CLEAR_MM  # the engraving kept this far inside the drawn sector and off the hub
@@ -51,26 +60,50 @@ def _jig_region(jig: Jig) -> shapely.Polygon:
     return affinity.translate(body, *jig.offset)
 
 
-def label_strokes(text: str, region: shapely.Polygon) -> list[np.ndarray]:
-    """``text`` in outline letters ((k, 2) closed strokes, mm) inside ``region``, as tall as fits up
-    to :data:`LABEL_MM`'s largest, along x or (where the region is narrow) along y reading upwards
-    (:func:`~gearcad.fitting.coupon.fit_box`); [] where not even :data:`LABEL_MM`'s smallest fits."""
+def _glyphs(text: str) -> tuple[list[np.ndarray], np.ndarray]:
+    """``text``'s outlines at size 1 and their extents ((x0, y0), (x1, y1)) as drawn."""
     from matplotlib.textpath import TextPath  # only when a coupon is written
 
-    glyphs = TextPath((0.0, 0.0), text, size=1.0)
-    e = glyphs.get_extents()
-    polygons = [p for p in glyphs.to_polygons(closed_only=False) if len(p) >= 3]
-    for height in np.arange(LABEL_MM[1], LABEL_MM[0] - 1e-9, -0.25):
-        scale = height / e.height
-        where = fit_box(region, e.width * scale, height)
-        if where is None:
-            continue
-        x, y, angle = where
-        centre = np.array([(e.x0 + e.x1) / 2, (e.y0 + e.y1) / 2]) * scale
-        c, s = np.cos(np.radians(angle)), np.sin(np.radians(angle))
-        turn = np.array([[c, s], [-s, c]])  # row vectors: turned by +angle
-        return [(np.vstack([p, p[:1]]) * scale - centre) @ turn + (x, y) for p in polygons]
-    return []
+    polygons = [p for p in TextPath((0.0, 0.0), text, size=1.0).to_polygons(closed_only=False) if len(p) >= 3]
+    points = np.vstack(polygons)
+    return polygons, np.array([points.min(axis=0), points.max(axis=0)])
+
+
+def label_box(text: str, region: shapely.Polygon) -> tuple[float, float, float, float] | None:
+    """Where ``text`` goes in ``region``: (x, y, angle, height) of its box's centre, along x
+    (angle 0) or, where the region is narrow, along y reading upwards (90), as tall as fits up to
+    :data:`LABEL_MM`'s largest (bisected over 0.25 mm steps); None where not even its smallest
+    fits (:func:`~gearcad.fitting.coupon.fit_box`)."""
+    _, extents = _glyphs(text)
+    width, tall = extents[1] - extents[0]
+    heights = np.arange(LABEL_MM[0], LABEL_MM[1] + 1e-9, 0.25)
+
+    def fits(k: int):
+        return fit_box(region, width * heights[k] / tall, heights[k])
+
+    best = fits(0)
+    if best is None:
+        return None
+    lo, hi = 0, len(heights)
+    while hi - lo > 1:
+        mid = (lo + hi) // 2
+        where = fits(mid)
+        lo, hi, best = (mid, hi, where) if where is not None else (lo, mid, best)
+    return (*best, float(heights[lo]))
+
+
+def label_strokes(text: str, box: tuple[float, float, float, float] | None) -> list[np.ndarray]:
+    """``text`` in outline letters ((k, 2) closed strokes, mm) centred in ``box`` (see
+    :func:`label_box`), letters ``box``'s height tall; [] for no box."""
+    if box is None:
+        return []
+    polygons, extents = _glyphs(text)
+    x, y, angle, height = box
+    scale = height / (extents[1, 1] - extents[0, 1])
+    centre = extents.mean(axis=0) * scale
+    c, s = np.cos(np.radians(angle)), np.sin(np.radians(angle))
+    turn = np.array([[c, s], [-s, c]])  # row vectors: turned by +angle
+    return [(np.vstack([p, p[:1]]) * scale - centre) @ turn + (x, y) for p in polygons]
 
 
 def coupon_drawing(data: CouponData, *, cut_layer: str, mark_layer: str) -> Drawing:
@@ -78,20 +111,23 @@ def coupon_drawing(data: CouponData, *, cut_layer: str, mark_layer: str) -> Draw
     tooth marks (mark layer), as laid out."""
     closed: dict[str, list] = {cut_layer: [], mark_layer: []}
     strokes: dict[str, list] = {mark_layer: []}
-    labels: dict[tuple, list] = {}
+    boxes: dict[tuple, tuple] = {}
+    for piece in data.pieces:  # a row's sectors are alike: one box for its widest label
+        row = (piece.gear, piece.place)
+        if row not in boxes:
+            widest = max((p.label for p in data.pieces if (p.gear, p.place) == row), key=_width)
+            boxes[row] = (label_box(widest, label_region(piece)), piece.offset)
     for piece in data.pieces:
         closed[cut_layer] += [ArcRing(r, np.zeros(len(r))) for r in _rings(_placed(piece.path, piece))]
-        key = (piece.gear, piece.place, piece.label)  # a row's sectors are alike: one fit each
-        if key not in labels:
-            labels[key] = (label_strokes(piece.label, label_region(piece)), piece.offset)
-        found, at = labels[key]
-        move = np.subtract(piece.offset, at)
-        strokes[mark_layer] += [s + move for s in found]
+        box, at = boxes[piece.gear, piece.place]
+        if box is not None:
+            box = (box[0] + piece.offset[0] - at[0], box[1] + piece.offset[1] - at[1], *box[2:])
+        strokes[mark_layer] += label_strokes(piece.label, box)
         if piece.mark:
             strokes[mark_layer].append(np.vstack([piece.mark, piece.mark[:1]]) + np.asarray(piece.offset))
     jig = data.jig
     closed[cut_layer] += [ArcRing(r, np.zeros(len(r))) for r in _rings(affinity.translate(jig.path, *jig.offset))]
-    strokes[mark_layer] += label_strokes(jig.label, _jig_region(jig))
+    strokes[mark_layer] += label_strokes(jig.label, label_box(jig.label, _jig_region(jig)))
     what = "kerf" if data.kind == "laser" else "XY compensation"
     descriptions = {
         cut_layer: f"calibration coupon of {data.name}: {what} steps "
@@ -99,6 +135,12 @@ def coupon_drawing(data: CouponData, *, cut_layer: str, mark_layer: str) -> Draw
         + f"; jig {jig.center_distance:.3f} mm"
     }
     return Drawing(closed, strokes, descriptions)
+
+
+def _width(label: str) -> float:
+    """A label's width over its height (its letters' extents)."""
+    size = np.ptp(_glyphs(label)[1], axis=0)
+    return float(size[0] / size[1])
 
 
 def _values(data: CouponData) -> list[str]:
