@@ -9,6 +9,7 @@ the involute's closed forms (4·offset/cos α per step, the feeler gap play·cos
 
 from __future__ import annotations
 
+import functools
 import math
 
 import numpy as np
@@ -35,7 +36,7 @@ def laser(tmp_path_factory):
     out = tmp_path_factory.mktemp("coupon") / "out"
     made = gearcad.design(gearcad.load_profile(SPUR, ['process.kind="laser"', *COARSE]))
     assert gearcad.coupon(made, out) == (out / "spur_pair-coupon").resolve()
-    return out, coupon_data(made), made.report()
+    return out, coupon_data(made), made.parts(), made.report()
 
 
 @pytest.fixture(scope="module")
@@ -45,6 +46,7 @@ def printed():
     return coupon_data(gearcad.design(params))
 
 
+@functools.cache
 def _cut_polygons(path) -> list[shapely.Polygon]:
     """The CUT layer's closed rings read back, holes put into the ring that holds them."""
     doc = read_dxf(path)  # read once: both helpers only look
@@ -57,6 +59,7 @@ def _cut_polygons(path) -> list[shapely.Polygon]:
     return [shapely.Polygon(o.exterior, [h.exterior for h in rings if h is not o and o.contains(h)]) for o in outers]
 
 
+@functools.cache
 def _mark_strokes(path) -> list[np.ndarray]:
     doc = read_dxf(path)  # read once: both helpers only look
     return [
@@ -68,8 +71,7 @@ def _mark_strokes(path) -> list[np.ndarray]:
 
 def test_the_laser_coupon_as_written(laser):
     """One test for the laser coupon's files, so that its build runs once (not once per worker)."""
-    parts = gearcad.design(gearcad.load_profile(SPUR, ['process.kind="laser"', *COARSE])).parts()
-    out, data, report = laser
+    out, data, parts, report = laser
     _folder_of_four_files(out, data, parts)
     _cut_rings_are_simple_and_offset_by_half_each_kerf(out, data, parts)
     _steps_differ_by_their_kerf(out, data, parts)
