@@ -142,7 +142,8 @@ def _coupon(args) -> int:
 
     folder = coupon(load_profile(args.profile, args.overrides, unset=args.unset), args.out)
     print(f"wrote {folder}/ (coupon.dxf, coupon.svg, coupon.3mf, coupon.txt)")
-    print((folder / "coupon.txt").read_text(encoding="utf-8").strip().splitlines()[-2])
+    text = (folder / "coupon.txt").read_text(encoding="utf-8").strip()
+    print(text[text.index("Play per step") :])  # each step's play and the key to set
     return 0
 
 
