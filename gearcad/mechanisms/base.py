@@ -136,6 +136,8 @@ class Design:
     made when STEP is written with ``output.kerf`` > 0; see :meth:`made_rings`."""
     charts: dict = field(default_factory=dict)
     """Chart name → the data it is drawn from, computed with the design (exporters only draw)."""
+    placed: str = "meshing parts touch"
+    """What the assembly drawing shows, in the page's words (how the parts are placed)."""
     seconds: float = field(default=0.0, compare=False)
     stage: str = "full"
     """How far the design went: ``pitch`` and ``teeth`` (gear pairs only) have no parts, no

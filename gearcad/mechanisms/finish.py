@@ -20,9 +20,8 @@ from ..formats import TABLE
 from ..tolerances import budget
 from . import layouts
 from .base import Assembly, Design, Motion, Table, assembly_depth, assembly_overlap
-from .marks import assembly_marks
-from .papers import papers_block
 from .parts import BoreSpec, Part, Placement, cut_paths, make_part
+from .registry import MECHANISMS
 
 __all__ = ["Contact", "Draft", "PartSpec", "Proof", "finish", "prove"]
 
@@ -97,6 +96,8 @@ class Draft:
     """The mechanism's own mesh proofs over a cycle (:class:`Proof` each), joined to the assembly's."""
     where: str = "assembly"
     """What a finding about the assembly names as its place."""
+    placed: str = "meshing parts touch"
+    """What the assembly drawing shows, in the page's words (how the parts are placed)."""
 
 
 def prove(parts: dict[str, Part], draft: Draft) -> Assembly:
@@ -135,10 +136,17 @@ def prove(parts: dict[str, Part], draft: Draft) -> Assembly:
     )
 
 
+def _hook(draft: Draft, name: str):
+    """The draft's mechanism's hook ``name`` (None for a draft no registry entry names)."""
+    entry = MECHANISMS.get(draft.mechanism)
+    return None if entry is None else entry.hook(name)
+
+
 def _with_papers(draft: Draft) -> dict:
     """The draft's report blocks and, for a profile that reproduces a seed, the papers' numbers
     beside gearcad's (``papers``)."""
-    block = papers_block(draft.params, draft.data)
+    papers = _hook(draft, "papers")
+    block = None if papers is None else papers(draft.params, draft.data)
     return draft.data if block is None else {**draft.data, "papers": block}
 
 
@@ -152,7 +160,9 @@ def finish(draft: Draft, *, start: float | None = None) -> Design:
         for s in draft.parts
     )
     router = getattr(getattr(draft.params, "process", None), "kind", None) == "cnc"
-    parts = assembly_marks(draft, cut_paths(made, out, router=router))  # a gear pair's dots where its teeth meet
+    parts = cut_paths(made, out, router=router)
+    marks = _hook(draft, "marks")  # a gear pair's dots where its teeth meet
+    parts = marks(draft, parts) if marks is not None else parts
     assembly = prove({p.name: p for p in parts}, draft)
     findings = draft.findings
     if not assembly.fits and not any(f.code == "interference" for f in findings):
@@ -185,6 +195,7 @@ def finish(draft: Draft, *, start: float | None = None) -> Design:
         sections=draft.sections,
         made=_made_rings(made, out) if "step" in out.formats and out.kerf > 0 else {},
         charts=draft.charts,
+        placed=draft.placed,
         seconds=time.perf_counter() - start,
     )
 

@@ -136,5 +136,6 @@ def design(p: RollingWheelParams) -> Draft:
         units=UNITS,
         detail=motion,
         charts={"motion.png": motion},
+        placed="the two wheels where the drive holds them, joined by the rack (not drawn), not touching",
         where="drive",
     )
