@@ -341,10 +341,10 @@ def design(params: GearPairParams) -> Draft:
     ]
     placements = tuple(Placement(g.name, 0.0, g.pivot) for g in pitch.gears)
     if teeth is not None:  # proven over the whole cycle (and on every section of twisted teeth)
-        contact = Contact(0, 1, module=teeth.plan.module, nudge=False)
+        contact = Contact(0, 1, module=teeth.plan.module, nudge=False, touch="mesh")
         meshes = (teeth.mesh,) + tuple(m for _, m in proofs or ())
     else:  # pitch curves roll on each other: they touch along about the smaller radius
-        contact, meshes = Contact(0, 1, length=pitch.gears[0].r_min), ()
+        contact, meshes = Contact(0, 1, length=pitch.gears[0].r_min, touch="rolling"), ()
     papers = paper_extras(params, pitch)
     if papers.shoe is not None:  # the walker's leg, standing at hub angle 0 below the wheel's pivot
         parts.append(PartSpec("shoe", papers.shoe))

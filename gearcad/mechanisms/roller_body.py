@@ -231,14 +231,14 @@ def design(p: RollerBodyParams) -> Draft:
         parts = (PartSpec("body", body, bore=p.bore), PartSpec("roller", roller_circle, bore=axle))
         turns = [0.0, 0.0, 0.0]
         # plain rollers touch the body along their whole rim at most
-        contacts = tuple(Contact(0, k, length=TWO_PI * r * p.scale) for k in (1, 2, 3))
+        contacts = tuple(Contact(0, k, length=TWO_PI * r * p.scale, touch="rolling") for k in (1, 2, 3))
     else:
         parts = (
             PartSpec("body", teeth["_body_ring"], bore=p.bore, wall=teeth["module"], marks=(body,)),
             PartSpec("roller", teeth["_roller_ring"], bore=axle, marks=(roller_circle,)),
         )
         turns = teeth["_roller_turns"]
-        contacts = tuple(Contact(0, k, module=teeth["module"], radius=r * p.scale) for k in (1, 2, 3))
+        contacts = tuple(Contact(0, k, module=teeth["module"], radius=r * p.scale, touch="mesh") for k in (1, 2, 3))
     centres = [(p.scale * math.sin(a), p.scale * math.cos(a)) for a in (0.0, TWO_PI / 3, 2 * TWO_PI / 3)]
     placements = (Placement("body"),) + tuple(Placement("roller", a, c) for a, c in zip(turns, centres))
     return Draft(

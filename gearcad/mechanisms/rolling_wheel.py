@@ -131,7 +131,7 @@ def design(p: RollingWheelParams) -> Draft:
         findings=tuple(findings),
         parts=parts,
         placements=placements,
-        contacts=(Contact(0, 1),),  # the wheels must not touch
+        contacts=(Contact(0, 1, touch="apart"),),  # the wheels must not touch
         data=data,
         units=UNITS,
         detail=motion,
