@@ -22,6 +22,7 @@ from .fitting import design as _design
 from .mechanisms import Design
 from .profiles import ProfileParams
 from .publish import check_out
+from .stages import STAGES
 
 __all__ = [
     "load_profile",
@@ -72,9 +73,6 @@ def _params(profile: ProfileParams | str | Path | Mapping[str, Any]) -> ProfileP
             f"got {type(profile).__name__}"
         )
     return profile
-
-
-STAGES = ("pitch", "teeth", "full")
 
 
 def design(profile: ProfileParams | str | Path | Mapping[str, Any], stage: str = "full") -> Design:

@@ -53,6 +53,7 @@ import gearcad
 from gearcad.errors import GearcadError, ProfileError
 from gearcad.geometry.arcfit import arc_points
 from gearcad.geometry.verify import is_simple
+from gearcad.mechanisms import MECHANISMS
 from gearcad.profiles import CarrierTrainParams, GearPairParams, RollerBodyParams, RollingWheelParams
 
 EXAMPLES = int(os.environ.get("GEARCAD_FUZZ_EXAMPLES", "4"))
@@ -545,17 +546,22 @@ def compound_trains(draw: Callable) -> dict:
     return _profile(gen, "carrier-train", tables)
 
 
-KINDS: dict[str, st.SearchStrategy[dict]] = {
-    **{
-        f"gear-pair/{c}": gear_pairs(c)
-        for c in ("ellipse-focus", "ellipse-centre", "oval", "circle", "ratio", "walker", "samples")
+_OF_MECHANISM: dict[str, dict[str, st.SearchStrategy[dict]]] = {
+    "gear-pair": {
+        c: gear_pairs(c) for c in ("ellipse-focus", "ellipse-centre", "oval", "circle", "ratio", "walker", "samples")
     },
-    "roller-body/harmonic": roller_bodies(False),
-    "roller-body/series": roller_bodies(True),
-    "rolling-wheel": rolling_wheels(),
-    "carrier-train/external": carrier_trains(False),
-    "carrier-train/internal": carrier_trains(True),
-    "carrier-train/compound": compound_trains(),
+    "roller-body": {"harmonic": roller_bodies(False), "series": roller_bodies(True)},
+    "rolling-wheel": {"": rolling_wheels()},
+    "carrier-train": {
+        "external": carrier_trains(False),
+        "internal": carrier_trains(True),
+        "compound": compound_trains(),
+    },
+}
+KINDS: dict[str, st.SearchStrategy[dict]] = {
+    f"{name}/{kind}" if kind else name: strategy
+    for name in MECHANISMS  # the registry's: a mechanism with no strategies here fails at import
+    for kind, strategy in _OF_MECHANISM[name].items()
 }
 
 # ---------------------------------------------------------------------------------------------

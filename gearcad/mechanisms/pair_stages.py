@@ -29,6 +29,7 @@ from ..pitch.gear import gear_data
 from ..pitch.motion import MotionFit
 from ..pitch.pair import shape_difference
 from ..profiles import EllipseParams, GearPairParams
+from ..stages import STAGES
 from ..teeth.pair import refuse_corners, undercut_free_module
 from ..teeth.plan import tooth_count
 from ..teeth.rack import Rack, RackParams
@@ -38,8 +39,6 @@ from .budget import check_teeth_work
 from .pair_pitch import _shape_findings, synthesise
 
 __all__ = ["STAGES", "staged_design", "tip_land"]
-
-STAGES = ("pitch", "teeth", "full")
 
 
 @dataclass(frozen=True)

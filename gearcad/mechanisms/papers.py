@@ -202,9 +202,9 @@ def _seed003(params, data: dict) -> dict | None:
     ]
     coefficient, exponent, r2 = C.power_law_fit([r[0] for r in by_eye], [r[1] for r in by_eye])
     fit = [
-        _row("eq. 4 coefficient (fit of the by-eye values)", 1.74, coefficient),
-        _row("eq. 4 exponent", -2.07, exponent),
-        _row("eq. 4 R²", 0.97, r2),
+        _row("eq. 4 coefficient (fit of the by-eye values)", C.EQ4["coefficient"], coefficient),
+        _row("eq. 4 exponent", C.EQ4["exponent"], exponent),
+        _row("eq. 4 R²", C.EQ4["r2"], r2),
     ]
     tables = [
         {"name": f"Largest convex amplitude ({params.direction}, r = {params.roller_radius:g} R)", "rows": rows},

@@ -192,7 +192,7 @@ def design(p: RollerBodyParams) -> Draft:
             "convex": conv.tolist(),
             "simple": [limits[m][1] for m in ms],
             "paper_by_eye": [0.15, 0.05, 0.025, 0.01, 0.005],
-            "paper_regression": [1.74 * m**-2.07 for m in ms],
+            "paper_regression": [C.EQ4["coefficient"] * m ** C.EQ4["exponent"] for m in ms],
             "power_law_convex": {"coefficient": float(math.exp(logc)), "exponent": float(k)},
         }
     # the paper's printed formulas and statements, each against an independent computation

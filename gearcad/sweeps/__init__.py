@@ -16,6 +16,7 @@ from pathlib import Path
 from typing import Any
 
 from ..errors import ProfileError
+from ..stages import STAGES
 
 __all__ = ["sweep", "write_sweep"]
 
@@ -29,9 +30,6 @@ def _profile_data(profile) -> tuple[dict, str, str | None]:
         return tomllib.loads(path.read_text(encoding="utf-8-sig")), path.stem, str(path)
     except (OSError, UnicodeDecodeError, tomllib.TOMLDecodeError) as exc:
         raise ProfileError(f"{path}: cannot read the profile ({exc})") from None
-
-
-STAGES = ("pitch", "teeth", "full")
 
 
 def _varies(vary) -> tuple:
