@@ -193,7 +193,8 @@ def finish(draft: Draft, *, start: float | None = None) -> Design:
         line += f", nudged {assembly.nudged:.3g} mm²"
     if assembly.gap is not None:
         line += f", rolling gap {assembly.gap:.3g} mm (allowed {assembly.allowed_gap:.3g})"
-    wholes = {w for f in TABLE if f.name in set(out.formats) for w in f.wholes}
+    chosen = [f for f in TABLE if f.name in set(out.formats)]
+    wholes = {w for f in chosen for w in f.wholes}
     plates = layouts.plate_layout(parts, draft.placements, out, draft.sections) if "plate" in wholes else None
     findings += _too_large(plates)
     return Design(
@@ -213,7 +214,7 @@ def finish(draft: Draft, *, start: float | None = None) -> Design:
         sheet=layouts.sheet_layout(parts, draft.placements, out) if "sheet" in wholes else (),
         plates=plates.plates if plates is not None else (),
         sections=draft.sections,
-        made=_made_rings(made, out) if "step" in out.formats and out.kerf > 0 else {},
+        made=_made_rings(made, out) if any(f.exact for f in chosen) and out.kerf > 0 else {},
         charts=draft.charts,
         placed=draft.placed,
         seconds=time.perf_counter() - start,
