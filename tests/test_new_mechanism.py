@@ -26,6 +26,8 @@ from gearcad.profiles.common import OutputParams, ParamsModel
 from gearcad.profiles.reference import reference_markdown
 from gearcad.tolerances import budget
 
+from .test_fuzz import run_check  # imported before any registration: its KINDS are the registry's own
+
 NAME = "friction-pair"
 
 
@@ -103,8 +105,6 @@ def test_built_and_paged(registered, tmp_path):
 
 
 def test_fuzzed(registered):
-    from .test_fuzz import run_check
-
     outcomes = []
 
     @settings(max_examples=6, deadline=None, derandomize=True, suppress_health_check=list(HealthCheck))
