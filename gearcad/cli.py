@@ -21,6 +21,7 @@ from pathlib import Path
 
 from .errors import GearcadError, OutputError
 from .interrupts import Interrupted, interrupt_guard
+from .stages import STAGES
 
 __all__ = ["main"]
 
@@ -55,7 +56,7 @@ def _parser() -> argparse.ArgumentParser:
     b.add_argument("--out", default="out", help="output folder (default: out)")  # a str: '' is refused, not '.'
     c = sub.add_parser("check", parents=[overrides], help="run every check of a build without writing anything")
     c.add_argument("profiles", nargs="+", type=Path)
-    c.add_argument("--stage", choices=["pitch", "teeth", "full"], default="full", help="stop early (gear pairs)")
+    c.add_argument("--stage", choices=STAGES, default="full", help="stop early (gear pairs)")
     n = sub.add_parser("new", help="start a profile of your own from an example, with the schema beside it")
     n.add_argument("name", help="the new profile's name (NAME.toml, out/NAME)")
     n.add_argument("--from", dest="source", default="elliptic_focus", help="an example's name or a profile's path")

@@ -28,6 +28,7 @@ from shapely import affinity
 
 from ..errors import ProfileError
 from ..mechanisms.base import Design
+from ..mechanisms.registry import MECHANISMS
 from .band import play_along
 from .coupon_play import Placed, feeler_gap, play_of, tooth_mark, turned
 from .fit import pair_geometry
@@ -147,9 +148,10 @@ class CouponData:
 
 def check_coupon(params) -> None:
     """Raise :class:`ProfileError` (one line) for a profile no coupon is made of."""
-    if params.mechanism != "gear-pair":
+    if not MECHANISMS[params.mechanism].coupons:
+        cut = " or ".join(m.name for m in MECHANISMS.values() if m.coupons)
         raise ProfileError(
-            f"mechanism = {params.mechanism!r}: a coupon is cut from a gear pair's teeth; give a gear-pair profile"
+            f"mechanism = {params.mechanism!r}: a coupon is cut from a gear pair's teeth; give a {cut} profile"
         )
     kind = params.process.kind
     if kind not in KEYS:

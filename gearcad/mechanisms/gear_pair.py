@@ -45,6 +45,23 @@ class GearPairDetail:
     """What the papers add: seed 004's statements, seed 002's shoe and vehicle speed."""
 
 
+def _charts(pitch, teeth, rings, papers) -> dict:
+    """Chart file name → what it is drawn from: the pitch curves in mesh, the kinematics, the teeth
+    in mesh, and what the papers add (seed 004's type-2 pair, seed 002's vehicle and shoe)."""
+    charts = {"pitch_curves.png": (pitch, rings), "kinematics.png": pitch}
+    if teeth is not None:
+        charts["mesh.png"] = (pitch, teeth)
+    extra = papers.charts if papers is not None and papers.charts else {}
+    if "elliptic_type2" in extra:
+        charts["elliptic_type2.png"] = extra["elliptic_type2"]
+    if "walker_speed" in extra:
+        charts["vehicle_speed.png"] = extra["walker_speed"]
+        charts["paper_pitch_curves.png"] = extra["walker_pitch"]
+    if "shoe" in extra:
+        charts["shoe.png"] = extra["shoe"]
+    return charts
+
+
 def frames_for(cycle: float, teeth: int | None) -> int:
     """Enough frames that the driver turns at most ~1/3 of a tooth (or 5°) per frame, ≤ 180."""
     step = (2 * math.pi / teeth / 3) if teeth else math.radians(5)
@@ -355,10 +372,10 @@ def design(params: GearPairParams) -> Draft:
     ]
     placements = tuple(Placement(g.name, 0.0, g.pivot) for g in pitch.gears)
     if teeth is not None:  # proven over the whole cycle (and on every section of twisted teeth)
-        contact = Contact(0, 1, module=teeth.plan.module, nudge=False)
+        contact = Contact(0, 1, module=teeth.plan.module, nudge=False, touch="mesh")
         meshes = (teeth.mesh,) + tuple(m for _, m in proofs or ())
     else:  # pitch curves roll on each other: they touch along about the smaller radius
-        contact, meshes = Contact(0, 1, length=pitch.gears[0].r_min), ()
+        contact, meshes = Contact(0, 1, length=pitch.gears[0].r_min, touch="rolling"), ()
     papers = paper_extras(params, pitch)
     if papers.shoe is not None:  # the walker's leg, standing at hub angle 0 below the wheel's pivot
         parts.append(PartSpec("shoe", papers.shoe))
@@ -392,4 +409,8 @@ def design(params: GearPairParams) -> Draft:
         motion=Motion((parts[0].name, parts[1].name), np.column_stack([-phi1, pitch.pair.angle_map(phi1)])),
         tables=(table,),
         where="pair",
+        placed="meshing parts touch"
+        if papers.shoe is None
+        else "the gears touch in mesh; the leg (shoe) works in a plane of its own, drawn over the wheel",
+        charts=_charts(pitch, teeth, rings, papers),
     )
