@@ -36,5 +36,24 @@ def design(params: ProfileParams, stage: str = "full") -> Design:
     if params.mechanism in mesh_fit.KEYS:  # a train's meshes, a body's rollers: their backlash and bands
         return finish(mesh_fit.chosen(params, mechanism.design), start=start)
     draft, bands = fit.chosen(params, mechanism.design)  # the process's cutter and the backlash it needs
-    draft = band_trains.with_mesh_bands(fit.with_bands(draft, bands))  # a train's meshes, a body's rollers
+    cures = None
+    if bands and not bands[0].fits and params.process.kind != "none" and not _TRYING:
+        module = draft.detail.teeth.plan.module
+        cures = _tried(lambda: fit.remedies(params, bands[0], design, module))  # each tried before it is named
+    fixed = params.teeth is not None and "backlash" in params.teeth.model_fields_set
+    draft = band_trains.with_mesh_bands(
+        fit.with_bands(draft, bands, cures, fixed)
+    )  # a train's meshes, a body's rollers
     return finish(draft, start=start)
+
+
+_TRYING: list = []
+"""Non-empty while a remedy is being tried: its own jam names none (no remedies of remedies)."""
+
+
+def _tried(work):
+    _TRYING.append(True)
+    try:
+        return work()
+    finally:
+        _TRYING.pop()
