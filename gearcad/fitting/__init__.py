@@ -40,7 +40,8 @@ def design(params: ProfileParams, stage: str = "full") -> Design:
     if bands and not bands[0].fits and params.process.kind != "none" and not _TRYING:
         module = draft.detail.teeth.plan.module
         cures = _tried(lambda: fit.remedies(params, bands[0], design, module))  # each tried before it is named
-    fixed = params.teeth is not None and "backlash" in params.teeth.model_fields_set
+    teeth = getattr(params, "teeth", None)
+    fixed = teeth is not None and "backlash" in teeth.model_fields_set
     draft = band_trains.with_mesh_bands(
         fit.with_bands(draft, bands, cures, fixed)
     )  # a train's meshes, a body's rollers
