@@ -19,7 +19,8 @@ import numpy as np
 
 from ..findings import finding
 from ..mechanisms.base import Design
-from .band import PER_TOOTH, Band, PairGeometry, pair_band
+from .band import Band, PairGeometry, pair_band
+from .certify import PER_TOOTH
 
 __all__ = [
     "sliver",
