@@ -179,7 +179,7 @@ def _places(design: Design, g) -> tuple[tuple[str, float, float], ...]:
     """(place, φ1, φ2): the band's worst case and the largest drawn play, or one place."""
     tol, module = design.params.output.tolerance, g.module
     play = play_along(g, edge=0.0, tol=tol, reach=design.params.teeth.backlash + module)
-    worst = design.data["bands"][0]["worst_phi"]
+    worst = design.data["bands"][0]["worst_phi1"]  # gear 1's turn (``worst_phi`` is the driver's)
     tight = int(np.argmin(np.abs(g.phi1 - worst)))
     loose = int(np.nanargmax(play))
     if np.nanmax(play) - np.nanmin(play) <= max(4 * tol, 0.02 * float(np.nanmax(play))) or loose == tight:
