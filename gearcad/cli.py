@@ -10,6 +10,7 @@ accepts a named finding deliberately.
 from __future__ import annotations
 
 import argparse
+import contextlib
 import json
 import logging
 import math
@@ -18,6 +19,7 @@ import sys
 import time
 import warnings
 from pathlib import Path
+from typing import NoReturn
 
 from .errors import GearcadError, OutputError
 from .interrupts import Interrupted, interrupt_guard
@@ -274,5 +276,21 @@ def _main(args) -> int:
         return 0
 
 
+def run(argv: list[str] | None = None) -> NoReturn:
+    """The command line as a program (the ``gearcad`` script, ``python -m gearcad``): :func:`main`,
+    then exit with its status.  An interrupted command (130, 143) ends at once after its line:
+    its workers are ended and reaped and its output left as it was, so nothing is left to do, and
+    a process pool's queue-feeding thread, its workers killed, could otherwise print a traceback
+    into the user's terminal while the interpreter shuts down (CPython's executor writes into a
+    pipe its broken pool has closed)."""
+    code = main(argv)
+    if code in (130, 143):
+        for stream in (sys.stdout, sys.stderr):
+            with contextlib.suppress(Exception):
+                stream.flush()
+        os._exit(code)
+    sys.exit(code)
+
+
 if __name__ == "__main__":
-    sys.exit(main())
+    run()

@@ -28,7 +28,7 @@ if sys.argv[3] == "design":
     batch.design = held
 else:
     write.write_design = held
-sys.exit(cli.main(["build", sys.argv[1], "--out", sys.argv[2]]))
+cli.run(["build", sys.argv[1], "--out", sys.argv[2]])
 """
 
 
@@ -96,8 +96,8 @@ def held(*args, **kwargs):
 out, what = sys.argv[1], sys.argv[2]
 if what == "sweep":
     executors.evaluate_chunk = held
-    sys.exit(cli.main(["sweep", sys.argv[3], "--vary", "gear1.eccentricity=0.2,0.3,0.4,0.5", "--stage", "pitch",
-                       "--workers", "2", "--out", out]))
+    cli.run(["sweep", sys.argv[3], "--vary", "gear1.eccentricity=0.2,0.3,0.4,0.5", "--stage", "pitch",
+                       "--workers", "2", "--out", out])
 batch.design = held
 from gearcad.api import load_profile
 batch.build([load_profile(p) for p in sys.argv[3:]], out, workers=2)
