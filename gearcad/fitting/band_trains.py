@@ -24,16 +24,15 @@ import numpy as np
 import shapely
 
 from ..findings import finding
+from ..mechanisms.registry import MECHANISMS
 from ..teeth.contact import ContactData, contact_ratio
 from .band import Band
 from .band_mesh import MeshGeometry, mesh_band
 from .fit import _process_block
 
-__all__ = ["KEYS", "MeshBand", "mesh_bands", "radial_room", "with_mesh_bands", "train_meshes", "roller_meshes"]
+__all__ = ["MeshBand", "mesh_bands", "radial_room", "with_mesh_bands", "train_meshes", "roller_meshes"]
 
 TWO_PI = 2 * math.pi
-KEYS = {"carrier-train": "train.backlash", "roller-body": "teeth.backlash"}
-"""The backlash key of each mechanism whose meshes are measured here."""
 _CLEARANCE = 0.25
 """Radial clearance of the standard rack these teeth are cut by (dedendum 1.25 less addendum 1), × module."""
 
@@ -156,12 +155,10 @@ def roller_meshes(draft, positions: int = 36) -> list[tuple[str, MeshGeometry, b
 def mesh_bands(draft) -> tuple[MeshBand, ...]:
     """The band of every mesh of a carrier train or a toothed body under its profile's process
     (none: the play as drawn); () for any other mechanism."""
-    if draft.mechanism == "carrier-train":
-        meshes = train_meshes(draft)
-    elif draft.mechanism == "roller-body":
-        meshes = roller_meshes(draft)
-    else:
+    measured = MECHANISMS[draft.mechanism].hook("meshes")
+    if measured is None:
         return ()
+    meshes = measured(draft)
     params = draft.params
     edge, spread = params.process.edge(params.output.chamfer), params.process.center_spread()
     tol, backlash = params.output.tolerance, params.backlash
@@ -169,7 +166,8 @@ def mesh_bands(draft) -> tuple[MeshBand, ...]:
     def band(name, g):
         return mesh_band(g, edge=edge, spread=spread, tol=tol, name=name, backlash=backlash)
 
-    if draft.mechanism == "roller-body" and meshes and _alike(meshes, draft.data["teeth"]["roller_teeth"]):
+    rollers = (draft.data.get("teeth") or {}).get("roller_teeth")  # a body's rollers, alike: one band turned
+    if rollers is not None and meshes and _alike(meshes, rollers):
         first = band(*meshes[0][:2])
         bands = [_turned(first, name, TWO_PI * k / 3) for k, (name, *_) in enumerate(meshes)]
     else:
@@ -241,10 +239,11 @@ def with_mesh_bands(draft, bands: tuple[MeshBand, ...] | None = None, *, chosen:
     if not bands:
         return draft
     params = draft.params
-    process, key = params.process, KEYS[draft.mechanism]
+    table = MECHANISMS[draft.mechanism].backlash_table
+    process, key = params.process, f"{table}.backlash"
     findings, lines = list(draft.findings), list(draft.details)
-    fixed = "backlash" in (params.train if draft.mechanism == "carrier-train" else params.teeth).model_fields_set
-    module = min(params.modules) if draft.mechanism == "carrier-train" else draft.data["teeth"]["module"]
+    fixed = "backlash" in getattr(params, table).model_fields_set
+    module = min(params.modules) if hasattr(params, "modules") else draft.data["teeth"]["module"]
     room = radial_room(params, module)
     limit = process.value("max_play")
     how = "chosen for the process's worst case" if chosen else ("as given" if fixed else "the default")

@@ -19,6 +19,7 @@ import numpy as np
 
 from ..findings import Finding, finding
 from ..mechanisms.base import Design
+from ..mechanisms.registry import MECHANISMS
 from .band import Band, PairGeometry, pair_band
 from .certify import PER_TOOTH
 
@@ -70,7 +71,9 @@ def chose_backlash(params) -> bool:
     """Whether gearcad chooses this profile's backlash: a gear pair with teeth that leaves
     ``teeth.backlash`` out (with no process: the play the writing tolerance needs)."""
     teeth = getattr(params, "teeth", None)
-    return params.mechanism == "gear-pair" and teeth is not None and "backlash" not in teeth.model_fields_set
+    return (
+        MECHANISMS[params.mechanism].play == "pair" and teeth is not None and "backlash" not in teeth.model_fields_set
+    )
 
 
 def sliver(module: float | None) -> float:
@@ -262,7 +265,7 @@ def pair_geometry(design: Design, positions: int | None = None) -> PairGeometry 
     for; ``None`` for any other design."""
     detail = design.detail
     teeth = getattr(detail, "teeth", None)
-    if design.mechanism != "gear-pair" or teeth is None:
+    if MECHANISMS[design.mechanism].play != "pair" or teeth is None:
         return None
     pair = detail.pitch.pair
     positions = positions or min(48, max(12, teeth.plan.teeth[0]))

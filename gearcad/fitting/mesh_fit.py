@@ -17,20 +17,21 @@ from __future__ import annotations
 
 import math
 
+from ..mechanisms.registry import MECHANISMS
 from . import band_trains
-from .band_trains import KEYS, radial_room
+from .band_trains import radial_room
 from .fit import made, sliver, smallest_fit
 
 __all__ = ["chooses", "closed_form", "chosen", "with_backlash"]
 
 
 def _table(params):
-    return params.train if params.mechanism == "carrier-train" else params.teeth
+    return getattr(params, MECHANISMS[params.mechanism].backlash_table, None)
 
 
 def _module(params, draft=None) -> float:
     """The smallest module of the mechanism's teeth, mm (a body's from its drawn teeth)."""
-    if params.mechanism == "carrier-train":
+    if hasattr(params, "modules"):  # a train's gears, each of its own module
         return min(params.modules)
     return draft.data["teeth"]["module"] if draft is not None else math.inf
 
@@ -38,14 +39,14 @@ def _module(params, draft=None) -> float:
 def chooses(params) -> bool:
     """Whether gearcad chooses this profile's backlash: a carrier train or a toothed body, a
     process named, the backlash key left out."""
-    if params.mechanism not in KEYS or params.process.kind == "none" or _table(params) is None:
+    if MECHANISMS[params.mechanism].play != "meshes" or params.process.kind == "none" or _table(params) is None:
         return False
     return "backlash" not in _table(params).model_fields_set
 
 
 def with_backlash(params, backlash: float):
     """The profile with its train's or body's teeth cut with ``backlash`` mm."""
-    section = "train" if params.mechanism == "carrier-train" else "teeth"
+    section = MECHANISMS[params.mechanism].backlash_table
     table = _table(params).model_copy(update={"backlash": backlash})
     return params.model_copy(update={section: table})
 

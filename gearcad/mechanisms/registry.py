@@ -56,6 +56,15 @@ class Mechanism:
     """``marks(draft, parts) -> parts``: the parts with the mechanism's assembly marks engraved."""
     coupons: bool = False
     """Whether ``gearcad coupon`` cuts a test coupon of its teeth (:mod:`gearcad.fitting.coupon`)."""
+    play: str = "none"
+    """Whose backlash the fitting chooses: ``"pair"`` (a gear pair's, also for exact parts: the
+    play the writing tolerance needs), ``"meshes"`` (each of :attr:`meshes`, under a process
+    only) or ``"none"``."""
+    backlash_table: str = "teeth"
+    """The profile table holding the ``backlash`` key the fitting chooses (``teeth``, ``train``)."""
+    meshes: Hook = None
+    """``meshes(draft) -> list``: the meshes the fitting measures bands of, other than a pair's:
+    (name, geometry, inside, contact) each (:mod:`gearcad.fitting.band_trains`)."""
 
     @property
     def params(self) -> type:
@@ -87,11 +96,25 @@ MECHANISMS: dict[str, Mechanism] = {
             stages="gearcad.mechanisms.pair_stages:staged_design",
             marks="gearcad.mechanisms.marks:assembly_marks",
             coupons=True,
+            play="pair",
         ),
-        Mechanism("roller-body", "roller_body", fit=f"{_FITTING}:meshes_fit", papers=f"{_PAPERS}:roller_body_papers"),
+        Mechanism(
+            "roller-body",
+            "roller_body",
+            fit=f"{_FITTING}:meshes_fit",
+            papers=f"{_PAPERS}:roller_body_papers",
+            play="meshes",
+            meshes="gearcad.fitting.band_trains:roller_meshes",
+        ),
         Mechanism("rolling-wheel", "rolling_wheel", papers=f"{_PAPERS}:rolling_wheel_papers"),
         Mechanism(
-            "carrier-train", "carrier_train", fit=f"{_FITTING}:meshes_fit", papers=f"{_PAPERS}:carrier_train_papers"
+            "carrier-train",
+            "carrier_train",
+            fit=f"{_FITTING}:meshes_fit",
+            papers=f"{_PAPERS}:carrier_train_papers",
+            play="meshes",
+            backlash_table="train",
+            meshes="gearcad.fitting.band_trains:train_meshes",
         ),
         Mechanism("nc-internal", "nc_internal"),
         Mechanism("nc-planetary", "nc_planetary"),
