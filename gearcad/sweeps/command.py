@@ -14,8 +14,8 @@ from ..errors import ProfileError
 __all__ = ["add_parser", "run", "EXIT_NONE_FEASIBLE"]
 
 EXIT_NONE_FEASIBLE = 3
-"""The exit status of a sweep in which no design is feasible (as ``build``'s failed check: the
-files are written all the same)."""
+"""The exit status of a sweep in which no design is feasible, or (``--confirm full``) no front row
+passes the full stage (as ``build``'s failed check: the files are written all the same)."""
 
 
 def add_parser(sub) -> None:
@@ -131,6 +131,9 @@ def _run(args: argparse.Namespace) -> int:
     )
     for line in _search_lines(table):
         print(line)
+    if feasible and "confirmed" in table and not table["pareto"].any():
+        print("gearcad: no front row passed the full stage (confirm_refusal says why each failed)", file=sys.stderr)
+        return EXIT_NONE_FEASIBLE
     if feasible:
         return 0
     why = "meets every constraint (the violation.* columns say by how much each missed)" if made else "was made"
