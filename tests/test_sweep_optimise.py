@@ -74,9 +74,23 @@ def test_hypervolume_and_its_reference_point():
 
 def test_the_optimiser_refuses_bad_input(tmp_path, capsys, monkeypatch):
     out = tmp_path / "bad"
-    base = ["sweep", str(FOCUS), "--stage", "pitch", "--workers", "1", "--minimise", "pair.ratio_max", "--out", str(out)]
+    base = [
+        "sweep",
+        str(FOCUS),
+        "--stage",
+        "pitch",
+        "--workers",
+        "1",
+        "--minimise",
+        "pair.ratio_max",
+        "--out",
+        str(out),
+    ]
     for args, says in (
-        (["--method", "nsga2", "--vary", "gear1.eccentricity=0.1:0.6:5"], "--method nsga2 searches a range; give KEY=a:b"),
+        (
+            ["--method", "nsga2", "--vary", "gear1.eccentricity=0.1:0.6:5"],
+            "--method nsga2 searches a range; give KEY=a:b",
+        ),
         (["--method", "nsga2", "--vary", "teeth.count=21,41"], "give KEY=a:b"),
         (["--method", "nsga2", "--vary", RANGES[0], "--population", "2"], "population = 2: must be at least 4"),
         (["--method", "nsga2", "--vary", RANGES[0], "--generations", "2", "--evaluations", "9"], "not both"),
