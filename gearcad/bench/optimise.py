@@ -1,0 +1,134 @@
+"""The sweep's optimiser against its grid (issue 35 items 4 and 5), and a screen the full stage refutes.
+
+The focus pair over gear1.eccentricity 0.1…0.6 and teeth.count 21…61 at the teeth stage,
+teeth not undercut, pair.ratio_max minimised and the driver's tip land maximised: NSGA-II
+(pymoo; 40 designs × 10 generations, seed 0) against a grid of the same budget (20 × 20), each
+front's hypervolume from one reference point (the nadir of both fronts plus 10 % of their span).
+Then issue 35's quick-return motion pair (ratio 0.5 for 240° of the driver, 2 for the rest, the
+steps smoothed by a raised cosine 70° wide, E = 150 mm, module 1): what the teeth stage says,
+and what ``--confirm full`` finds.
+"""
+
+from __future__ import annotations
+
+import time
+
+import numpy as np
+
+__all__ = ["bench_optimise", "optimise_summary", "quick_return"]
+
+FOCUS_RANGES = ["gear1.eccentricity=0.1:0.6", "teeth.count=21:61"]
+FOCUS_GOALS = dict(
+    constraints=["gears.0.teeth.undercut == false"],
+    minimise=["pair.ratio_max"],
+    maximise=["gears.0.teeth.min_tip_thickness"],
+)
+
+
+def quick_return(samples: int = 72, width: float = 70.0, center_distance: float = 150.0) -> dict:
+    """Issue 35's quick-return law as a profile's data: ω₂/ω₁ = 0.5 for 240° of the driver and 2
+    for the other 120° (the mean 1: the pair closes), each step a raised cosine ``width``° wide."""
+    t = np.arange(samples) * 360.0 / samples
+
+    def rise(u):
+        return 0.5 - 0.5 * np.cos(np.pi * np.clip(u / width, 0.0, 1.0))
+
+    ratio = 0.5 + 1.5 * (rise(t - 240 + width / 2) - rise(t - 360 + width / 2)) + 1.5 * (1 - rise(t + width / 2))
+    ratio = ratio / ratio.mean()
+    return {
+        "name": "quick_return",
+        "gear1": {"curve": "motion", "ratio": [round(float(v), 6) for v in ratio]},
+        "pair": {"center_distance": center_distance},
+        "teeth": {"module": 1.0},
+    }
+
+
+def bench_optimise(quick: bool = False) -> list[dict]:
+    """Rows of study ``optimise``: the search and the grid (evaluations, front points,
+    hypervolume, CPU seconds); and ``confirm``: the quick-return pair screened and proven."""
+    from ..sweeps import sweep
+    from .commands import PROFILES
+
+    try:
+        import pymoo  # noqa: F401
+    except ImportError:
+        return []
+    population, generations = (20, 5) if quick else (40, 10)
+    start = time.process_time()
+    table = sweep(PROFILES / "elliptic_focus.toml", FOCUS_RANGES, stage="teeth", method="nsga2",
+                  population=population, generations=generations, seed=0, against_grid=True, workers=1,
+                  **FOCUS_GOALS)  # fmt: skip
+    seconds = time.process_time() - start
+    attrs = table.attrs
+    rows = [
+        {
+            "study": "optimise",
+            "method": "NSGA-II (pymoo), focus pair, teeth stage",
+            "n": len(table),
+            "seconds": seconds,
+            "error": 0.0,
+            "front_rows": attrs["front_sizes"][-1],
+            "hypervolume": attrs["hypervolumes"][-1],
+            "reference": attrs["reference_point"],
+        },
+        {
+            "study": "optimise",
+            "method": "grid of the same budget",
+            "n": attrs["grid_evaluations"],
+            "seconds": 0.0,
+            "error": 0.0,
+            "front_rows": len({tuple(p) for p in attrs["grid_front"]}),
+            "hypervolume": attrs["grid_hypervolume"],
+            "reference": attrs["reference_point"],
+        },
+    ]
+    if not quick:
+        from ..fitting import design
+        from ..profiles.reading import parse_profile
+
+        profile = parse_profile(quick_return(), default_name="quick_return")
+        start = time.process_time()
+        teeth = design(profile, "teeth")
+        screened = time.process_time() - start
+        start = time.process_time()
+        full = design(profile, "full")
+        proven = time.process_time() - start
+        blind = [b["code"] for b in teeth.report().get("stage_blind", [])]
+        rows.append(
+            {
+                "study": "confirm",
+                "method": "quick-return motion pair (0.5 for 240°, 2 for 120°, E = 150 mm)",
+                "n": 1,
+                "seconds": screened + proven,
+                "error": float(teeth.report()["motion"]["error_deg"]),
+                "teeth_ok": teeth.ok,
+                "stage_blind": " ".join(blind),
+                "full_ok": full.ok,
+                "failures": " ".join(f.code for f in full.failures()),
+                "teeth_seconds": screened,
+                "full_seconds": proven,
+            }
+        )
+    return rows
+
+
+def optimise_summary(rows: list[dict]) -> list[str]:
+    """Lines for the bench's summary."""
+    out = []
+    found = [r for r in rows if r["study"] == "optimise"]
+    if len(found) == 2:
+        search, grid = found
+        ref = ", ".join(f"{v:.4g}" for v in search["reference"])
+        out.append(
+            f"optimiser: NSGA-II {search['n']} designs, {search['front_rows']} front points, hypervolume "
+            f"{search['hypervolume']:.4g}; grid {grid['n']} designs, {grid['front_rows']} front points, "
+            f"{grid['hypervolume']:.4g} (reference {ref}; {search['seconds']:.1f} CPU-s for both)"
+        )
+    for r in rows:
+        if r["study"] == "confirm":
+            out.append(
+                f"confirm: {r['method']}: teeth stage ok={r['teeth_ok']} (motion error {r['error']:.2g}°, blind to "
+                f"{r['stage_blind'] or 'nothing'}), full stage ok={r['full_ok']} ({r['failures'] or 'no failure'}); "
+                f"{r['teeth_seconds']:.2f} + {r['full_seconds']:.2f} CPU-s"
+            )
+    return out
