@@ -121,3 +121,17 @@ def test_confirm_full_drops_what_the_teeth_stage_cannot_see():
     assert row["confirmed"] is False or row["confirmed"] == False  # noqa: E712 - pandas' boolean
     assert row["confirm_refusal"] == "failed: interference, jams"
     assert not table["pareto"].any()  # the front re-computed from the survivors: none
+
+
+def test_the_teeth_stage_says_it_is_blind_to_the_quick_return_pairs_failures():
+    """Issue 35's quick-return law (ratio 0.5 for 240° of the driver, 2 for 120°, smoothed; E =
+    150 mm): the teeth stage passes it and names what it cannot see; a convex focus pair's teeth
+    stage is blind to nothing.  (Its full design, which fails with interference and jams, is in
+    ``gearcad bench``: 2.6 CPU-s.)"""
+    from gearcad.bench.optimise import quick_return
+
+    report = gearcad.design(quick_return(), stage="teeth").report()
+    assert report["ok"] and report["motion"]["error_deg"] <= 0.01
+    assert [b["code"] for b in report["stage_blind"]] == ["interference", "jams"]
+    assert "required motion" in report["stage_blind"][0]["why"]
+    assert gearcad.design(FOCUS, stage="teeth").report()["stage_blind"] == []

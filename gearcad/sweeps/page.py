@@ -345,6 +345,8 @@ polyline.hv{{fill:none;stroke:#1a1a66;stroke-width:2}} line.gridhv{{stroke:#555;
 
 
 def _cell(value) -> str:
+    if value is None or type(value).__name__ == "NAType":  # pandas' missing value (a row not confirmed)
+        return ""
     if isinstance(value, (bool, np.bool_)):
         return "true" if value else "false"
     if isinstance(value, (float, np.floating)):
