@@ -11,6 +11,7 @@ import pytest
 import gearcad
 from gearcad.cli import main
 from gearcad.sweeps.optimise import hypervolume, reference_point
+from gearcad.sweeps.page import sweep_page
 
 from .conftest import ROOT
 
@@ -58,6 +59,8 @@ def test_nsga2_rows_are_the_same_on_one_two_workers_and_a_cluster():
     assert (one["feasible"].to_numpy(bool) == (e <= 3 / 7)).all() and 0 < one["feasible"].sum() < 18
     volumes = one.attrs["hypervolumes"]
     assert len(volumes) == 3 and all(b >= a for a, b in zip(volumes, volumes[1:]))  # a front only grows
+    page = sweep_page(one)
+    assert "<h2>The search (NSGA2, population 6, seed 7)</h2>" in page and page.count("<tr><td>") >= 3
     other = gearcad.sweep(FOCUS, RANGES, workers=1, **{**SEARCH, "seed": 8})
     assert not other["set.gear1.eccentricity"].equals(one["set.gear1.eccentricity"])
 
@@ -94,6 +97,7 @@ def test_the_optimiser_refuses_bad_input(tmp_path, capsys, monkeypatch):
         (["--method", "nsga2", "--vary", "teeth.count=21,41"], "give KEY=a:b"),
         (["--method", "nsga2", "--vary", RANGES[0], "--population", "2"], "population = 2: must be at least 4"),
         (["--method", "nsga2", "--vary", RANGES[0], "--generations", "2", "--evaluations", "9"], "not both"),
+        (["--method", "nsga2", "--vary", RANGES[0], "--samples", "9"], "a search chooses its own points"),
         (["--vary", "gear1.eccentricity=0.1:0.6:3", "--generations", "2"], "only for a search"),
         (["--vary", "gear1.eccentricity=0.1:0.6:3", "--confirm", "full", "--stage", "full"], "already at the full"),
     ):
@@ -121,6 +125,7 @@ def test_confirm_full_drops_what_the_teeth_stage_cannot_see():
     assert row["confirmed"] is False or row["confirmed"] == False  # noqa: E712 - pandas' boolean
     assert row["confirm_refusal"] == "failed: interference, jams"
     assert not table["pareto"].any()  # the front re-computed from the survivors: none
+    assert "<li>#0: fails — failed: interference, jams</li>" in sweep_page(table)
 
 
 def test_the_teeth_stage_says_it_is_blind_to_the_quick_return_pairs_failures():

@@ -268,7 +268,7 @@ def sweep(
     from .confirm import check_confirm
     from .optimise import check_method, first_point
 
-    check_method(method, varies, minimise, maximise, population, generations, evaluations, against_grid)
+    check_method(method, varies, minimise, maximise, population, generations, evaluations, against_grid, samples)
     check_confirm(confirm, stage)
     if method == "grid":
         spec = SweepSpec(vary=varies, stage=stage, samples=samples, sampling=sampling, seed=seed)

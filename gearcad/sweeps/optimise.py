@@ -249,7 +249,9 @@ def hypervolume(front: np.ndarray, reference: np.ndarray) -> float:
     return float(HV(ref_point=np.asarray(reference, float))(inside)) if len(inside) else 0.0
 
 
-def check_method(method, varies, minimise, maximise, population, generations, evaluations, against_grid) -> None:
+def check_method(
+    method, varies, minimise, maximise, population, generations, evaluations, against_grid, samples=0
+) -> None:
     """A search's arguments, refused with one line before the first design."""
     if method not in METHODS:
         raise ProfileError(f"method = {method!r}: must be one of {', '.join(METHODS)}")
@@ -262,6 +264,8 @@ def check_method(method, varies, minimise, maximise, population, generations, ev
         if against_grid:
             raise ProfileError("--against-grid: only for a search (--method nsga2)")
         return
+    if samples:
+        raise ProfileError(f"--samples {samples}: a search chooses its own points; give --population and --generations")
     budget(population, generations, evaluations)
     _check_spans(varies, method)
     keys = [v.key for v in varies]
