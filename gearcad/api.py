@@ -22,6 +22,7 @@ from .fitting import design as _design
 from .mechanisms import Design
 from .profiles import ProfileParams
 from .publish import check_out
+from .stages import STAGES
 
 __all__ = [
     "load_profile",
@@ -66,15 +67,12 @@ def _params(profile: ProfileParams | str | Path | Mapping[str, Any]) -> ProfileP
         return load_profile(profile)
     if isinstance(profile, Mapping):
         return parse_profile(profile)
-    if not isinstance(profile, ProfileParams):
+    if not isinstance(profile, tuple(_profiles.MODEL_OF.values())):
         raise TypeError(
             "a profile is a path, a dict of the TOML's tables or loaded parameters (gearcad.load_profile), "
             f"got {type(profile).__name__}"
         )
     return profile
-
-
-STAGES = ("pitch", "teeth", "full")
 
 
 def design(profile: ProfileParams | str | Path | Mapping[str, Any], stage: str = "full") -> Design:
@@ -117,7 +115,7 @@ def build(
     """Build profiles into ``out/<name>/`` (all or nothing); returns each build's result.
     Raises :class:`~gearcad.errors.OutputError` when a file cannot be written or published;
     :func:`check_out` finds a bad ``out`` before any work."""
-    if isinstance(profiles, (str, Path, Mapping, *ProfileParams.__args__)) or not isinstance(profiles, Iterable):
+    if isinstance(profiles, (str, Path, Mapping, *_profiles.MODEL_OF.values())) or not isinstance(profiles, Iterable):
         kind = type(profiles).__name__
         raise TypeError(f"build: profiles must be a list of profiles, got a {kind} (for one: build([p], out))")
     if progress is not None and not callable(progress):

@@ -181,6 +181,14 @@ def _stop(pool: ProcessPoolExecutor, before: set) -> None:
     # take SIGTERM as held and go on to build a whole profile while this waited for it
     for worker in workers:
         worker.kill()
+    # until none is left: a worker forked while this collected them (the executor's own thread
+    # may spawn one as another dies) is taken too; joining one never killed would wait forever
+    # (one left waiting on the call queue's lock, held by a worker killed here, never returns)
+    while alive := [w for w in {*workers, *multiprocessing.active_children()} - before if w.is_alive()]:
+        for worker in alive:
+            worker.kill()
+        for worker in alive:
+            worker.join(timeout=STEP)
     for worker in workers:
         worker.join()
 

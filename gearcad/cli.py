@@ -21,6 +21,7 @@ from pathlib import Path
 
 from .errors import GearcadError, OutputError
 from .interrupts import Interrupted, interrupt_guard
+from .stages import STAGES
 
 __all__ = ["main"]
 
@@ -55,7 +56,7 @@ def _parser() -> argparse.ArgumentParser:
     b.add_argument("--out", default="out", help="output folder (default: out)")  # a str: '' is refused, not '.'
     c = sub.add_parser("check", parents=[overrides], help="run every check of a build without writing anything")
     c.add_argument("profiles", nargs="+", type=Path)
-    c.add_argument("--stage", choices=["pitch", "teeth", "full"], default="full", help="stop early (gear pairs)")
+    c.add_argument("--stage", choices=STAGES, default="full", help="stop early (gear pairs)")
     n = sub.add_parser("new", help="start a profile of your own from an example, with the schema beside it")
     n.add_argument("name", help="the new profile's name (NAME.toml, out/NAME)")
     n.add_argument("--from", dest="source", default="elliptic_focus", help="an example's name or a profile's path")
@@ -115,6 +116,8 @@ def _progress(out: Path):
     def line(n: int, total: int, result) -> None:
         replaces = f", replaces {out / result.name}" if result.name in earlier else ""
         print(f"[{n}/{total}] {result.name}: {result.summary} ({1000 * result.seconds:.0f} ms{replaces})", flush=True)
+        for f in result.findings:  # each warning in one line, as check prints them
+            print(f"  warning [{f.code}] {f.message}", flush=True)
 
     return line
 
@@ -140,7 +143,8 @@ def _coupon(args) -> int:
 
     folder = coupon(load_profile(args.profile, args.overrides, unset=args.unset), args.out)
     print(f"wrote {folder}/ (coupon.dxf, coupon.svg, coupon.3mf, coupon.txt)")
-    print((folder / "coupon.txt").read_text(encoding="utf-8").strip().splitlines()[-2])
+    text = (folder / "coupon.txt").read_text(encoding="utf-8").strip()
+    print(text[text.index("Play per step") :])  # each step's play and the key to set
     return 0
 
 

@@ -35,6 +35,7 @@ CODES: dict[str, str] = {
     "backlash-fixed": "the profile fixes teeth.backlash below what the process's worst case needs",
     "bed": "a part is larger than the printer's bed (output.bed): no print plate holds it",
     "kerf-ignored": "output.kerf is set but the process's cutter is used (process.kerf, or a router's tool)",
+    "pressure-angle": "a pair's working pressure angle exceeds teeth.max_pressure_angle_deg (45° by default)",
 }
 """Every warning code gearcad emits, with what it means.  Codes never change meaning."""
 

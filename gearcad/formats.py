@@ -36,6 +36,8 @@ class Format:
     """The ways it may be written (``output.dxf`` for DXF), the default first."""
     default: bool = True
     """Written when a profile names no formats."""
+    exact: bool = False
+    """Its writer needs each part's rings as cut without the kerf (``Design.made``: an exact solid)."""
 
 
 TABLE: tuple[Format, ...] = (
@@ -46,7 +48,7 @@ TABLE: tuple[Format, ...] = (
     Format("stl", "stl", "solid", "files:write_stl"),
     Format("3mf", "3mf", "solid", "files:write_3mf", ("assembly", "plate")),
     # asked for, not by default: OpenCASCADE takes about a second to load
-    Format("step", "step", "design", "step:write_step_files", ("assembly",), default=False),
+    Format("step", "step", "design", "step:write_step_files", ("assembly",), default=False, exact=True),
 )
 
 FORMATS: tuple[str, ...] = tuple(f.name for f in TABLE)

@@ -112,6 +112,8 @@ def test_check_proves_the_assembly_of_each_mechanism(capsys):
     report.json, the test above)."""
     kinds = {"spur_pair": "gear-pair", "planetary_external": "carrier-train", "roller_body_m3": "roller-body"}
     kinds["rolling_wheel"] = "rolling-wheel"
+    kinds["nc_internal"] = "nc-internal"
+    kinds["nc_square"] = "nc-planetary"
     assert set(kinds.values()) == set(MECHANISMS)  # one of each: a new mechanism joins this list
     names = [str(ROOT / "profiles" / f"{name}.toml") for name in kinds]
     assert main(["check", *names, *[arg for o in COARSE_SET for arg in ("--set", o)]]) == 0

@@ -12,6 +12,8 @@ import pytest
 import gearcad
 from gearcad.fitting.fit import pair_bands
 
+from .conftest import COARSE
+
 ROOT = Path(__file__).parent.parent
 QUICK = {"output.charts": False, "output.animation": False, "output.formats": ["svg"]}
 
@@ -97,3 +99,34 @@ def test_the_page_and_check_show_the_band(tmp_path, spur):
     band = report["bands"][0]
     assert band["verdict"] == "fits" and 0 < band["min"] < band["nominal_min"] < band["max"]
     assert report["output"]["kerf"] == 0.2 and report["process"]["kind"] == "laser"
+
+
+@pytest.mark.parametrize(
+    "sets",
+    [
+        {"process.kind": "laser", "teeth.backlash": 0.1},  # flanks: too little backlash
+        {"process.kind": "fdm"},  # the tips reach the roots: backlash cannot help
+    ],
+)
+def test_each_remedy_a_jam_names_fits_as_printed(sets):
+    """Every ``--set KEY=VALUE`` a jam message names, applied to the profile as printed (the way
+    the command line applies it), gives a pair whose band fits: re-checked here by a design of
+    its own.  The FDM spur pair names the chamfer (the elephant foot) and the clearance, never
+    backlash; the laser one more backlash."""
+    import re
+
+    path = ROOT / "profiles" / "spur_pair.toml"
+    given = {**COARSE, **sets}
+    d = gearcad.design(gearcad.load_profile(path, given))
+    (jam,) = [f for f in d.findings if f.code == "jams"]
+    cures = re.findall(r"--set (\S+)=(\S+?)(?=[ ;)]|$)", jam.message)
+    assert cures, jam.message
+    if sets["process.kind"] == "fdm":
+        assert "tips reach the mate's roots" in jam.message
+        assert {k for k, _ in cures} <= {"output.chamfer", "teeth.clearance"}
+    else:
+        assert [k for k, _ in cures] == ["teeth.backlash"]
+    for key, value in cures:
+        fixed = gearcad.design(gearcad.load_profile(path, {**given, key: float(value)}))
+        assert not [f for f in fixed.findings if f.code == "jams"], (key, value)
+        assert fixed.report()["bands"][0]["verdict"] == "fits"

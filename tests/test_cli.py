@@ -209,8 +209,17 @@ def test_build_without_arguments_builds_every_profile(tmp_path, monkeypatch, cap
     monkeypatch.chdir(tmp_path)
     assert main(["build", *LEAN]) == 0
     lines = capsys.readouterr().out.splitlines()
-    assert [ln.split("]")[0] for ln in lines[:-1]] == [f"[{n}/{len(chosen)}" for n in range(1, len(chosen) + 1)]
+    heads = [ln for ln in lines[:-1] if not ln.startswith("  warning [")]
+    assert [ln.split("]")[0] for ln in heads] == [f"[{n}/{len(chosen)}" for n in range(1, len(chosen) + 1)]
+    # each warning in one line under its profile's, as check prints them, as many as the line counts
+    wheel = lines.index(next(ln for ln in lines if "rolling_wheel:" in ln))
+    assert lines[wheel + 1 : wheel + 3] == ["  warning [paper-formula] " + m for m in _messages(tmp_path)]
     assert {p.name for p in (tmp_path / "out").iterdir() if p.is_dir()} == set(chosen)
+
+
+def _messages(folder: Path) -> list[str]:
+    report = json.loads((folder / "out" / "rolling_wheel" / "report.json").read_text(encoding="utf-8"))
+    return [w["message"] for w in report["warnings"]]
 
 
 BAD = [

@@ -96,7 +96,7 @@ def test_a_sweep_file_reads_its_profile_from_its_own_folder(tmp_path):
     (tmp_path / "deep").mkdir()
     (tmp_path / "deep" / "s.toml").write_text('profile = "p.toml"\n[vary]\n"teeth.count" = [21]\n')
     assert read_sweep_file(tmp_path / "deep" / "s.toml").profile == str(tmp_path / "deep" / "p.toml")
-    assert "taken from\n  the sweep file's folder" in README
+    assert "taken\nfrom the sweep file's folder" in (ROOT / "docs" / "sweep.md").read_text(encoding="utf-8")
 
 
 def test_new_gives_the_users_design_without_the_papers_comments(tmp_path, monkeypatch):

@@ -53,6 +53,7 @@ import gearcad
 from gearcad.errors import GearcadError, ProfileError
 from gearcad.geometry.arcfit import arc_points
 from gearcad.geometry.verify import is_simple
+from gearcad.mechanisms import MECHANISMS
 from gearcad.profiles import CarrierTrainParams, GearPairParams, RollerBodyParams, RollingWheelParams
 
 EXAMPLES = int(os.environ.get("GEARCAD_FUZZ_EXAMPLES", "4"))
@@ -545,17 +546,74 @@ def compound_trains(draw: Callable) -> dict:
     return _profile(gen, "carrier-train", tables)
 
 
-KINDS: dict[str, st.SearchStrategy[dict]] = {
-    **{
-        f"gear-pair/{c}": gear_pairs(c)
-        for c in ("ellipse-focus", "ellipse-centre", "oval", "circle", "ratio", "walker", "samples")
+@st.composite
+def nc_internals(draw: Callable) -> dict:
+    """A noncircular internal pair: an oval pinion (two lobes) in a ring of 3 or 4 lobes."""
+    gen = Gen(draw, draw(st.sampled_from(MODES)))
+    a = draw(_floats(20.0, 35.0))
+    lobes = draw(st.sampled_from([3, 4]))
+    pinion = {
+        "curve": gen.key("pinion.curve", st.just("oval"), optional=False, edges=("spiral",)),
+        "a": gen.key("pinion.a", st.just(a), optional=False, edges=(-1.0, 1e6)),
+        "b": gen.key("pinion.b", _floats(0.8 * a, 0.95 * a), optional=False, edges=(a * 1.5, 0.0)),
+    }
+    teeth = {
+        "count": gen.key("teeth.count", st.sampled_from([20, 30, 40]), optional=False, edges=(7, 401, 31)),
+        "backlash": gen.key("teeth.backlash", _floats(0.0, 0.3), edges=(-0.1, 50.0)),
+    }
+    tables = {
+        "pinion": gen.table("pinion", pinion),
+        "ring": gen.table("ring", {"lobes": gen.key("ring.lobes", st.just(lobes), optional=False, edges=(1, 2, 0))}),
+        "teeth": gen.table("teeth", teeth),
+        "bore": _bore(gen),
+        "output": _output(gen),
+    }
+    return _profile(gen, "nc-internal", tables)
+
+
+@st.composite
+def nc_planetaries(draw: Callable) -> dict:
+    """A carrier-less noncircular planetary: the square or the triangle set, e inside convexity."""
+    gen = Gen(draw, draw(st.sampled_from(MODES)))
+    lobes = draw(st.sampled_from([3, 4]))
+    limit = 1 / (lobes**2 + 1)
+    sets = {
+        "lobes": gen.key("set.lobes", st.just(lobes), optional=False, edges=(1, 13)),
+        "e": gen.key("set.e", _floats(0.0, 0.9 * limit), optional=False, edges=(limit * 1.5, 0.6, -0.01)),
+        "radius": gen.key("set.radius", _floats(15.0, 25.0), optional=False, edges=(0.0, 1e6)),
+        "planets": gen.key("set.planets", st.just(lobes), optional=False, edges=(2, 5, 13)),
+    }
+    teeth = {
+        "count": gen.key("teeth.count", st.just(4 * lobes), optional=False, edges=(7, 4 * lobes + 1)),
+        "backlash": gen.key("teeth.backlash", _floats(0.1, 0.3), edges=(-0.1,)),
+    }
+    tables = {
+        "set": gen.table("set", sets),
+        "teeth": gen.table("teeth", teeth),
+        "bore": _bore(gen),
+        "output": _output(gen),
+    }
+    return _profile(gen, "nc-planetary", tables)
+
+
+_OF_MECHANISM: dict[str, dict[str, st.SearchStrategy[dict]]] = {
+    "gear-pair": {
+        c: gear_pairs(c) for c in ("ellipse-focus", "ellipse-centre", "oval", "circle", "ratio", "walker", "samples")
     },
-    "roller-body/harmonic": roller_bodies(False),
-    "roller-body/series": roller_bodies(True),
-    "rolling-wheel": rolling_wheels(),
-    "carrier-train/external": carrier_trains(False),
-    "carrier-train/internal": carrier_trains(True),
-    "carrier-train/compound": compound_trains(),
+    "roller-body": {"harmonic": roller_bodies(False), "series": roller_bodies(True)},
+    "rolling-wheel": {"": rolling_wheels()},
+    "carrier-train": {
+        "external": carrier_trains(False),
+        "internal": carrier_trains(True),
+        "compound": compound_trains(),
+    },
+    "nc-internal": {"": nc_internals()},
+    "nc-planetary": {"": nc_planetaries()},
+}
+KINDS: dict[str, st.SearchStrategy[dict]] = {
+    f"{name}/{kind}" if kind else name: strategy
+    for name in MECHANISMS  # the registry's: a mechanism with no strategies here fails at import
+    for kind, strategy in _OF_MECHANISM[name].items()
 }
 
 # ---------------------------------------------------------------------------------------------
@@ -1105,19 +1163,6 @@ def _check_refusal(code: int, lines: list[str], allowed=(0, 2)) -> None:
         assert all(len(line) <= _MAX_LINE for line in lines), lines
 
 
-def _sweep_fixed() -> bool:
-    """Whether this checkout holds the sweep's own fixes (issue 34 items 4, 12, 13, 15, 18, on
-    another branch when this test was written): a malformed key is refused before any design.
-    Until then a failure of the sweep cases is expected (xfail); after, it fails the test."""
-    import tempfile
-    from pathlib import Path
-
-    with tempfile.TemporaryDirectory() as root:
-        (Path(root) / "c.toml").write_text(_CIRCLES)
-        args = ["sweep", f"{root}/c.toml", "--stage", "pitch", "--workers", "1", "--out", f"{root}/out"]
-        return _run_cli([*args, "--vary", "gear1..a=1"])[0] == 2
-
-
 def _sweep_case(args: list[str], file_text: str | None) -> None:
     import csv
     import tempfile
@@ -1150,24 +1195,14 @@ def _sweep_case(args: list[str], file_text: str | None) -> None:
 def test_sweep_arguments_end_in_a_table_or_one_line_each(args):
     """Any --vary, --constraint and objective: a table without NaN or infinity, or lines of
     ``gearcad: error:`` and exit 2 with nothing written; a malformed key never sweeps."""
-    try:
-        _sweep_case(args, None)
-    except (AssertionError, Exception) as exc:  # noqa: BLE001 - what the sweep died of is the finding
-        if _sweep_fixed():
-            raise
-        pytest.xfail(f"the sweep's fixes are not on this branch: {type(exc).__name__}: {str(exc)[:200]}")
+    _sweep_case(args, None)
 
 
 @_settings
 @given(text=_sweep_files())
 def test_sweep_files_end_in_a_table_or_one_line_each(text):
     """Any sweep TOML (its profile, stage, counts, constraints, [vary]): as for the arguments."""
-    try:
-        _sweep_case([], text)
-    except (AssertionError, Exception) as exc:  # noqa: BLE001 - what the sweep died of is the finding
-        if _sweep_fixed():
-            raise
-        pytest.xfail(f"the sweep's fixes are not on this branch: {type(exc).__name__}: {str(exc)[:200]}")
+    _sweep_case([], text)
 
 
 _NEW_NAMES = st.one_of(

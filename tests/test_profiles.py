@@ -13,13 +13,11 @@ from pydantic import BaseModel, ValidationError
 from gearcad.errors import ProfileError
 from gearcad.profiles import (
     MECHANISMS,
-    CarrierTrainParams,
+    MODEL_OF,
     CircleParams,
     EllipseParams,
     GearPairParams,
     RatioParams,
-    RollerBodyParams,
-    RollingWheelParams,
     TeethParams,
     TrainParams,
     apply_overrides,
@@ -34,7 +32,8 @@ from .conftest import PROFILES, ROOT
 
 FOCUS = ROOT / "profiles" / "elliptic_focus.toml"
 SCHEMA = ROOT / "profiles" / "profile.schema.json"
-PARAMS = (GearPairParams, RollerBodyParams, RollingWheelParams, CarrierTrainParams)
+PARAMS = tuple(MODEL_OF.values())
+"""Every mechanism's profile model, from the table the profiles are read by."""
 
 
 def _lines(call, *args, **kwargs) -> list[str]:

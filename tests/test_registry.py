@@ -27,3 +27,14 @@ def test_each_entry_names_its_module_and_params_model():
         module = import_module(f"gearcad.mechanisms.{entry.module}")
         assert module.design.__annotations__["return"] == "Draft"
         assert entry.params.model_fields["mechanism"].default == name
+
+
+def test_every_hook_an_entry_names_is_a_function():
+    """A hook is named by a string (resolved when used): a misspelt one fails here, not in a build."""
+    from dataclasses import fields
+
+    for entry in MECHANISMS.values():
+        for f in fields(entry):
+            if f.name not in ("name", "module", "coupons") and getattr(entry, f.name) is not None:
+                assert callable(entry.hook(f.name)), (entry.name, f.name)
+        assert callable(entry.design)

@@ -78,6 +78,6 @@ def test_stage_cli_and_refusals(capsys):
     assert main(["check", "--stage", "teeth", "--set", "gear1.blend_width_deg=0", str(walker)]) == 2
     assert "corners" in capsys.readouterr().err
     assert main(["check", "--stage", "pitch", str(ROOT / "profiles" / "roller_body_m3.toml")]) == 2
-    assert "only a gear pair" in capsys.readouterr().err
+    assert "roller-body has no stages before 'full'" in capsys.readouterr().err
     with pytest.raises(gearcad.ProfileError, match="stage = 'mesh'"):
         gearcad.design(walker, stage="mesh")

@@ -125,11 +125,15 @@ def test_sigterm_during_a_build_ends_with_one_line_and_leaves_out_alone(tmp_path
     # signal once the build is under way (its staging folder made: the handlers are in place),
     # not after a fixed time, which a loaded machine may not reach
     deadline = time.monotonic() + 120
-    while not any(p.name.startswith(".gearcad-staging-") for p in tmp_path.iterdir()):
-        assert child.poll() is None and time.monotonic() < deadline, "the build never started"
-        time.sleep(0.02)
-    child.send_signal(signal.SIGTERM)
-    _, err = child.communicate(timeout=60)
+    try:
+        while not any(p.name.startswith(".gearcad-staging-") for p in tmp_path.iterdir()):
+            assert child.poll() is None and time.monotonic() < deadline, "the build never started"
+            time.sleep(0.02)
+        child.send_signal(signal.SIGTERM)
+        _, err = child.communicate(timeout=120)
+    finally:  # a build that hangs must not outlive the test (its workers end with it)
+        child.kill()
+        child.wait()
     assert child.returncode == 128 + signal.SIGTERM
     assert err.strip().splitlines() == [f"gearcad: interrupted; {out} left as it was"]
     assert not out.exists() and os.listdir(tmp_path) == []

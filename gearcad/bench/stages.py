@@ -12,6 +12,7 @@ from collections.abc import Callable
 
 from ..fitting import design
 from ..profiles import load_profile
+from ..stages import STAGES
 from .commands import PROFILES
 
 __all__ = ["STAGE_GOALS", "bench_stages", "stages_table"]
@@ -40,7 +41,7 @@ def bench_stages(quick: bool = False, step: Callable[[str], None] | None = None)
     rows = []
     for name in ("elliptic_focus", "spur_pair", "walker"):
         params = load_profile(PROFILES / f"{name}.toml")
-        for stage in ("pitch", "teeth") if quick else ("pitch", "teeth", "full"):  # quick: no proof
+        for stage in STAGES[:-1] if quick else STAGES:  # quick: no proof
             budget = 0.05 if quick else (6.0 if stage == "full" else 2.0)
             seconds, n = _cpu_per_design(lambda params=params, stage=stage: design(params, stage), budget)
             kind, goal = STAGE_GOALS.get((name, stage), ("", float("nan")))

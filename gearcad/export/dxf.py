@@ -49,6 +49,7 @@ import ezdxf
 import numpy as np
 from ezdxf import units
 
+from ..formats import by_name
 from ..geometry import bulge as B
 from ..geometry.arcfit import ArcRing
 from .bounds import drawing_bounds
@@ -56,7 +57,7 @@ from .drawing import Drawing
 
 __all__ = ["FLAVOURS", "CHORD_AREA", "MARK_CHORD_AREA", "write_dxf", "limit_sweep", "ring_area_with_arcs"]
 
-FLAVOURS = ("polyline", "lines-arcs", "polyline-flat")
+FLAVOURS = by_name("dxf").flavours
 CHORD_AREA = 0.0025
 """Largest share of a ring's (and of a part's) area that the chords of its written arcs may cut
 off: what a reader ignoring bulges loses at most (0.25 %, half the 0.5 % the consumer table

@@ -106,19 +106,10 @@ def _section_assembly(design: Design, figures: Figures, report: dict, files: Map
     )
     return (
         '<h2 id="assembly">Assembly</h2>'
-        f'<div class="pair"><figure class="wide">{svg}<figcaption>The parts as assembled: {_how_placed(design)}, '
+        f'<div class="pair"><figure class="wide">{svg}<figcaption>The parts as assembled: {design.placed}, '
         "to check the fit; cut from the sheet and print from the plate.</figcaption></figure>"
         f"<div>{right}{facts}</div></div>"
     )
-
-
-def _how_placed(design) -> str:
-    """What the assembly shows: meshing parts touch; other parts sit where the mechanism puts them."""
-    if design.params.mechanism == "rolling-wheel":
-        return "the two wheels where the drive holds them, joined by the rack (not drawn), not touching"
-    if any(pl.part == "shoe" for pl in design.placements):
-        return "the gears touch in mesh; the leg (shoe) works in a plane of its own, drawn over the wheel"
-    return "meshing parts touch"
 
 
 def _section_findings(report: dict) -> str:

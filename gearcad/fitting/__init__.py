@@ -1,42 +1,41 @@
 """Fitting: the parts as made under the profile's process, the band of every mesh (its play over
 the process's tolerance stack, certified between positions) and the search for the backlash that
 keeps the worst case free.  Between the mechanisms and the batch: the mechanisms supply their
-designs and geometry, this package calls them.
+designs and geometry, this package calls them, each as its registry entry's hooks say
+(:mod:`gearcad.mechanisms.registry`, :mod:`.hooks`).
 """
 
 from __future__ import annotations
 
 import time
 from dataclasses import replace
-from importlib import import_module
 
 from ..errors import GearcadError
 from ..mechanisms import Design
 from ..mechanisms.finish import finish
 from ..mechanisms.registry import MECHANISMS
 from ..profiles import ProfileParams
-from . import band_trains, fit, mesh_fit
+from . import fit
 
 __all__ = ["design"]
 
 
 def design(params: ProfileParams, stage: str = "full") -> Design:
-    """The checked design of any mechanism's profile parameters; ``stage`` "pitch" or "teeth"
-    stops a gear pair early (:mod:`~gearcad.mechanisms.pair_stages`), with no parts."""
+    """The checked design of any mechanism's profile parameters, by one route: the entry's fit
+    hook (else the draft of the profile as made), its bands hook, then :func:`finish`.
+    ``stage`` other than "full" stops early, for a mechanism whose entry has ``stages``."""
     start = time.perf_counter()
+    entry = MECHANISMS[params.mechanism]
     if stage != "full":
-        from ..mechanisms.pair_stages import staged_design
-
-        if params.mechanism != "gear-pair":
-            raise GearcadError(
-                f"stage = {stage!r}: only a gear pair has stages before 'full' (this is a {params.mechanism})"
-            )
-        return replace(staged_design(fit.made(params), stage), seconds=time.perf_counter() - start)
-    mechanism = import_module(f"..mechanisms.{MECHANISMS[params.mechanism].module}", __name__)
-    if params.mechanism in mesh_fit.KEYS:  # a train's meshes, a body's rollers: their backlash and bands
-        return finish(_kerf_noted(mesh_fit.chosen(params, mechanism.design), params), start=start)
-    draft, bands = fit.chosen(params, mechanism.design)  # the process's cutter and the backlash it needs
-    draft = band_trains.with_mesh_bands(fit.with_bands(draft, bands))  # a train's meshes, a body's rollers
+        stages = entry.hook("stages")
+        if stages is None:
+            have = ", ".join(m.name for m in MECHANISMS.values() if m.stages is not None)
+            raise GearcadError(f"stage = {stage!r}: a {params.mechanism} has no stages before 'full' (only: {have})")
+        return replace(stages(fit.made(params), stage), seconds=time.perf_counter() - start)
+    fitted = entry.hook("fit")
+    draft = fitted(params, entry.design) if fitted is not None else entry.design(fit.made(params))
+    bands = entry.hook("bands")
+    draft = bands(draft) if bands is not None else draft
     return finish(_kerf_noted(draft, params), start=start)
 
 

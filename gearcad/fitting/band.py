@@ -15,7 +15,9 @@ Only a window of each gear around the contact (three modules) is offset and inte
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from collections.abc import Callable
+from dataclasses import dataclass, field, replace
+from typing import TYPE_CHECKING
 
 import numpy as np
 import shapely
@@ -25,6 +27,9 @@ from ..geometry.gap import distances
 from ..geometry.gap import runs as edge_runs
 from ..geometry.outline import place_each
 from ..threads import side_by_side
+
+if TYPE_CHECKING:
+    from .certify import Certificate
 
 __all__ = ["Band", "PairGeometry", "band_of", "pair_band", "play_along"]
 
@@ -47,6 +52,19 @@ class PairGeometry:
     pressure_angle: float
     teeth: np.ndarray
     """Gear 1's tooth at the contact at each φ1 (index from its first)."""
+    at: Callable[[np.ndarray], PairGeometry] | None = field(default=None, compare=False, repr=False)
+    """The same pair at other driver angles (what the certificate refines with); None: no refining."""
+    ratio: Callable[[np.ndarray, np.ndarray], np.ndarray] | None = field(default=None, compare=False, repr=False)
+    """(lo, hi) -> the largest follower speed dφ2/dφ1 over each driver interval [lo, hi] (rad)."""
+    cycle: float = 2 * math.pi
+    """The driver's turn after which the pair repeats (rad): the positions wrap there."""
+    first: np.ndarray | None = field(default=None, compare=False, repr=False)
+    """The driver angles the certificate starts from (rad): even steps along the driver's pitch
+    curve, :data:`~.certify.PER_TOOTH` a tooth (None: ``phi1``)."""
+
+    def subset(self, keep) -> PairGeometry:
+        """The same pair at the positions ``keep`` (indices or a mask) only."""
+        return replace(self, phi1=self.phi1[keep], phi2=self.phi2[keep], r1=self.r1[keep], teeth=self.teeth[keep])
 
 
 @dataclass(frozen=True)
@@ -65,10 +83,26 @@ class Band:
     """Backlash to add so that the worst case keeps the margin free (0 when it does)."""
     margin: float
     pressure_angle: float
+    certificate: Certificate | None = None
+    """How the least play was proven between positions (None: measured at the positions only)."""
+    gear1_phi: float | None = None
+    """Gear 1's turn at the least play (rad) where the driver is gear 2 (``worst_phi`` is the driver's)."""
+    mate_phi: float | None = None
+    """Gear 2's turn at the least play (rad), as the band measured it."""
+
+    @property
+    def least(self) -> float:
+        """The least play the verdict rests on (mm): the certified one where there is a certificate."""
+        return self.band[0] if self.certificate is None else min(self.band[0], self.certificate.lower)
 
     @property
     def fits(self) -> bool:
-        return self.band[0] >= self.margin
+        return self.least >= self.margin
+
+    @property
+    def unproven(self) -> bool:
+        """Whether the work budget ran out before the bound settled the verdict."""
+        return self.certificate is not None and not self.certificate.proven
 
     def as_dict(self) -> dict:
         return {
@@ -79,11 +113,13 @@ class Band:
             "max": self.band[1],
             "worst_tooth": self.worst_tooth,
             "worst_phi": self.worst_phi,
+            "worst_phi1": self.worst_phi if self.gear1_phi is None else self.gear1_phi,
             "edge": {"nominal": self.edge[0], "min": self.edge[1], "max": self.edge[2]},
             "center_distance_spread": self.center_spread,
             "verdict": "fits" if self.fits else "jams",
             "needed_backlash": self.needed_backlash,
             "center_distance_change": self.needed_backlash / (2 * math.tan(self.pressure_angle)),
+            **({} if self.certificate is None else self.certificate.as_dict()),
         }
 
 
@@ -185,7 +221,16 @@ def _least_overlap(w1, place, bound: np.ndarray, iterations: int = 24) -> np.nda
 
 
 def _play(
-    g: PairGeometry, offsets, spread: float, tol: float, *, reach: float, steps: int = 8, start=None
+    g: PairGeometry,
+    offsets,
+    spread: float,
+    tol: float,
+    *,
+    reach: float,
+    steps: int = 8,
+    start=None,
+    halves=None,
+    keep=None,
 ) -> tuple[np.ndarray, np.ndarray]:
     """Free play at each position (mm on gear 2's pitch curve, at its nominal contact radius);
     NaN where the parts overlap wherever gear 2 sits; and the turn of gear 2 it was measured from.
@@ -194,8 +239,11 @@ def _play(
     from there, each way, it is turned by the gap left over the farthest reach of its window (no
     point of it moves farther than the gap, so it never passes through gear 1); the gap shrinks
     by about cos α times that each step, so ``steps`` bring it under a millionth of a module.
-    ``reach`` (mm) bounds the play sought."""
+    ``reach`` (mm) bounds the play sought; ``halves`` (a list): the free turn each way (rad, (2, n))
+    is appended to it; ``keep`` (a dict): gear 1's windows, the placer and the reach stored in it."""
     w1, place, gap_at, far = _placer(g, offsets, spread, tol, gaps=steps > 0)
+    if keep is not None:
+        keep.update(w1=w1, place=lambda turn, at: place(turn, at), far=far)
     arm = g.center_distance - g.r1
     limit = min(reach, 1.2 * math.pi * g.module) / arm  # more than a pitch never frees a tooth
     touching = 1e-9 * g.module**2
@@ -235,7 +283,15 @@ def _play(
                 lo, hi = np.where(ok, mid, lo), np.where(ok, hi, mid)
             turn[stalled] = lo
         total += turn
+        if halves is not None:
+            halves.append(turn)
     return np.where(free, total * arm, np.nan), start
+
+
+def _measure(g: PairGeometry, offsets, spread: float, tol: float, *, reach: float) -> np.ndarray:
+    """The signed play at ``g``'s positions (:func:`_signed_play`)."""
+    play, start = _play(g, offsets, spread, tol, reach=reach)
+    return _signed_from(g, play, start, offsets, spread, tol, reach=reach)
 
 
 def play_along(g: PairGeometry, *, edge: float, tol: float, reach: float) -> np.ndarray:
@@ -248,6 +304,12 @@ def _signed_play(g: PairGeometry, offsets, spread: float, tol: float, *, reach: 
     """:func:`_play`, negative where jammed: the shrink ε that frees it (gear 2 where it overlapped
     least) counts −4ε/cos α."""
     play, start = _play(g, offsets, spread, tol, reach=reach)
+    return _signed_from(g, play, start, offsets, spread, tol, reach=reach)
+
+
+def _signed_from(g: PairGeometry, play, start, offsets, spread: float, tol: float, *, reach: float) -> np.ndarray:
+    """The play ``play`` (:func:`_play`, gear 2 from ``start``) signed where it is NaN (jammed)."""
+    play = play.copy()
     jammed = np.isnan(play)
     if not jammed.any():
         return play
@@ -281,29 +343,86 @@ def pair_band(
     closer = spread if internal else -spread
     alpha = g.pressure_angle
     reach = backlash + 4 * max(abs(e) for e in edge) / math.cos(alpha) + 2 * spread * math.tan(alpha) + 0.5 * g.module
+    from .certify import _certify
+
+    margin = _margin(edge, spread, tol, alpha)
+    certify = g.at is not None and g.ratio is not None
     if edge[0] == edge[1] == edge[2] and not spread:  # no stack (no process): one case, not three alike
+        if certify:
+            found = _certify(g, (edge[0], edge[0]), 0.0, tol, reach=reach, margin=margin)
+            return _band_certified(name, found, None, None, edge=edge, spread=spread, tol=tol, alpha=alpha)
         nominal = tight = wide = _signed_play(g, (edge[0], edge[0]), 0.0, tol, reach=reach)
     else:
         with side_by_side() as pool:  # GEOS releases the GIL: the cases side by side
+            if certify:
+                tight_job = pool.submit(_certify, g, (edge[2], edge[2]), closer, tol, reach=reach, margin=margin)
+            else:
+                tight_job = pool.submit(_signed_play, g, (edge[2], edge[2]), closer, tol, reach=reach)
             jobs = [
                 pool.submit(_play, g, (edge[0], edge[0]), 0.0, tol, reach=reach),
-                pool.submit(_signed_play, g, (edge[2], edge[2]), closer, tol, reach=reach),
+                tight_job,
                 pool.submit(_play, g, (edge[1], edge[1]), -closer, tol, reach=reach),
             ]
             (nominal, _), tight, (wide, _) = (job.result() for job in jobs)
-    return band_of(name, (nominal, tight, wide), g.teeth, g.phi1, edge=edge, spread=spread, tol=tol, alpha=alpha)
+        if certify:
+            return _band_certified(name, tight, nominal, wide, edge=edge, spread=spread, tol=tol, alpha=alpha)
+    return band_of(
+        name, (nominal, tight, wide), g.teeth, g.phi1, edge=edge, spread=spread, tol=tol, alpha=alpha, phi2=g.phi2
+    )
 
 
-def band_of(name: str, plays, teeth, phi1, *, edge, spread: float, tol: float, alpha: float) -> Band:
+def _margin(edge, spread: float, tol: float, alpha: float) -> float:
+    """The play the worst case must keep (mm): made parts twice the writing tolerance; exact parts
+    (no process) may bite by what the writing tolerance takes from four flanks, which the mesh
+    proof allows."""
+    return 2 * tol if any(edge) or spread else -4 * tol / math.cos(alpha)
+
+
+def _band_certified(name, found, nominal, wide, *, edge, spread, tol, alpha) -> Band:
+    """The band from the certified tight case ``found`` (:func:`_certify`) and the nominal and wide
+    plays at the first positions (None: no stack, the tight case is all three)."""
+    g, tight, cert = found
+    if nominal is None:
+        return band_of(
+            name,
+            (tight, tight, tight),
+            g.teeth,
+            g.phi1,
+            edge=edge,
+            spread=spread,
+            tol=tol,
+            alpha=alpha,
+            certificate=cert,
+            phi2=g.phi2,
+        )
+    # the tight case was measured at the first positions and those refined; the others at the first
+    more = np.full(len(tight) - len(nominal), np.nan)
+    nominal, wide = np.concatenate([nominal, more]), np.concatenate([wide, more])
+    return band_of(
+        name,
+        (nominal, tight, wide),
+        g.teeth,
+        g.phi1,
+        edge=edge,
+        spread=spread,
+        tol=tol,
+        alpha=alpha,
+        certificate=cert,
+        phi2=g.phi2,
+    )
+
+
+def band_of(
+    name: str, plays, teeth, phi1, *, edge, spread: float, tol: float, alpha: float, certificate=None, phi2=None
+) -> Band:
     """The :class:`Band` of one mesh from its plays over the cycle (nominal, tight, wide: mm per
     position, the tight one signed), the tooth and driver angle of each position, its edge
     offsets and centre spread (mm), the outline tolerance and the pressure angle (rad)."""
     nominal, tight, wide = plays
     worst = int(np.nanargmin(tight))
-    # made parts keep twice the writing tolerance free; exact parts (no process) may bite by what
-    # the writing tolerance takes from four flanks, which the mesh proof allows
-    margin = 2 * tol if any(edge) or spread else -4 * tol / math.cos(alpha)
+    margin = _margin(edge, spread, tol, alpha)
     low = float(tight[worst])
+    least = low if certificate is None else min(low, certificate.lower)
     return Band(
         mesh=name,
         nominal=_span(nominal, tight),
@@ -312,9 +431,11 @@ def band_of(name: str, plays, teeth, phi1, *, edge, spread: float, tol: float, a
         worst_phi=float(phi1[worst]),
         edge=edge,
         center_spread=spread,
-        needed_backlash=max(0.0, margin - low),
+        needed_backlash=max(0.0, margin - least),
         margin=margin,
         pressure_angle=alpha,
+        certificate=certificate,
+        mate_phi=None if phi2 is None else float(phi2[worst]),
     )
 
 

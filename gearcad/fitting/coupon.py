@@ -6,8 +6,11 @@ tightest and at the loosest place of the mesh (where the band's worst case falls
 drawn play is largest; a pair whose play is the same everywhere, such as a circle pair, takes
 one place).  Each sector keeps a hub about the gear's pivot with its hole (the bore or pilot, or
 a Ø2 mm pin hole), so the two sectors of a step can be pinned at the centre distance and turned
-against each other; the step that meshes with the designed play (or measures nominal across its
-teeth) names the value to set.
+against each other on the jig (a plate with their two holes at the centre distance, on the same
+sheet); the step that shows the designed play names the value to set.  Every piece carries its
+step (a tab below the hub where its arm is too short for 1.5 mm letters), each follower sector a
+triangle under the tooth where the feeler gauge goes; each step's play as made with the nominal
+value is proven in :mod:`.coupon_play`.
 
 Pure geometry: the sectors are the part's outline (at the tolerance) intersected with a fan
 about the chosen angle; the paths are those sectors offset as the process makes them (a laser's
@@ -25,17 +28,41 @@ from shapely import affinity
 
 from ..errors import ProfileError
 from ..mechanisms.base import Design
+from ..mechanisms.registry import MECHANISMS
 from .band import play_along
+from .coupon_play import Placed, feeler_gap, play_of, tooth_mark, turned
 from .fit import pair_geometry
 
-__all__ = ["STEPS", "KEYS", "CouponData", "Piece", "check_coupon", "coupon_data", "step_offset"]
+__all__ = [
+    "STEPS",
+    "KEYS",
+    "CouponData",
+    "Jig",
+    "Piece",
+    "StepPlay",
+    "check_coupon",
+    "coupon_data",
+    "fit_box",
+    "pin_hole",
+    "step_offset",
+]
 
 STEPS = (-0.1, -0.05, 0.0, 0.05, 0.1)
 """The steps about the nominal compensation, mm."""
 KEYS = {"laser": "process.kerf", "fdm": "process.xy_compensation", "cnc": "process.xy_compensation"}
 """The one key a maker sets after measuring the coupon, per process."""
 PIN_HOLE_MM = 2.0
-"""The pin hole of a sector whose gear has no bore or pilot hole (a Ø2 mm pin or drill)."""
+"""The pin hole of a sector whose gear has no bore (a Ø2 mm pin, or a drill's shank); a router's
+is at least 1.25 tool diameters, rounded up to 0.5 mm (it cannot cut a smaller one)."""
+JIG_RIM_MM = 5.0
+"""The jig's plate reaches this far beyond its larger hole."""
+LABEL_CLEAR_MM = 0.8
+"""An engraved label is kept this far inside its piece and off the hub."""
+LABEL_CHAR_MM = 1.2
+"""A label's letters (1.5 mm tall) are taken as at most this wide per 1 mm of height, spaces and
+signs included, when deciding whether a sector's arm holds its label or it gets a tab."""
+FEELER_STEP_MM = 0.05
+"""The feeler gauges named: multiples of 0.05 mm (a common set's blades)."""
 _TEETH_EACH_SIDE = 1.6
 """The sector reaches this many pitches either side of the contact (about three teeth)."""
 
@@ -59,6 +86,43 @@ class Piece:
     turn: float
     """The turn (rad) from the gear's frame to the sector's (teeth up)."""
     offset: tuple[float, float]
+    hole: float = 0.0
+    """The pivot hole's diameter (mm, as drawn): the bore, or the pin hole."""
+    mark: tuple[tuple[float, float], ...] = ()
+    """A follower's engraved triangle pointing at the tooth where the feeler gauge goes (sector's
+    frame, mm); () for a driver's sector."""
+
+
+@dataclass(frozen=True)
+class Jig:
+    """The plate that holds a step's two sectors at the pair's centre distance: the driver's hole
+    at the origin, the follower's at (E, 0), each the diameter of the sectors' pivot holes, so that
+    one pin (or dowel) through each carries the sector on its pivot.  ``path`` is the plate cut at
+    the nominal kerf or compensation (its holes come out the drawn size)."""
+
+    nominal: shapely.Polygon
+    path: shapely.Polygon
+    center_distance: float
+    diameters: tuple[float, float]
+    label: str
+    offset: tuple[float, float] = (0.0, 0.0)
+
+
+@dataclass(frozen=True)
+class StepPlay:
+    """What one step's pair does on the jig, made by the nominal process: the follower's free turn
+    (driver held at the place's angle) as play on its pitch curve, and the gap a feeler gauge meets
+    between the flanks at the marked tooth with the follower turned anticlockwise to its stop; each
+    a proven (lower, upper) bracket, mm.  ``play`` None: the pair binds (proven: touching or
+    overlapping everywhere within ±``bound`` mm of the rolling position, on the pitch curve);
+    ``play[1]`` infinite: it turns more than ``play[0]`` (a pitch) free, out of mesh, and
+    ``feeler`` is None."""
+
+    place: str
+    value: float
+    play: tuple[float, float] | None
+    feeler: tuple[float, float] | None
+    bound: float
 
 
 @dataclass(frozen=True)
@@ -77,13 +141,17 @@ class CouponData:
     size: tuple[float, float]
     thickness: float
     tolerance: float
+    jig: Jig
+    plays: tuple[StepPlay, ...]
+    """Per place and step (the pieces' order): the play as made with the nominal value."""
 
 
 def check_coupon(params) -> None:
     """Raise :class:`ProfileError` (one line) for a profile no coupon is made of."""
-    if params.mechanism != "gear-pair":
+    if not MECHANISMS[params.mechanism].coupons:
+        cut = " or ".join(m.name for m in MECHANISMS.values() if m.coupons)
         raise ProfileError(
-            f"mechanism = {params.mechanism!r}: a coupon is cut from a gear pair's teeth; give a gear-pair profile"
+            f"mechanism = {params.mechanism!r}: a coupon is cut from a gear pair's teeth; give a {cut} profile"
         )
     kind = params.process.kind
     if kind not in KEYS:
@@ -111,7 +179,7 @@ def _places(design: Design, g) -> tuple[tuple[str, float, float], ...]:
     """(place, φ1, φ2): the band's worst case and the largest drawn play, or one place."""
     tol, module = design.params.output.tolerance, g.module
     play = play_along(g, edge=0.0, tol=tol, reach=design.params.teeth.backlash + module)
-    worst = design.data["bands"][0]["worst_phi"]
+    worst = design.data["bands"][0]["worst_phi1"]  # gear 1's turn (``worst_phi`` is the driver's)
     tight = int(np.argmin(np.abs(g.phi1 - worst)))
     loose = int(np.nanargmax(play))
     if np.nanmax(play) - np.nanmin(play) <= max(4 * tol, 0.02 * float(np.nanmax(play))) or loose == tight:
@@ -129,9 +197,25 @@ def _root_angle(ring: np.ndarray, around: float, within: float) -> float:
     return around + ((theta[k] - around + np.pi) % (2 * np.pi) - np.pi)
 
 
-def _sector(part, theta: float, pitch_radius: float, module: float) -> tuple[shapely.Polygon, float, float]:
-    """The part's sector about polar angle ``theta`` with its hub and pivot hole, turned so
-    ``theta`` points up; the hub's radius (mm) and the turn (rad)."""
+def pin_hole(kind: str, tool: float = 0.0) -> float:
+    """The pivot hole (mm) of a coupon's sector whose gear has no bore, and of the jig for it."""
+    if kind != "cnc":
+        return PIN_HOLE_MM
+    return max(PIN_HOLE_MM, math.ceil(2 * 1.25 * tool) / 2)
+
+
+def _circle(centre: tuple[float, float], radius: float, tol: float) -> shapely.Polygon:
+    """A circle as a polygon whose chords stray at most ``tol`` inside it."""
+    step = 2 * math.acos(max(1 - tol / radius, -1.0))
+    return shapely.Point(centre).buffer(radius, quad_segs=max(8, math.ceil(math.pi / 2 / step)))
+
+
+def _sector(
+    part, theta: float, pitch_radius: float, module: float, pin: float, tol: float
+) -> tuple[shapely.Polygon, float, float, float]:
+    """The part's sector about polar angle ``theta`` with its hub and pivot hole (the bore, else a
+    pin hole of ``pin`` mm), turned so ``theta`` points up; the hub's radius (mm), the turn (rad)
+    and the pivot hole's diameter (mm)."""
     ring = part.outline.outer
     radius = np.hypot(ring[:, 0], ring[:, 1])
     pitch = math.pi * module / pitch_radius  # one pitch as an angle at the contact
@@ -140,8 +224,11 @@ def _sector(part, theta: float, pitch_radius: float, module: float) -> tuple[sha
     angle = np.arctan2(ring[:, 1], ring[:, 0])
     inside = np.abs((angle - (lo + hi) / 2 + np.pi) % (2 * np.pi) - np.pi) <= (hi - lo) / 2
     inner = 0.85 * float(radius[inside].min())  # inside every root of the sector
-    holes = part.outline.rings[1:]
-    reach = max((float(np.hypot(h[:, 0], h[:, 1]).max()) for h in holes), default=PIN_HOLE_MM / 2)
+    origin = shapely.Point(0, 0)
+    pivots = [h for h in part.outline.rings[1:] if shapely.Polygon(h).contains(origin)]
+    bore = part.pivot == "bore" and bool(pivots)
+    holes = [h for h in part.outline.rings[1:] if bore or not shapely.Polygon(h).contains(origin)]
+    reach = max(float(np.hypot(h[:, 0], h[:, 1]).max()) for h in pivots) if bore else pin / 2
     hub = min(reach + 2.5, 0.8 * inner)
     outer = float(radius.max()) + 1.0
     arc = np.linspace(lo, hi, 64)
@@ -160,11 +247,56 @@ def _sector(part, theta: float, pitch_radius: float, module: float) -> tuple[sha
     )
     gear = shapely.Polygon(ring, holes)
     piece = shapely.intersection(gear, shapely.union(fan, neck))
-    if part.pivot == "cross":  # no hole to pin it by: a pin hole
-        piece = shapely.difference(piece, shapely.Point(0, 0).buffer(PIN_HOLE_MM / 2, quad_segs=32))
+    if not bore:  # a pilot hole or a cross: the coupon's pin hole
+        piece = shapely.difference(piece, _circle((0.0, 0.0), pin / 2, tol))
     piece = max(getattr(piece, "geoms", [piece]), key=lambda p: p.area)
     turned = affinity.rotate(piece, math.pi / 2 - theta, origin=(0, 0), use_radians=True)
-    return shapely.geometry.polygon.orient(turned, 1.0), hub, math.pi / 2 - theta
+    return shapely.geometry.polygon.orient(turned, 1.0), hub, math.pi / 2 - theta, 2 * reach
+
+
+def fit_box(region, width: float, height: float) -> tuple[float, float, float] | None:
+    """Where a ``width`` × ``height`` box (mm) lies inside ``region``: its centre and its angle
+    (0: along x; 90: along y), the first row found of the region shrunk by half the height whose
+    longest run takes the width, checked by containment; None where none does."""
+    pieces = list(getattr(region, "geoms", [region]))
+    region = max(pieces, key=lambda g: g.area) if pieces else region
+    if region.is_empty:
+        return None
+    for angle in (0.0, 90.0):
+        turned = affinity.rotate(region, -angle, origin=(0, 0))
+        room = turned.buffer(-height / 2)
+        if room.is_empty:
+            continue
+        x0, y0, x1, y1 = room.bounds
+        rows = np.linspace(y0, y1, 24)[1:-1]
+        lines = shapely.intersection(shapely.linestrings([[[x0 - 1, y], [x1 + 1, y]] for y in rows]), room)
+        best = None
+        for y, line in zip(rows, lines):
+            for seg in getattr(line, "geoms", [line]):
+                if seg.is_empty or seg.geom_type != "LineString" or seg.length < width:
+                    continue
+                mid = (seg.coords[0][0] + seg.coords[-1][0]) / 2
+                box = shapely.box(mid - width / 2, y - height / 2, mid + width / 2, y + height / 2)
+                if turned.contains(box) and (best is None or seg.length > best[0]):
+                    best = (seg.length, mid, y)
+        if best is not None:
+            x, y = best[1:]
+            c, s_ = math.cos(math.radians(angle)), math.sin(math.radians(angle))
+            return x * c - y * s_, x * s_ + y * c, angle
+    return None
+
+
+def _with_tab(sector: shapely.Polygon, hub: float, hole: float, label: str) -> shapely.Polygon:
+    """``sector`` as it is where its arm holds ``label`` (1.5 mm letters), else with a tab below its
+    hub, away from its teeth, long enough for it."""
+    width = LABEL_CHAR_MM * 1.5 * len(label)
+    arm = sector.buffer(-LABEL_CLEAR_MM).difference(shapely.Point(0, 0).buffer(hub + LABEL_CLEAR_MM))
+    if fit_box(arm, width, 1.6) is not None:
+        return sector
+    side = max(2 * hub, 1.6 + 2 * LABEL_CLEAR_MM + 1.0)
+    end = hub + 2 * LABEL_CLEAR_MM + width + 0.5
+    tab = shapely.box(-side / 2, -end, side / 2, -(hole / 2 + 0.5))
+    return shapely.geometry.polygon.orient(shapely.union(sector, tab), 1.0)
 
 
 def _offset(polygon: shapely.Polygon, distance: float, tol: float) -> shapely.Polygon:
@@ -178,35 +310,68 @@ def _offset(polygon: shapely.Polygon, distance: float, tol: float) -> shapely.Po
 
 
 def coupon_data(design: Design) -> CouponData:
-    """The coupon of a (made) gear-pair design: its pieces at every step, laid out on one sheet."""
+    """The coupon of a (made) gear-pair design: its pieces at every step, the jig, laid out on one
+    sheet, and the play each step shows made with the nominal value."""
     params = design.params
     check_coupon(params)
     g = pair_geometry(design)
     out, process = params.output, params.process
+    kind, tol = process.kind, out.tolerance
     nominal = _nominal_value(params)
-    steps = tuple(sorted({round(max(0.0, nominal + s) if process.kind == "laser" else nominal + s, 6) for s in STEPS}))
-    tool = process.value("tool_diameter")
+    steps = tuple(sorted({round(max(0.0, nominal + s) if kind == "laser" else nominal + s, 6) for s in STEPS}))
+    tool = process.value("tool_diameter") if kind == "cnc" else 0.0
+    pin = pin_hole(kind, tool)
+    made = -step_offset(kind, nominal, tool)  # the made edge lies this far outside the path
     parts = design.parts()
     places = _places(design, g)
-    pieces = []
+    pieces, plays, holes = [], [], [0.0, 0.0]
+    e = g.center_distance
     for place, phi1, phi2 in places:
         r1 = float(np.interp(phi1, g.phi1, g.r1))
         sectors = (
-            _sector(parts[0], phi1, r1, g.module),
-            _sector(parts[1], math.pi - phi2, g.center_distance - r1, g.module),
+            _sector(parts[0], phi1, r1, g.module, pin, tol),
+            _sector(parts[1], math.pi - phi2, e - r1, g.module, pin, tol),
         )
-        for gear, (sector, hub, turn) in enumerate(sectors):
-            for value in steps:
-                text = f"{value:.2f}" if process.kind == "laser" else f"{value:+.2f}"
-                label = text if place == "any" else f"{text} {place[0].upper()}"
-                path = _offset(sector, step_offset(process.kind, value, tool), out.tolerance)
+        pair = Placed(
+            e,
+            (-sectors[0][2] - phi1, -sectors[1][2] + phi2),
+            e - r1,
+            (e - r1) * math.cos(params.teeth.pressure_angle),
+            g.module,
+        )
+        row: list[list[Piece]] = [[], []]
+        for gear, (sector, hub, turn, hole) in enumerate(sectors):
+            holes[gear] = hole
+            texts = [f"{value:.2f}" if kind == "laser" else f"{value:+.2f}" for value in steps]
+            labels = [text if place == "any" else f"{text} {place[0].upper()}" for text in texts]
+            sector = _with_tab(sector, hub, hole, max(labels, key=len))
+            for value, text, label in zip(steps, texts, labels):
+                path = _offset(sector, step_offset(kind, value, tool), tol)
                 name = f"{parts[gear].name} {place} {text}"
-                pieces.append(Piece(name, gear, place, value, label, sector, path, hub, turn, (0.0, 0.0)))
-    laid, size = _layout(pieces, len(steps), out.gap)
+                row[gear].append(Piece(name, gear, place, value, label, sector, path, hub, turn, (0.0, 0.0), hole))
+        made_pairs = [
+            (pair.world(_offset(d.path, made, tol), 0), pair.world(_offset(f.path, made, tol), 1)) for d, f in zip(*row)
+        ]
+        measured = [play_of(pair, *two) for two in made_pairs]
+        # the feeler's place: the clockwise contact of the nominal step (else the nearest free one)
+        order = sorted(range(len(steps)), key=lambda k: (abs(steps[k] - nominal), k))
+        first = next((k for k in order if measured[k][1] is not None), None)
+        mark = ()
+        if first is not None:
+            on_follower = at = measured[first][2][1]
+            back = affinity.translate(shapely.Point(on_follower), -e, 0.0)  # into the sector's frame
+            mark = tooth_mark(row[1][0].nominal, turned(back, (0.0, 0.0), -pair.angles[1]).coords[0], g.module)
+        row[1] = [Piece(**{**p.__dict__, "mark": mark}) for p in row[1]]
+        for k, (play, up, _) in enumerate(measured):
+            feeler = None if up is None else feeler_gap(pair, *made_pairs[k], up, at)
+            plays.append(StepPlay(place, steps[k], play, feeler, g.module))
+        pieces += row[0] + row[1]
+    jig = _jig(e, tuple(holes), kind, nominal, tool, tol)
+    laid, size, jig = _layout(pieces, len(steps), out.gap, jig)
     return CouponData(
         params.name,
-        process.kind,
-        KEYS[process.kind],
+        kind,
+        KEYS[kind],
         nominal,
         steps,
         tuple((p, phi1) for p, phi1, _ in places),
@@ -214,14 +379,30 @@ def coupon_data(design: Design) -> CouponData:
         laid,
         size,
         out.thickness,
-        out.tolerance,
+        tol,
+        jig,
+        tuple(plays),
     )
 
 
-def _layout(pieces: list[Piece], columns: int, gap: float) -> tuple[tuple[Piece, ...], tuple[float, float]]:
+def _jig(e: float, holes: tuple[float, float], kind: str, nominal: float, tool: float, tol: float) -> Jig:
+    """The plate: the hull of two discs :data:`JIG_RIM_MM` beyond the larger hole about the pivots,
+    less the sectors' two pivot holes."""
+    rim = max(holes) / 2 + JIG_RIM_MM
+    plate = shapely.convex_hull(shapely.union(_circle((0.0, 0.0), rim, tol), _circle((e, 0.0), rim, tol)))
+    plate = shapely.difference(
+        plate, shapely.union(_circle((0.0, 0.0), holes[0] / 2, tol), _circle((e, 0.0), holes[1] / 2, tol))
+    )
+    plate = shapely.geometry.polygon.orient(plate, 1.0)
+    return Jig(plate, _offset(plate, step_offset(kind, nominal, tool), tol), e, holes, f"{e:.2f} mm")
+
+
+def _layout(
+    pieces: list[Piece], columns: int, gap: float, jig: Jig
+) -> tuple[tuple[Piece, ...], tuple[float, float], Jig]:
     """Pieces in a grid: one column per step (smallest on the left), one row per gear and place
-    (the first at the bottom); ``gap`` mm between paths and around them.  Returns the pieces
-    placed and the sheet's size (mm)."""
+    (the first at the bottom), the jig above them; ``gap`` mm between paths and around them.
+    Returns the pieces placed, the sheet's size (mm) and the jig placed."""
     rows = len(pieces) // columns
     bounds = np.array([p.path.bounds for p in pieces]).reshape(rows, columns, 4)
     widths = (bounds[:, :, 2] - bounds[:, :, 0]).max(axis=0)
@@ -233,5 +414,8 @@ def _layout(pieces: list[Piece], columns: int, gap: float) -> tuple[tuple[Piece,
         row, col = divmod(k, columns)
         b = bounds[row, col]
         placed.append(Piece(**{**p.__dict__, "offset": (float(x0[col] - b[0]), float(y0[row] - b[1]))}))
-    size = (float(x0[-1] + widths[-1] + gap), float(y0[-1] + heights[-1] + gap))
-    return tuple(placed), size
+    top = float(y0[-1] + heights[-1] + gap)
+    jb = jig.path.bounds
+    jig = Jig(**{**jig.__dict__, "offset": (gap - jb[0], top - jb[1])})
+    width = max(float(x0[-1] + widths[-1] + gap), jb[2] - jb[0] + 2 * gap)
+    return tuple(placed), (width, top + jb[3] - jb[1] + gap), jig

@@ -20,6 +20,7 @@ import numpy as np
 from ..findings import Finding, finding
 from ..mechanisms.base import Design
 from .band import Band, PairGeometry, pair_band
+from .certify import PER_TOOTH
 
 __all__ = [
     "sliver",
@@ -29,7 +30,11 @@ __all__ = [
     "made",
     "needed_backlash",
     "pair_bands",
+    "follower_speed",
     "pair_geometry",
+    "radial_room",
+    "remedies",
+    "tips_reach_roots",
     "with_bands",
     "writing_play",
 ]
@@ -120,10 +125,10 @@ def _excess(params, band: Band) -> float:
     """How much more play the band's worst case keeps than it must (mm; negative: short): the
     band's margin under a process, with none what the writing can take."""
     exact = _process(params) is None or _process(params).kind == "none"
-    return band.band[0] - (writing_play(params) if exact else band.margin)
+    return band.least - (writing_play(params) if exact else band.margin)
 
 
-def chosen(given, design_of, *, designs: int = 4):
+def chosen(given, design_of, *, designs: int = 6):
     """(draft, bands) of ``given`` as made, with the backlash gearcad chooses: the smallest that
     keeps the band's worst case free, found over at most ``designs`` cuts of the pair.
 
@@ -148,8 +153,72 @@ def chosen(given, design_of, *, designs: int = 4):
         return retry.teeth.backlash, _excess(retry, found[0]), (d, found)
 
     first = (params.teeth.backlash, _excess(params, bands[0]), (draft, bands))
+    if tips_reach_roots(
+        params, bands[0], draft.detail.teeth.plan.module
+    ):  # no backlash frees it: the closed form's flanks, and the finding
+        return draft, bands
     limit = sliver(params.teeth.module)  # a jam's shortfall: a shrink of the flanks, ~0.9 of the backlash
     return smallest_fit(first, cut, given.output.tolerance, limit=limit, gain=1.1, designs=designs)
+
+
+CLEARANCE = 0.25
+"""Radial clearance of the standard rack the teeth are cut by (dedendum 1.25 less addendum 1), × module."""
+
+
+def radial_room(params, module: float) -> float:
+    """What is left of the radial clearance (mm) with both edges at their largest and the
+    centres' error taken from it (``teeth.clearance`` moves every flank in, the tips too: it adds
+    twice itself): below the band's margin, the tips reach the mate's roots."""
+    process = params.process
+    edge = max(0.0, process.edge(params.output.chamfer)[2])
+    teeth = getattr(params, "teeth", None)
+    extra = 2 * getattr(teeth, "clearance", 0.0) if teeth is not None else 0.0
+    return CLEARANCE * module - 2 * edge - process.center_spread() + extra
+
+
+def tips_reach_roots(params, band: Band, module: float) -> bool:
+    """Whether the contact that closes the play is a tip against the mate's root (the radial
+    room, :func:`radial_room`, under twice the margin): backlash cannot help, only the clearance,
+    smaller edges or the centres."""
+    return radial_room(params, module) < 2 * abs(band.margin)
+
+
+def remedies(given, band: Band, design, module: float) -> tuple[tuple[str, ...], tuple[str, ...]]:
+    """(remedies, refused): ``--set KEY=VALUE`` lines each of which, applied alone to ``given``,
+    makes the pair fit — tried here by ``design`` (a full design of the profile so changed) — and
+    what was tried and did not (one line each, why).  Which keys are tried follows the contact
+    that closes the play: a tip in the mate's root (:func:`tips_reach_roots`) takes the first
+    layers' bulge off (``output.chamfer``, printers) or moves every flank in (``teeth.clearance``);
+    flanks take more backlash (``teeth.backlash``)."""
+    from ..errors import GearcadError
+
+    process, tol = given.process, given.output.tolerance
+    teeth = given.teeth
+    tried: list[tuple[str, float, dict]] = []
+    if tips_reach_roots(made(given), band, module):
+        foot = process.value("elephant_foot")
+        if foot > given.output.chamfer:
+            out = given.output.model_copy(update={"chamfer": foot})
+            tried.append(("output.chamfer", foot, {"output": out}))
+        lack = 2 * abs(band.margin) - radial_room(made(given), module)
+        clearance = math.ceil((teeth.clearance + lack / 2 + tol) * 1000) / 1000
+        tried.append(("teeth.clearance", clearance, {"teeth": teeth.model_copy(update={"clearance": clearance})}))
+    else:
+        backlash = math.ceil((teeth.backlash + band.needed_backlash + tol / 4) * 1000) / 1000
+        tried.append(("teeth.backlash", backlash, {"teeth": teeth.model_copy(update={"backlash": backlash})}))
+    good, bad = [], []
+    for key, value, update in tried:
+        line = f"--set {key}={value:g}"
+        try:
+            trial = design(given.model_copy(update=update))
+        except GearcadError as error:
+            bad.append(f"{line} is refused ({error})")
+            continue
+        if any(f.code == "jams" for f in trial.findings):
+            bad.append(f"{line} still jams")
+        else:
+            good.append(line)
+    return tuple(good), tuple(bad)
 
 
 def smallest_fit(first, cut, tol: float, *, limit: float, gain: float = 1.0, designs: int = 4):
@@ -160,7 +229,8 @@ def smallest_fit(first, cut, tol: float, *, limit: float, gain: float = 1.0, des
     its margin (negative: short).  While the cuts are short the next adds ``gain`` × what the
     shortest lacks; one that fits by more than the resolution (a tolerance, or 1 % of the
     backlash) is cut again with the excess taken off; between a backlash that jams and one that
-    fits the next lies where the jam's shortfall runs out (kept a tenth of the gap from each).
+    fits the next halves the bracket (a noncircular pair's play jumps as the tips leave the roots:
+    the secant crept).
     No cut at ``limit`` mm or more (the teeth would be slivers).  Returns the smallest cut that
     fits, else the last."""
     tries = [first]
@@ -177,9 +247,8 @@ def smallest_fit(first, cut, tol: float, *, limit: float, gain: float = 1.0, des
             guess = best[0] - best[1]
         else:
             guess = short[0] - gain * short[1] + 0.25 * tol
-            if best is not None:
-                width = best[0] - short[0]
-                guess = min(max(guess, short[0] + 0.1 * width), best[0] - 0.1 * width)
+            if best is not None:  # bracketed: halve it (the play jumps as the tips leave the roots)
+                guess = 0.5 * (short[0] + best[0])
         if guess >= limit:
             break
         tries.append(cut(max(guess, 0.0)))
@@ -189,26 +258,69 @@ def smallest_fit(first, cut, tol: float, *, limit: float, gain: float = 1.0, des
 
 def pair_geometry(design: Design, positions: int | None = None) -> PairGeometry | None:
     """A toothed gear pair's geometry as the band measures it, at ``positions`` driver angles over
-    one cycle (default: one per driver tooth, 12 to 48); ``None`` for any other design."""
+    one cycle (default: one per driver tooth, 12 to 48), and at any others the certificate asks
+    for; ``None`` for any other design."""
     detail = design.detail
     teeth = getattr(detail, "teeth", None)
     if design.mechanism != "gear-pair" or teeth is None:
         return None
     pair = detail.pitch.pair
     positions = positions or min(48, max(12, teeth.plan.teeth[0]))
-    phi1 = np.linspace(0.0, pair.cycle, positions, endpoint=False)
     first = teeth.gears[0]
-    arc = teeth.frames[0].arc(phi1 % (2 * np.pi))
-    return PairGeometry(
-        rings=tuple(g.outline.outer for g in teeth.gears),
-        center_distance=pair.center_distance,
-        phi1=phi1,
-        phi2=pair.angle_map(phi1),
-        r1=pair.gear1.r(phi1 % (2 * np.pi)),
-        module=teeth.plan.module,
-        pressure_angle=design.params.teeth.pressure_angle,
-        teeth=np.floor((arc - first.phase) / first.rack.pitch).astype(int) % first.teeth,
-    )
+    rings = tuple(g.outline.outer for g in teeth.gears)
+    alpha = design.params.teeth.pressure_angle
+
+    def at(phi1: np.ndarray) -> PairGeometry:
+        arc = teeth.frames[0].arc(phi1 % (2 * np.pi))
+        return PairGeometry(
+            rings=rings,
+            center_distance=pair.center_distance,
+            phi1=phi1,
+            phi2=pair.angle_map(phi1),
+            r1=pair.gear1.r(phi1 % (2 * np.pi)),
+            module=teeth.plan.module,
+            pressure_angle=alpha,
+            teeth=np.floor((arc - first.phase) / first.rack.pitch).astype(int) % first.teeth,
+            at=at,
+            ratio=follower_speed(pair.angle_map.slope, pair.cycle),
+            cycle=pair.cycle,
+            first=start,
+        )
+
+    frame = teeth.frames[0]
+    turns = max(1, round(pair.cycle / (2 * np.pi)))
+    perimeter = float(frame.arc(np.array([2 * np.pi]))[0])
+    s = np.linspace(0.0, perimeter * turns, PER_TOOTH * first.teeth * turns, endpoint=False)
+    start = frame.angle(s % perimeter) + 2 * np.pi * np.floor(s / perimeter)
+    return at(np.linspace(0.0, pair.cycle, positions, endpoint=False))
+
+
+def follower_speed(slope, cycle: float, samples: int = 8192):
+    """ratio(lo, hi) -> (k, s) per driver interval [lo, hi] (rad; hi may pass the cycle): the
+    largest follower speed k = dφ2/dφ1 there and the largest speed of the unit instant centre
+    k/(1+k)·(cos φ1, sin φ1) (its distance from gear 1's pivot over E, and that turning), from
+    ``samples`` even driver angles over the ``cycle``, each raised by the largest step between
+    neighbours (what falls between two samples)."""
+    grid = np.linspace(0.0, cycle, samples + 1)
+    k = np.abs(slope(grid))
+    unit = k / (1 + k)
+    turn = np.gradient(unit, grid)
+    speed = np.hypot(unit, turn)
+    k_step, s_step = float(np.max(np.abs(np.diff(k)))), float(np.max(np.abs(np.diff(speed))))
+    k, speed = k[:-1], speed[:-1]
+    step = cycle / samples
+
+    def ratio(lo, hi) -> tuple[np.ndarray, np.ndarray]:
+        lo, hi = np.atleast_1d(np.asarray(lo, dtype=float)), np.atleast_1d(np.asarray(hi, dtype=float))
+        first = np.floor(lo / step).astype(int)
+        last = np.ceil(hi / step).astype(int)
+        kmax, smax = np.empty(len(lo)), np.empty(len(lo))
+        for i, (f, g) in enumerate(zip(first.tolist(), last.tolist())):
+            idx = np.arange(f, max(g, f) + 1) % samples
+            kmax[i], smax[i] = k[idx].max(), speed[idx].max()
+        return kmax + k_step, smax + s_step
+
+    return ratio
 
 
 def pair_bands(design: Design) -> tuple[Band, ...]:
@@ -220,25 +332,75 @@ def pair_bands(design: Design) -> tuple[Band, ...]:
     process = params.process
     names = f"{detail.pitch.gears[0].name}/{detail.pitch.gears[1].name}"
     tol = params.output.tolerance
-    return (
-        pair_band(
-            geometry,
-            edge=process.edge(params.output.chamfer),
-            spread=process.center_spread(),
-            tol=tol,
-            backlash=params.teeth.backlash,
-            name=names,
-        ),
+    band = pair_band(
+        geometry,
+        edge=process.edge(params.output.chamfer),
+        spread=process.center_spread(),
+        tol=tol,
+        backlash=params.teeth.backlash,
+        name=names,
     )
+    return (_as_driver(band, design),)
 
 
-def with_bands(design: Design, bands: tuple[Band, ...]) -> Design:
-    """The design with its bands in the report, the checks' lines and the findings."""
+def _as_driver(band: Band, design: Design) -> Band:
+    """The band with its worst place given on the driver (``pair.driver``): where that is gear 2,
+    its turn φ2 and its tooth at the contact (gear 1's turn kept as ``gear1_phi``)."""
+    if getattr(design.params, "driver", 1) != 2 or band.mate_phi is None:
+        return band
+    teeth = design.detail.teeth
+    gear, frame = teeth.gears[1], teeth.frames[1]
+    phi2 = float(band.mate_phi) % (2 * np.pi)
+    arc = float(frame.arc(np.array([(np.pi - phi2) % (2 * np.pi)]))[0])  # the contact on gear 2
+    tooth = int(np.floor((arc - gear.phase) / gear.rack.pitch)) % gear.teeth
+    return replace(band, worst_phi=phi2, worst_tooth=tooth, gear1_phi=band.worst_phi)
+
+
+def _jam_sentence(params, b: Band, where: str, cures, module: float) -> str:
+    """The ``jams`` finding's sentence: how far short, where, which contact closes the play, and
+    the remedies tried (``cures``: (fits, refused), :func:`remedies`; None: not tried)."""
+    if b.unproven:
+        lo, hi = (math.degrees(x) for x in b.certificate.open)
+        head = (
+            f"{b.mesh}: the play could not be certified within the work budget between driver angles "
+            f"{lo:.2f}° and {hi:.2f}° (the bound reaches {b.least:.4f} mm, the margin is {b.margin:.4f} mm; "
+            f"least measured {b.band[0]:.4f} mm at {where})"
+        )
+    else:
+        head = (
+            f"{b.mesh}: the play falls to {b.least:.4f} mm at {where} (edges {b.edge[2]:+.3f} mm, centres "
+            f"−{b.center_spread:.3f} mm); it needs {b.needed_backlash:.3f} mm more"
+        )
+    tips = tips_reach_roots(params, b, module)
+    contact = (
+        "the tips reach the mate's roots (the radial clearance, 0.25 module, does not take both edges grown "
+        "and the centres' error): backlash cannot free it"
+        if tips
+        else "flank against flank: more backlash frees it"
+    )
+    text = f"{head}; {contact}"
+    if cures is None:
+        return text
+    good, bad = cures
+    if good:
+        text += "; it fits with " + " or ".join(good)
+    else:
+        text += "; no single key tried frees it (a larger teeth.module, or a tighter process)"
+    if bad:
+        text += " (" + "; ".join(bad) + ")"
+    return text
+
+
+def with_bands(design: Design, bands: tuple[Band, ...], cures=None, fixed: bool | None = None) -> Design:
+    """The design with its bands in the report, the checks' lines and the findings (``cures``:
+    the remedies tried for a jam, :func:`remedies`; ``fixed``: whether the profile gave the
+    backlash, default whether the design's parameters name it)."""
     if not bands:
         return design
     process = design.params.process
     findings, lines = list(design.findings), list(design.details)
-    fixed = "backlash" in design.params.teeth.model_fields_set
+    fixed = "backlash" in design.params.teeth.model_fields_set if fixed is None else fixed
+    module = design.detail.teeth.plan.module
     for b in bands:
         lines.append(
             f"band {b.mesh} ({process.kind}): play {b.nominal[0]:.4f}…{b.nominal[1]:.4f} mm as drawn, "
@@ -246,18 +408,8 @@ def with_bands(design: Design, bands: tuple[Band, ...]) -> Design:
         )
         where = f"tooth {b.worst_tooth} of the driver at driver angle {math.degrees(b.worst_phi):.1f}°"
         if not b.fits:
-            findings.append(
-                finding(
-                    "jams",
-                    f"{b.mesh}: the play falls to {b.band[0]:.4f} mm at {where} (edges {b.edge[2]:+.3f} mm, "
-                    f"centres −{b.center_spread:.3f} mm); it fits with teeth.backlash "
-                    f"+{b.needed_backlash:.3f} mm, or the centres {b.as_dict()['center_distance_change']:.3f} mm "
-                    f"apart, or the parts {b.needed_backlash * math.cos(b.pressure_angle) / 4:.3f} mm smaller "
-                    "on each edge (if the tips reach the mate's roots, only the centres or smaller parts help)",
-                    b.mesh,
-                )
-            )
-            if fixed:
+            findings.append(finding("jams", _jam_sentence(design.params, b, where, cures, module), b.mesh))
+            if fixed and not tips_reach_roots(design.params, b, module):
                 need = design.params.teeth.backlash + b.needed_backlash
                 findings.append(
                     finding("backlash-fixed", f"{b.mesh}: teeth.backlash = {need:.3f} mm keeps the worst case free")

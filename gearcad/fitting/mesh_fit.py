@@ -61,7 +61,7 @@ def closed_form(params) -> float:
 
 def _excess(bands) -> float:
     """How far the tightest mesh's worst case is above its margin (mm; negative: short)."""
-    return min(mb.band.band[0] - mb.band.margin for mb in bands)
+    return min(mb.band.least - mb.band.margin for mb in bands)
 
 
 def chosen(given, design_of):

@@ -16,7 +16,17 @@ from ..errors import ChecksFailed
 from ..findings import Finding, check_codes, failing
 from .parts import Part, Placement
 
-__all__ = ["SCHEMA_VERSION", "Assembly", "Design", "Motion", "Table", "assembly_depth", "assembly_overlap", "finite"]
+__all__ = [
+    "SCHEMA_VERSION",
+    "Assembly",
+    "Design",
+    "Motion",
+    "Table",
+    "assembly_depth",
+    "assembly_gap",
+    "assembly_overlap",
+    "finite",
+]
 
 SCHEMA_VERSION = 2
 """report.json's schema: 2 gave every mechanism the same parts[], assembly, warnings and files blocks."""
@@ -52,11 +62,16 @@ class Assembly:
     depth: float | None = None
     """Largest penetration depth of neighbours as assembled, mm (None where not measured)."""
     allowed_depth: float | None = None
+    gap: float | None = None
+    """Widest gap of the rolling contacts as assembled, mm (None where none rolls)."""
+    allowed_gap: float | None = None
 
     @property
     def fits(self) -> bool:
         deep = self.depth is not None and self.allowed_depth is not None and self.depth > self.allowed_depth
-        return self.overlap <= self.allowed and (self.nudged is None or self.nudged > self.allowed) and not deep
+        apart = self.gap is not None and self.allowed_gap is not None and self.gap > self.allowed_gap
+        bites = self.nudged is None or self.nudged > self.allowed
+        return self.overlap <= self.allowed and bites and not deep and not apart
 
     def as_dict(self) -> dict:
         return {
@@ -66,6 +81,7 @@ class Assembly:
             "positions": self.positions,
             "max_depth": self.depth,
             "allowed_depth": self.allowed_depth,
+            **({"gap": self.gap, "allowed_gap": self.allowed_gap} if self.gap is not None else {}),
             "fits": self.fits,
         }
 
@@ -83,6 +99,12 @@ def assembly_depth(parts: dict[str, Part], placements: list[Placement], pairs, *
     polygons = [parts[p.part].outline.polygon(p.angle, p.offset) for p in placements]
     first, second = zip(*((polygons[i], polygons[j]) for i, j in pairs)) if pairs else ((), ())
     return float(max(overlap_depths(first, second, step=step).depth, default=0.0))
+
+
+def assembly_gap(parts: dict[str, Part], placements: list[Placement], pairs) -> float:
+    """The widest gap (mm) between the placed parts named in ``pairs`` (0 where they touch)."""
+    polygons = [parts[p.part].outline.polygon(p.angle, p.offset) for p in placements]
+    return max((float(polygons[i].distance(polygons[j])) for i, j in pairs), default=0.0)
 
 
 def finite(value):
@@ -136,6 +158,8 @@ class Design:
     made when STEP is written with ``output.kerf`` > 0; see :meth:`made_rings`."""
     charts: dict = field(default_factory=dict)
     """Chart name → the data it is drawn from, computed with the design (exporters only draw)."""
+    placed: str = "meshing parts touch"
+    """What the assembly drawing shows, in the page's words (how the parts are placed)."""
     seconds: float = field(default=0.0, compare=False)
     stage: str = "full"
     """How far the design went: ``pitch`` and ``teeth`` (gear pairs only) have no parts, no

@@ -9,6 +9,7 @@ and build the :class:`Design` whole.
 
 from __future__ import annotations
 
+import re
 import time
 from dataclasses import dataclass, field
 from typing import Any
@@ -19,12 +20,11 @@ from ..findings import Finding, finding
 from ..formats import TABLE
 from ..tolerances import budget
 from . import layouts
-from .base import Assembly, Design, Motion, Table, assembly_depth, assembly_overlap
-from .marks import assembly_marks
-from .papers import papers_block
+from .base import Assembly, Design, Motion, Table, assembly_depth, assembly_gap, assembly_overlap
 from .parts import BoreSpec, Part, Placement, cut_paths, make_part
+from .registry import MECHANISMS
 
-__all__ = ["Contact", "Draft", "PartSpec", "Proof", "finish", "prove"]
+__all__ = ["Contact", "Draft", "PartSpec", "Proof", "TOUCHES", "finish", "prove"]
 
 
 @dataclass(frozen=True)
@@ -44,15 +44,23 @@ class PartSpec:
     """Other outer rings of the solid's end faces the chamfer must fit (a twisted gear's end sections)."""
 
 
+TOUCHES = ("mesh", "rolling", "apart")
+"""What touch a :class:`Contact` is, each with its proof that can fail both ways."""
+
+
 @dataclass(frozen=True)
 class Contact:
-    """Two placed parts (indices into the placements) that touch as assembled.
+    """Two placed parts (indices into the placements) and what touch they are (``touch``):
 
-    Toothed (``module`` given), they may overlap by the teeth's allowance and, the second turned
-    by the budget's nudge arc over ``radius`` (its pitch radius at the contact, mm) either way,
-    must overlap by more — unless ``nudge`` is False because the mechanism proved the mesh over
-    a whole cycle itself (a :class:`Proof`).  Plain outlines may overlap by the tolerance along
-    ``length`` mm of their contact (0: they must not touch at all).
+    - ``"mesh"``, toothed (``module`` given): they may overlap by the teeth's allowance and, the
+      second turned by the budget's nudge arc over ``radius`` (its pitch radius at the contact,
+      mm) either way, must overlap by more — unless ``nudge`` is False because the mechanism
+      proved the mesh over a whole cycle itself (a :class:`Proof`);
+    - ``"rolling"``, smooth outlines rolling on each other along ``length`` mm: they may overlap
+      by the tolerance along that length and leave no gap wider than the budget's depth (2·tol);
+    - ``"apart"``: they must not touch at all.
+
+    Left out, ``touch`` is "mesh" with a module, "rolling" with a length, else "apart".
     """
 
     first: int
@@ -61,6 +69,15 @@ class Contact:
     radius: float = 0.0
     length: float = 0.0
     nudge: bool = True
+    touch: str = ""
+
+    def __post_init__(self):
+        touch = self.touch or ("mesh" if self.module is not None else "rolling" if self.length > 0 else "apart")
+        if touch not in TOUCHES:
+            raise ValueError(f"touch = {touch!r}: must be one of {', '.join(TOUCHES)}")
+        if (touch == "mesh") != (self.module is not None) or (touch == "rolling") != (self.length > 0):
+            raise ValueError(f"a {touch} contact: a module only for a mesh, a length (> 0) only for rolling")
+        object.__setattr__(self, "touch", touch)
 
 
 class Proof:
@@ -97,21 +114,24 @@ class Draft:
     """The mechanism's own mesh proofs over a cycle (:class:`Proof` each), joined to the assembly's."""
     where: str = "assembly"
     """What a finding about the assembly names as its place."""
+    placed: str = "meshing parts touch"
+    """What the assembly drawing shows, in the page's words (how the parts are placed)."""
 
 
 def prove(parts: dict[str, Part], draft: Draft) -> Assembly:
-    """The interference proof of the draft's contacts, with one overlap and nudge policy."""
+    """The proof of the draft's contacts, each by its touch, with one overlap and nudge policy:
+    no overlap beyond the budget; a mesh, turned a little, bites; a rolling contact leaves no gap."""
     b = budget(draft.params.output.tolerance)
     placements = list(draft.placements)
     pairs = [(c.first, c.second) for c in draft.contacts]
     overlap = assembly_overlap(parts, placements, pairs)
     allowed = max(
-        (b.teeth_overlap(c.module) if c.module is not None else b.allowed_overlap(c.length) for c in draft.contacts),
+        (b.teeth_overlap(c.module) if c.touch == "mesh" else b.allowed_overlap(c.length) for c in draft.contacts),
         default=0.0,
     )
     nudged = [p.nudged_min_overlap for p in draft.proofs]
     for c in draft.contacts:
-        if c.module is None or not c.nudge:
+        if c.touch != "mesh" or not c.nudge:
             continue
         turn = b.nudge_arc(module=c.module) / c.radius
         first, mate = placements[c.first], placements[c.second]
@@ -120,11 +140,12 @@ def prove(parts: dict[str, Part], draft: Draft) -> Assembly:
         nudged.append(max(assembly_overlap(parts, [first, t], [(0, 1)]) for t in turned))
     proofs = draft.proofs
     # depth, not only area: a long thin sliver passes an area bound but binds the made parts
-    toothed = [(c.first, c.second) for c in draft.contacts if c.module is not None]
+    toothed = [(c.first, c.second) for c in draft.contacts if c.touch == "mesh"]
     depths = [p.max_depth for p in proofs]
     if toothed:
-        step = 0.1 * min(c.module for c in draft.contacts if c.module is not None)
+        step = 0.1 * min(c.module for c in draft.contacts if c.touch == "mesh")
         depths.append(assembly_depth(parts, placements, toothed, step=step))
+    rolling = [(c.first, c.second) for c in draft.contacts if c.touch == "rolling"]
     return Assembly(
         max([overlap] + [p.max_overlap for p in proofs]),
         proofs[0].allowed_overlap if proofs else allowed,
@@ -132,13 +153,22 @@ def prove(parts: dict[str, Part], draft: Draft) -> Assembly:
         proofs[0].positions if proofs else 1,
         max(depths) if depths else None,
         b.allowed_depth if depths else None,
+        gap=assembly_gap(parts, placements, rolling) if rolling else None,
+        allowed_gap=b.allowed_depth if rolling else None,
     )
+
+
+def _hook(draft: Draft, name: str):
+    """The draft's mechanism's hook ``name`` (None for a draft no registry entry names)."""
+    entry = MECHANISMS.get(draft.mechanism)
+    return None if entry is None else entry.hook(name)
 
 
 def _with_papers(draft: Draft) -> dict:
     """The draft's report blocks and, for a profile that reproduces a seed, the papers' numbers
     beside gearcad's (``papers``)."""
-    block = papers_block(draft.params, draft.data)
+    papers = _hook(draft, "papers")
+    block = None if papers is None else papers(draft.params, draft.data)
     return draft.data if block is None else {**draft.data, "papers": block}
 
 
@@ -152,24 +182,26 @@ def finish(draft: Draft, *, start: float | None = None) -> Design:
         for s in draft.parts
     )
     router = getattr(getattr(draft.params, "process", None), "kind", None) == "cnc"
-    parts = assembly_marks(draft, cut_paths(made, out, router=router))  # a gear pair's dots where its teeth meet
+    parts = cut_paths(made, out, router=router)
+    marks = _hook(draft, "marks")  # a gear pair's dots where its teeth meet
+    parts = marks(draft, parts) if marks is not None else parts
     assembly = prove({p.name: p for p in parts}, draft)
     findings = draft.findings
     if not assembly.fits and not any(f.code == "interference" for f in findings):
-        message = f"parts overlap by {assembly.overlap:.4g} mm² as assembled (allowed {assembly.allowed:.3g} mm²)"
-        if assembly.depth is not None and assembly.depth > assembly.allowed_depth:
-            message += f", {assembly.depth * 1e3:.3g} µm deep (allowed {assembly.allowed_depth * 1e3:.3g} µm)"
-        findings += (finding("interference", message, draft.where),)
+        findings += (finding("interference", _unfit(assembly), draft.where),)
     line = f"assembly: max overlap {assembly.overlap:.3g} mm² (allowed {assembly.allowed:.3g})"
     if assembly.nudged is not None:
         line += f", nudged {assembly.nudged:.3g} mm²"
-    wholes = {w for f in TABLE if f.name in set(out.formats) for w in f.wholes}
+    if assembly.gap is not None:
+        line += f", rolling gap {assembly.gap:.3g} mm (allowed {assembly.allowed_gap:.3g})"
+    chosen = [f for f in TABLE if f.name in set(out.formats)]
+    wholes = {w for f in chosen for w in f.wholes}
     plates = layouts.plate_layout(parts, draft.placements, out, draft.sections) if "plate" in wholes else None
     findings += _too_large(plates)
     return Design(
         params=draft.params,
         mechanism=draft.mechanism,
-        summary=draft.summary,
+        summary=counted(draft.summary, len(findings)),
         findings=findings,
         part_list=parts,
         placements=draft.placements,
@@ -183,10 +215,27 @@ def finish(draft: Draft, *, start: float | None = None) -> Design:
         sheet=layouts.sheet_layout(parts, draft.placements, out) if "sheet" in wholes else (),
         plates=plates.plates if plates is not None else (),
         sections=draft.sections,
-        made=_made_rings(made, out) if "step" in out.formats and out.kerf > 0 else {},
+        made=_made_rings(made, out) if any(f.exact for f in chosen) and out.kerf > 0 else {},
         charts=draft.charts,
+        placed=draft.placed,
         seconds=time.perf_counter() - start,
     )
+
+
+def _unfit(a: Assembly) -> str:
+    """Why the assembly does not fit, in one sentence: a gap where parts roll, teeth that do not
+    engage when turned, or parts that overlap (by area, and by depth)."""
+    if a.gap is not None and a.gap > a.allowed_gap:
+        return f"rolling parts stand {a.gap:.4g} mm apart as assembled (allowed {a.allowed_gap:.3g} mm): no contact"
+    if a.nudged is not None and a.overlap <= a.allowed and a.nudged <= a.allowed:
+        return (
+            f"meshing parts turned a little overlap by only {a.nudged:.4g} mm² (more than {a.allowed:.3g} "
+            "needed): their teeth do not engage"
+        )
+    message = f"parts overlap by {a.overlap:.4g} mm² as assembled (allowed {a.allowed:.3g} mm²)"
+    if a.depth is not None and a.depth > a.allowed_depth:
+        message += f", {a.depth * 1e3:.3g} µm deep (allowed {a.allowed_depth * 1e3:.3g} µm)"
+    return message
 
 
 def _too_large(plates) -> tuple:
@@ -208,6 +257,13 @@ def _too_large(plates) -> tuple:
             )
         )
     return tuple(found)
+
+
+def counted(summary: str, findings: int) -> str:
+    """The summary with its "N warning(s)" saying how many findings the design ends with: a
+    mechanism counts its own when it draws, and the fit's bands and the assembly's proof may
+    add more (the headline, report.json, the page and ``Design.findings`` agree)."""
+    return re.sub(r"\b\d+ warning\(s\)", f"{findings} warning(s)", summary)
 
 
 def _made_rings(blanks, out) -> dict:

@@ -45,6 +45,23 @@ class GearPairDetail:
     """What the papers add: seed 004's statements, seed 002's shoe and vehicle speed."""
 
 
+def _charts(pitch, teeth, rings, papers) -> dict:
+    """Chart file name → what it is drawn from: the pitch curves in mesh, the kinematics, the teeth
+    in mesh, and what the papers add (seed 004's type-2 pair, seed 002's vehicle and shoe)."""
+    charts = {"pitch_curves.png": (pitch, rings), "kinematics.png": pitch}
+    if teeth is not None:
+        charts["mesh.png"] = (pitch, teeth)
+    extra = papers.charts if papers is not None and papers.charts else {}
+    if "elliptic_type2" in extra:
+        charts["elliptic_type2.png"] = extra["elliptic_type2"]
+    if "walker_speed" in extra:
+        charts["vehicle_speed.png"] = extra["walker_speed"]
+        charts["paper_pitch_curves.png"] = extra["walker_pitch"]
+    if "shoe" in extra:
+        charts["shoe.png"] = extra["shoe"]
+    return charts
+
+
 def frames_for(cycle: float, teeth: int | None) -> int:
     """Enough frames that the driver turns at most ~1/3 of a tooth (or 5°) per frame, ≤ 180."""
     step = (2 * math.pi / teeth / 3) if teeth else math.radians(5)
@@ -227,6 +244,37 @@ def _normal_module_note(params: GearPairParams, pitch: PairDesign, teeth: Toothe
     )
 
 
+def _pressure_angle(params: GearPairParams, pitch: PairDesign, alpha: float) -> tuple:
+    """A ``pressure-angle`` warning where the pair's working pressure angle (``alpha``, the
+    rack's transverse one, plus the pitch curves' tilt) exceeds ``teeth.max_pressure_angle_deg``:
+    how far, where (the driver's angle), and over which stretches of gear 1's turn."""
+    from ..findings import finding
+    from ..teeth.contact import working_pressure
+
+    limit = params.teeth.max_pressure_angle_deg
+    pair, (one, two) = pitch.pair, (g.name for g in pitch.gears)
+    w = working_pressure(pair, alpha, math.radians(limit))
+    if not w.above:
+        return ()
+    largest = math.degrees(w.largest)
+    if pitch.kinematics.driver == 2:  # the driver is gear 2: its angle where gear 1 stands at φ1
+        turn = float(pair.angle_map(np.array([w.phi1]))[0]) % (2 * math.pi)
+        where = f"driver angle {math.degrees(turn):.1f}° ({two}; {one} at {math.degrees(w.phi1):.1f}°)"
+    else:
+        where = f"driver angle {math.degrees(w.phi1):.1f}° ({one})"
+    spans = ", ".join(f"{math.degrees(a):.1f}°–{math.degrees(b):.1f}°" for a, b in w.above)
+    total = sum((b - a) % (2 * math.pi) or 2 * math.pi for a, b in w.above)
+    return (
+        finding(
+            "pressure-angle",
+            f"{one}/{two}: the working pressure angle reaches {largest:.1f}° at {where}, {largest - limit:.1f}° over "
+            f"teeth.max_pressure_angle_deg = {limit:g}; above it over {math.degrees(total):.0f}° of {one}'s turn "
+            f"({spans}): the tooth force pushes the shafts apart more than it turns the mate",
+            "teeth",
+        ),
+    )
+
+
 def _summary(pitch: PairDesign, teeth: ToothedPairData | None, findings: int, params: GearPairParams) -> str:
     pair = pitch.pair
     text = (
@@ -324,15 +372,17 @@ def design(params: GearPairParams) -> Draft:
     ]
     placements = tuple(Placement(g.name, 0.0, g.pivot) for g in pitch.gears)
     if teeth is not None:  # proven over the whole cycle (and on every section of twisted teeth)
-        contact = Contact(0, 1, module=teeth.plan.module, nudge=False)
+        contact = Contact(0, 1, module=teeth.plan.module, nudge=False, touch="mesh")
         meshes = (teeth.mesh,) + tuple(m for _, m in proofs or ())
     else:  # pitch curves roll on each other: they touch along about the smaller radius
-        contact, meshes = Contact(0, 1, length=pitch.gears[0].r_min), ()
+        contact, meshes = Contact(0, 1, length=pitch.gears[0].r_min, touch="rolling"), ()
     papers = paper_extras(params, pitch)
     if papers.shoe is not None:  # the walker's leg, standing at hub angle 0 below the wheel's pivot
         parts.append(PartSpec("shoe", papers.shoe))
         placements += (Placement("shoe", 0.0, tuple(S.crank_pin(papers.geometry, 0.0)[0])),)
     findings = pitch.findings + (teeth.findings if teeth is not None else ()) + papers.findings
+    if teeth is not None:
+        findings += _pressure_angle(params, pitch, teeth.gears[0].rack.params.pressure_angle)
     cycle = pitch.pair.cycle
     phi1 = np.linspace(0.0, cycle, frames_for(cycle, teeth.plan.teeth[0] if teeth else None), endpoint=False)
     kin = pitch.kinematics
@@ -359,4 +409,8 @@ def design(params: GearPairParams) -> Draft:
         motion=Motion((parts[0].name, parts[1].name), np.column_stack([-phi1, pitch.pair.angle_map(phi1)])),
         tables=(table,),
         where="pair",
+        placed="meshing parts touch"
+        if papers.shoe is None
+        else "the gears touch in mesh; the leg (shoe) works in a plane of its own, drawn over the wheel",
+        charts=_charts(pitch, teeth, rings, papers),
     )

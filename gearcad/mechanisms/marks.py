@@ -8,7 +8,6 @@ from dataclasses import replace
 import numpy as np
 
 from ..geometry.arcfit import ArcRing
-from .base import Design
 from .parts import Part
 
 __all__ = ["assembly_marks"]
@@ -21,12 +20,13 @@ def _dot(centre: np.ndarray, radius: float) -> ArcRing:
     return ArcRing(np.array([[x + radius, y], [x, y + radius], [x - radius, y], [x, y - radius]]), np.zeros(4))
 
 
-def assembly_marks(design: Design, parts: tuple[Part, ...]) -> tuple[Part, ...]:
-    """The parts with an engraved dot (a diamond, MARK layer) on each gear of a toothed pair where the two
+def assembly_marks(design, parts: tuple[Part, ...]) -> tuple[Part, ...]:
+    """The parts with an engraved dot (a diamond, MARK layer) on each gear of a toothed pair (the
+    gear pair's ``marks`` hook; ``design`` its draft or design) where the two
     meet in the assembly's phase: on the line of centres at driver angle 0, two modules inside
     the pitch curve.  Turn the gears so the dots face each other and they mesh as designed."""
     teeth = getattr(design.detail, "teeth", None)
-    if design.mechanism != "gear-pair" or teeth is None:
+    if teeth is None:
         return parts
     pair, m = design.detail.pitch.pair, teeth.plan.module
     r1 = float(pair.gear1.r(0.0))

@@ -42,7 +42,7 @@ from ..profiles import (
 from ..tolerances import DEFAULT, Tolerances
 from .budget import MAX_SAMPLE_ORDER, MAX_SAMPLE_WORK, SAMPLE_NOISE
 
-__all__ = ["WalkerData", "PairDesign", "pitch_design", "driver_curve"]
+__all__ = ["WalkerData", "PairDesign", "pitch_design", "driver_curve", "shape_findings"]
 
 
 @dataclass(frozen=True)
@@ -134,7 +134,7 @@ def _walker_geometry(params: GearPairParams) -> W.WalkerGeometry:
     return W.WalkerGeometry(L=params.center_distance, a=g.a, b=g.b, c=g.c)
 
 
-def _shape_findings(gear: GearData) -> list[Finding]:
+def shape_findings(gear: GearData) -> list[Finding]:
     out = []
     for c in gear.shape.corners:
         kind = "convex corner" if c.convex else "notch (concave corner)"
@@ -276,7 +276,7 @@ def pitch_design(params: GearPairParams, *, tol: Tolerances = DEFAULT) -> PairDe
     )
     findings: list[Finding] = []
     for gear in gears:
-        findings += _shape_findings(gear)
+        findings += shape_findings(gear)
     phi = np.linspace(0.0, TWO_PI, 4097)
     k = pair.angle_map.slope(phi)
     omega = params.driver_rpm * TWO_PI / 60

@@ -29,17 +29,16 @@ from ..pitch.gear import gear_data
 from ..pitch.motion import MotionFit
 from ..pitch.pair import shape_difference
 from ..profiles import EllipseParams, GearPairParams
+from ..stages import STAGES
 from ..teeth.pair import refuse_corners, undercut_free_module
 from ..teeth.plan import tooth_count
 from ..teeth.rack import Rack, RackParams
 from ..tolerances import DEFAULT
 from .base import Design
 from .budget import check_teeth_work
-from .pair_pitch import _shape_findings, synthesise
+from .pair_pitch import shape_findings, synthesise
 
 __all__ = ["STAGES", "staged_design", "tip_land"]
-
-STAGES = ("pitch", "teeth", "full")
 
 
 @dataclass(frozen=True)
@@ -159,7 +158,7 @@ def _synthesised_pitch(params: GearPairParams, tol, likeness: bool) -> _Pitch:
         rotation = delta if difference < 1e-6 else None
     if likeness:
         refuse_corners(gears)  # a rack cannot roll round a corner: the cut's refusal
-    findings = tuple(f for g in gears for f in _shape_findings(g))
+    findings = tuple(f for g in gears for f in shape_findings(g))
     extra = {"gears": blocks}
     if isinstance(law, MotionFit) or getattr(params.gear1, "smoothing", 0) > 0:
         from .pair_motion import fitted_blocks

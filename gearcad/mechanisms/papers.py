@@ -24,7 +24,15 @@ from ..pitch.kinematics import kinematics
 from ..pitch.pair import conjugate_pair
 from ..profiles import EllipseParams, WalkerParams
 
-__all__ = ["seed_tables", "papers_block", "printed_digits", "agrees_as_printed"]
+__all__ = [
+    "seed_tables",
+    "gear_pair_papers",
+    "roller_body_papers",
+    "rolling_wheel_papers",
+    "carrier_train_papers",
+    "printed_digits",
+    "agrees_as_printed",
+]
 
 SEEDS = {
     "004": "Gorbach & Yarovenko: elliptic gears (Meshchersky's problem 14.6)",
@@ -194,9 +202,9 @@ def _seed003(params, data: dict) -> dict | None:
     ]
     coefficient, exponent, r2 = C.power_law_fit([r[0] for r in by_eye], [r[1] for r in by_eye])
     fit = [
-        _row("eq. 4 coefficient (fit of the by-eye values)", 1.74, coefficient),
-        _row("eq. 4 exponent", -2.07, exponent),
-        _row("eq. 4 R²", 0.97, r2),
+        _row("eq. 4 coefficient (fit of the by-eye values)", C.EQ4["coefficient"], coefficient),
+        _row("eq. 4 exponent", C.EQ4["exponent"], exponent),
+        _row("eq. 4 R²", C.EQ4["r2"], r2),
     ]
     tables = [
         {"name": f"Largest convex amplitude ({params.direction}, r = {params.roller_radius:g} R)", "rows": rows},
@@ -269,13 +277,21 @@ def _block(seed: str, tables: list[dict], claims: list[dict]) -> dict:
     }
 
 
-def papers_block(params, data: dict) -> dict | None:
-    """The ``papers`` block of a profile that reproduces a seed (None for the others)."""
-    mechanism = params.mechanism
-    if mechanism == "gear-pair":
-        return _seed004(params, data) or _seed002(params, data)
-    if mechanism == "roller-body":
-        return _seed003(params, data)
-    if mechanism == "rolling-wheel":
-        return _seed000(params, data)
+def gear_pair_papers(params, data: dict) -> dict | None:
+    """A gear pair's ``papers`` block: seed 004's elliptic pair, else seed 002's walker."""
+    return _seed004(params, data) or _seed002(params, data)
+
+
+def roller_body_papers(params, data: dict) -> dict | None:
+    """A roller body's ``papers`` block (seed 003)."""
+    return _seed003(params, data)
+
+
+def rolling_wheel_papers(params, data: dict) -> dict | None:
+    """A rolling wheel's ``papers`` block (seed 000)."""
+    return _seed000(params, data)
+
+
+def carrier_train_papers(params, data: dict) -> dict | None:
+    """A carrier train's ``papers`` block (seed 001, the method of stopping)."""
     return _seed001(params, data)

@@ -192,7 +192,7 @@ def design(p: RollerBodyParams) -> Draft:
             "convex": conv.tolist(),
             "simple": [limits[m][1] for m in ms],
             "paper_by_eye": [0.15, 0.05, 0.025, 0.01, 0.005],
-            "paper_regression": [1.74 * m**-2.07 for m in ms],
+            "paper_regression": [C.EQ4["coefficient"] * m ** C.EQ4["exponent"] for m in ms],
             "power_law_convex": {"coefficient": float(math.exp(logc)), "exponent": float(k)},
         }
     # the paper's printed formulas and statements, each against an independent computation
@@ -231,14 +231,14 @@ def design(p: RollerBodyParams) -> Draft:
         parts = (PartSpec("body", body, bore=p.bore), PartSpec("roller", roller_circle, bore=axle))
         turns = [0.0, 0.0, 0.0]
         # plain rollers touch the body along their whole rim at most
-        contacts = tuple(Contact(0, k, length=TWO_PI * r * p.scale) for k in (1, 2, 3))
+        contacts = tuple(Contact(0, k, length=TWO_PI * r * p.scale, touch="rolling") for k in (1, 2, 3))
     else:
         parts = (
             PartSpec("body", teeth["_body_ring"], bore=p.bore, wall=teeth["module"], marks=(body,)),
             PartSpec("roller", teeth["_roller_ring"], bore=axle, marks=(roller_circle,)),
         )
         turns = teeth["_roller_turns"]
-        contacts = tuple(Contact(0, k, module=teeth["module"], radius=r * p.scale) for k in (1, 2, 3))
+        contacts = tuple(Contact(0, k, module=teeth["module"], radius=r * p.scale, touch="mesh") for k in (1, 2, 3))
     centres = [(p.scale * math.sin(a), p.scale * math.cos(a)) for a in (0.0, TWO_PI / 3, 2 * TWO_PI / 3)]
     placements = (Placement("body"),) + tuple(Placement("roller", a, c) for a, c in zip(turns, centres))
     return Draft(

@@ -63,7 +63,12 @@ def charts(osc: RB.Oscillation, p, roller_radius: float, data: dict) -> dict:
     title = {"direction": p.direction, "m": p.m, "amplitude": p.amplitude, "rpm": p.rpm}
     out: dict = {}
     if "limits" in data:
-        limits = {"limits": data["limits"], "direction": p.direction, "roller_radius": p.roller_radius}
+        limits = {
+            "limits": data["limits"],
+            "direction": p.direction,
+            "roller_radius": p.roller_radius,
+            "eq4": (C.EQ4["coefficient"], C.EQ4["exponent"]),
+        }
         out["amplitude_limits.png"] = limits
     field = velocity_field(osc, w=p.rpm * 2 * math.pi / 60, roller_radius=roller_radius)
     out["velocity_field.png"] = {**title, "roller_radius": roller_radius, "field": field}

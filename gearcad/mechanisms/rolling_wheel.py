@@ -131,10 +131,11 @@ def design(p: RollingWheelParams) -> Draft:
         findings=tuple(findings),
         parts=parts,
         placements=placements,
-        contacts=(Contact(0, 1),),  # the wheels must not touch
+        contacts=(Contact(0, 1, touch="apart"),),  # the wheels must not touch
         data=data,
         units=UNITS,
         detail=motion,
         charts={"motion.png": motion},
+        placed="the two wheels where the drive holds them, joined by the rack (not drawn), not touching",
         where="drive",
     )

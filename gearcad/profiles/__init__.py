@@ -25,6 +25,8 @@ from .curves import (
     WalkerParams,
 )
 from .gear_pair import ClaimParams, Gear2Params, GearPairParams, PairParams, TeethParams
+from .nc_internal import InternalTeethParams, NcInternalParams, RingParams
+from .nc_planetary import NcPlanetaryParams, PlanetarySetParams, SetTeethParams
 from .reading import (
     EXCLUSIVE_KEYS,
     MECHANISMS,
@@ -77,6 +79,12 @@ __all__ = [
     "DriveParams",
     "CarrierTrainParams",
     "TrainParams",
+    "NcInternalParams",
+    "RingParams",
+    "InternalTeethParams",
+    "NcPlanetaryParams",
+    "PlanetarySetParams",
+    "SetTeethParams",
     # shared
     "OutputParams",
     "BoreParams",

@@ -71,7 +71,8 @@ class OutputParams(ParamsModel):
     animation: Flag = True
     """Write an animated GIF of the mechanism."""
     formats: Formats = DEFAULT_FORMATS
-    """Files to write for each part, drawn from "dxf", "svg", "stl", "3mf", "step" (default: all but "step")."""
+    """Files to write for each part (the formats allowed are listed with the key; the default leaves out
+    those slow to load)."""
     dxf: DxfFlavour = "polyline"
     """How outlines are written to DXF: one polyline with bulges, lines and arcs, or flat polyline."""
     thickness: Thickness = 5.0

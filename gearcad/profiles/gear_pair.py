@@ -39,6 +39,7 @@ Dedendum = number("a coefficient (× module)", gt=0, le=3)
 TipRadius = number("a coefficient (× module)", ge=0, le=0.6)
 ProfileShift = number("a coefficient (× module)", ge=-0.8, le=0.8)
 HelixAngleDeg = number("an angle in degrees", ge=0, le=45)
+MaxPressureAngleDeg = number("an angle in degrees", gt=0, lt=90)
 
 
 class Gear2Params(ParamsModel):
@@ -79,6 +80,10 @@ class TeethParams(ParamsModel):
     """Teeth on gear 1; or give module."""
     pressure_angle_deg: PressureAngleDeg = 20.0
     """Pressure angle of the rack, degrees."""
+    max_pressure_angle_deg: MaxPressureAngleDeg = 45.0
+    """Largest working pressure angle of the pair (the rack's plus the tilt of the pitch curves'
+    tangent off the perpendicular to the line of centres, atan(r'/r)) before a `pressure-angle`
+    warning, degrees: beyond about 45° most of the tooth force pushes the shafts apart."""
     addendum: Addendum = 1.0
     """Rack addendum, × module."""
     dedendum: Dedendum = 1.25

@@ -23,6 +23,8 @@ from .common import ParamsModel
 from .docs import document_fields
 from .gear_pair import GearPairParams
 from .messages import error_lines, show
+from .nc_internal import NcInternalParams
+from .nc_planetary import NcPlanetaryParams
 from .roller_body import RollerBodyParams
 from .rolling_wheel import RollingWheelParams
 
@@ -41,12 +43,21 @@ __all__ = [
     "profile_schema",
 ]
 
-MODELS: tuple[type[ParamsModel], ...] = (GearPairParams, RollerBodyParams, RollingWheelParams, CarrierTrainParams)
+MODELS: tuple[type[ParamsModel], ...] = (
+    GearPairParams,
+    RollerBodyParams,
+    RollingWheelParams,
+    CarrierTrainParams,
+    NcInternalParams,
+    NcPlanetaryParams,
+)
 """Every mechanism's profile model, the default first: a new mechanism's model is one more entry
 (its ``mechanism`` field's default is its name)."""
 MECHANISMS = tuple(model.model_fields["mechanism"].default for model in MODELS)
 MODEL_OF: dict[str, type[ParamsModel]] = dict(zip(MECHANISMS, MODELS, strict=True))
-"""The profile model of each ``mechanism`` value."""
+"""The profile model of each ``mechanism`` value: a new mechanism registers its model here
+(``MODEL_OF[name] = Model``, its ``mechanism`` field a ``Literal[name]`` defaulting to it); reading,
+errors and the schema look models up here, not in :data:`MODELS`."""
 ProfileParams = Union[MODELS]  # noqa: UP007 - made from the table, not written out again
 
 EXCLUSIVE_KEYS = (("teeth.module", "teeth.count"), ("gear1.b", "gear1.eccentricity"))
@@ -60,10 +71,13 @@ def _mechanism_of(value: Any) -> Any:
     return value.get("mechanism", "gear-pair") if isinstance(value, Mapping) else getattr(value, "mechanism", None)
 
 
-_TAGGED = Annotated[
-    Union[tuple(Annotated[cls, Tag(tag)] for tag, cls in MODEL_OF.items())],  # noqa: UP007
-    Discriminator(_mechanism_of),
-]
+def _tagged() -> Any:
+    """Any profile model, told apart by its ``mechanism`` (every model of :data:`MODEL_OF` now,
+    a registered one too)."""
+    return Annotated[
+        Union[tuple(Annotated[cls, Tag(tag)] for tag, cls in MODEL_OF.items())],  # noqa: UP007
+        Discriminator(_mechanism_of),
+    ]
 
 
 def profile_error(exc: ValidationError, root: Any = None) -> ProfileError:
@@ -74,7 +88,7 @@ def profile_error(exc: ValidationError, root: Any = None) -> ProfileError:
     profile_error(e) from None``.
     """
     if root is None:
-        root = {cls.__name__: cls for cls in ParamsModel.__subclasses__()}.get(exc.title, _TAGGED)
+        root = {cls.__name__: cls for cls in ParamsModel.__subclasses__()}.get(exc.title, None) or _tagged()
     return ProfileError("\n".join(error_lines(exc, root)))
 
 
@@ -101,7 +115,7 @@ def parse_profile(data: Mapping[str, Any], *, default_name: str = "profile") -> 
     mechanism = data.get("mechanism", "gear-pair")
     cls = MODEL_OF.get(mechanism) if isinstance(mechanism, str) else None
     if cls is None:
-        raise ProfileError(f"mechanism = {show(mechanism)}: must be one of " + ", ".join(map(repr, MECHANISMS)))
+        raise ProfileError(f"mechanism = {show(mechanism)}: must be one of " + ", ".join(map(repr, MODEL_OF)))
     named = "name" in data
     try:
         return cls.model_validate(data if named else {**data, "name": default_name})
@@ -305,7 +319,7 @@ def profile_schema() -> dict[str, Any]:
     the file with ``json.dumps(profile_schema(), indent=2, ensure_ascii=False)``.
     """
     document_fields(_models(ParamsModel))
-    schema = TypeAdapter(_TAGGED).json_schema(schema_generator=_TomlSchema)
+    schema = TypeAdapter(_tagged()).json_schema(schema_generator=_TomlSchema)
     return {
         "$schema": "https://json-schema.org/draft/2020-12/schema",
         "title": "gearcad profile",

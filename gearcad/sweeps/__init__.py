@@ -17,6 +17,7 @@ from typing import Any
 
 from ..errors import ProfileError
 from ..profiles.messages import show
+from ..stages import STAGES
 
 __all__ = ["sweep", "write_sweep", "violations"]
 
@@ -31,9 +32,6 @@ def _profile_data(profile) -> tuple[dict, str, str | None]:
         raise ProfileError(f"profile = {show(profile)}: must be a profile's path or its data (a dict)")
     path = Path(profile)
     return read_toml(path, "profile"), path.stem, str(path)
-
-
-STAGES = ("pitch", "teeth", "full")
 
 
 def _varies(vary) -> tuple:

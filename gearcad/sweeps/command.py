@@ -10,6 +10,7 @@ from collections.abc import Callable
 from pathlib import Path
 
 from ..errors import ProfileError
+from ..stages import STAGES
 
 __all__ = ["add_parser", "run", "EXIT_NONE_FEASIBLE"]
 
@@ -34,7 +35,7 @@ def add_parser(sub) -> None:
         metavar="KEY=a:b:n|a:b|v1,v2",
         help="vary a profile key: n values from a to b, a range to sample, or a list (repeatable)",
     )
-    s.add_argument("--stage", choices=["pitch", "teeth", "full"], help="how far each design goes (default: teeth)")
+    s.add_argument("--stage", choices=STAGES, help="how far each design goes (default: teeth)")
     s.add_argument("--samples", type=int, help="draws for the a:b ranges")
     s.add_argument("--sampling", choices=["lhs", "random"], help="how ranges are drawn (default: lhs)")
     s.add_argument("--seed", type=int, help="the draws' seed (default: 0)")

@@ -26,7 +26,7 @@ from ..pitch.curve import curvature
 from ..pitch.pair import PairData
 from .rack import Rack
 
-__all__ = ["ContactData", "contact_along", "contact_ratio", "tip_cut"]
+__all__ = ["ContactData", "WorkingPressure", "contact_along", "contact_ratio", "tip_cut", "working_pressure"]
 
 
 @dataclass(frozen=True)
@@ -101,3 +101,73 @@ def contact_along(pair: PairData, racks: tuple[Rack, Rack], positions: int = 720
     r1 = pair.gear1.r(phi1 % (2 * np.pi))
     mu = np.arctan2(pair.gear1.dr(phi1 % (2 * np.pi)), r1)
     return ContactData(phi1=phi1, ratio=ratio, pressure_angle=alpha - mu, coast_pressure_angle=alpha + mu)
+
+
+@dataclass(frozen=True)
+class WorkingPressure:
+    """The largest working pressure angle of a pair over its cycle, either flank: α + |μ|."""
+
+    largest: float
+    """rad, refined to 1e-9 rad of φ1 about the largest of a dense sample."""
+    phi1: float
+    """gear 1's angle where it is largest, rad."""
+    above: tuple[tuple[float, float], ...]
+    """The stretches of φ1 (rad, start and end, each refined by bisection) where it exceeds the
+    limit asked for; () when it never does."""
+
+
+def _largest_tilt(pair: PairData, positions: int) -> tuple[np.ndarray, np.ndarray]:
+    phi1 = np.linspace(0.0, 2 * np.pi, positions, endpoint=False)
+    return phi1, np.abs(np.arctan2(pair.gear1.dr(phi1), pair.gear1.r(phi1)))
+
+
+def working_pressure(pair: PairData, alpha: float, limit: float, positions: int = 4096) -> WorkingPressure:
+    """The working pressure angle α + |μ|, tan μ = r1'/r1 (the tilt of the pitch curves' common
+    tangent off the perpendicular to the line of centres, the same on both gears), at its
+    largest over gear 1's turn and where it exceeds ``limit`` (rad).  Sampled at ``positions``
+    angles, then the largest refined by golden section about the largest sample and each
+    crossing of the limit by bisection between the samples that straddle it (|μ| is smooth
+    between its zeros; a kink at μ = 0 is a minimum, never the largest)."""
+    phi1, tilt = _largest_tilt(pair, positions)
+    step = phi1[1] - phi1[0]
+
+    def f(p: float) -> float:
+        at = np.array([p % (2 * np.pi)])
+        return float(np.abs(np.arctan2(pair.gear1.dr(at), pair.gear1.r(at)))[0])
+
+    k = int(np.argmax(tilt))
+    lo, hi = phi1[k] - step, phi1[k] + step
+    g = (math.sqrt(5) - 1) / 2
+    a, b = hi - g * (hi - lo), lo + g * (hi - lo)
+    fa, fb = f(a), f(b)
+    while hi - lo > 1e-9:
+        if fa >= fb:
+            hi, b, fb = b, a, fa
+            a = hi - g * (hi - lo)
+            fa = f(a)
+        else:
+            lo, a, fa = a, b, fb
+            b = lo + g * (hi - lo)
+            fb = f(b)
+    best, where = (fa, a) if fa >= fb else (fb, b)
+    best, where = max((best, where), (float(tilt[k]), float(phi1[k])))
+    over = alpha + tilt > limit
+    stretches: list[tuple[float, float]] = []
+    if over.any() and not over.all():
+
+        def crossing(i: int) -> float:  # between samples i and i + 1, one over and one not
+            x0, x1 = phi1[i], phi1[i] + step
+            up = alpha + f(x0) > limit
+            while x1 - x0 > 1e-9:
+                mid = (x0 + x1) / 2
+                x0, x1 = (mid, x1) if (alpha + f(mid) > limit) == up else (x0, mid)
+            return (x0 + x1) / 2
+
+        starts = sorted(crossing(i) for i in np.flatnonzero(~over & np.roll(over, -1)))
+        ends = [crossing(i) for i in np.flatnonzero(over & ~np.roll(over, -1))]
+        for start in starts:  # each stretch ends at the first end after its start, all round
+            end = min(ends, key=lambda e: (e - start) % (2 * np.pi))
+            stretches.append((start % (2 * np.pi), end % (2 * np.pi)))
+    elif over.all():
+        stretches = [(0.0, 2 * np.pi)]
+    return WorkingPressure(alpha + best, where % (2 * np.pi), tuple(stretches))

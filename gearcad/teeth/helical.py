@@ -38,7 +38,7 @@ from .correspond import ANCHORS, AnchoredRing, anchor_ring, correspond, mid_sect
 from .frame import ArcFrame
 from .gear import ToothedGear, cut_teeth
 from .mesh import MeshData, mesh_check
-from .pair import ToothedPairData, _with_clearance
+from .pair import ToothedPairData, with_clearance
 from .plan import ToothPlan
 from .rack import Rack
 
@@ -259,7 +259,7 @@ def helical_sections(
         key = float(climbed)
         if key not in cache[i]:
             phase = plan.phases[i] + hands[i] * key * tan
-            g = _with_clearance(cut_teeth(frames[i], racks[i], plan.teeth[i], phase, tolerance=fine), clearance, fine)
+            g = with_clearance(cut_teeth(frames[i], racks[i], plan.teeth[i], phase, tolerance=fine), clearance, fine)
             cache[i][key] = (g, anchor_ring(g, frames[i], tolerance=resample, longest=longest))
         return cache[i][key]
 

@@ -29,7 +29,7 @@ from .rack import Rack, RackParams
 from .relief import MAX_RELIEF_MODULES, Relief, relieve
 from .sampling import Stopped
 
-__all__ = ["ToothSpec", "ToothedPairData", "cut_pair", "refuse_corners", "undercut_free_module"]
+__all__ = ["ToothSpec", "ToothedPairData", "cut_pair", "refuse_corners", "undercut_free_module", "with_clearance"]
 
 
 class ToothSpec(Protocol):
@@ -106,7 +106,7 @@ def _nearest(ring: np.ndarray, points: np.ndarray) -> np.ndarray:
     return nearest(points, ring)[0]
 
 
-def _with_clearance(gear: ToothedGear, clearance: float, tolerance: float) -> ToothedGear:
+def with_clearance(gear: ToothedGear, clearance: float, tolerance: float) -> ToothedGear:
     """The outline offset inwards by ``clearance`` (round joins sampled from the tolerance).
 
     Every flank moves in by the clearance, so a tooth keeps a tip land only while the clearance
@@ -200,7 +200,7 @@ def cut_pair(
             gear = cut_teeth(
                 frame, _rack(params, plan.module, shift, min_fillet), z, phase, tolerance=fine_tol, stop=stop
             )
-            return _with_clearance(gear, params.clearance, fine_tol)
+            return with_clearance(gear, params.clearance, fine_tol)
         except BaseException:
             stop.set()
             raise

@@ -13,7 +13,7 @@ from .png import save_png, subplots
 __all__ = ["draw", "limits_chart", "field_chart", "rolling_chart", "train_chart"]
 
 
-def limits_chart(limits: dict, direction: str, roller_radius: float, path: Path) -> None:
+def limits_chart(limits: dict, direction: str, roller_radius: float, path: Path, eq4: tuple[float, float]) -> None:
     """Largest amplitudes (convex and simple) against m: exact, the paper's, their fits."""
     m = np.array(limits["m"], dtype=float)
     fig, ax = subplots(figsize=(7.5, 5))
@@ -21,7 +21,8 @@ def limits_chart(limits: dict, direction: str, roller_radius: float, path: Path)
     ax.loglog(m, limits["simple"], "s-", label="simple, no cusps (exact, bisection)")
     ax.loglog(m, limits["paper_by_eye"], "k^", label="paper: 'oval' by eye")
     mm = np.linspace(3, 15, 100)
-    ax.loglog(mm, 1.74 * mm**-2.07, "k--", lw=0.8, label="paper: a = 1.74·m^−2.07")
+    c, e = eq4
+    ax.loglog(mm, c * mm**e, "k--", lw=0.8, label=f"paper: a = {c:g}·m^{e:g}".replace("-", "−"))
     ax.loglog(mm, np.sqrt(3) / mm**2, "k:", lw=0.8, label="paper: a = √3/m²")
     fit = limits["power_law_convex"]
     ax.loglog(
@@ -124,7 +125,7 @@ def draw(design, folder: Path) -> list[str]:
     charts = design.charts
     if "amplitude_limits.png" in charts:
         c = charts["amplitude_limits.png"]
-        limits_chart(c["limits"], c["direction"], c["roller_radius"], folder / "amplitude_limits.png")
+        limits_chart(c["limits"], c["direction"], c["roller_radius"], folder / "amplitude_limits.png", c["eq4"])
         names.append("amplitude_limits.png")
     if "velocity_field.png" in charts:
         field_chart(charts["velocity_field.png"], folder / "velocity_field.png")

@@ -112,27 +112,30 @@ def mesh_chart(data, teeth, path: Path) -> None:
 
 
 def draw(design, folder: Path) -> list[str]:
-    """Every chart of a gear-pair design; returns the file names."""
-    detail = design.detail
-    pitch_chart(detail.pitch, folder / "pitch_curves.png", detail.pitch_rings)
-    kinematics_chart(detail.pitch, folder / "kinematics.png")
-    names = ["pitch_curves.png", "kinematics.png"]
-    if detail.teeth is not None:
-        mesh_chart(detail.pitch, detail.teeth, folder / "mesh.png")
+    """Every chart of a gear pair the design's ``charts`` name; returns the file names."""
+    charts, names = design.charts, []
+    if "pitch_curves.png" in charts:
+        pitch, rings = charts["pitch_curves.png"]
+        pitch_chart(pitch, folder / "pitch_curves.png", rings)
+        names.append("pitch_curves.png")
+    if "kinematics.png" in charts:
+        kinematics_chart(charts["kinematics.png"], folder / "kinematics.png")
+        names.append("kinematics.png")
+    if "mesh.png" in charts:
+        mesh_chart(*charts["mesh.png"], folder / "mesh.png")
         names.append("mesh.png")
-    papers = detail.papers
-    if papers is not None and papers.charts:
-        from . import papers as charts
+    papers = ("elliptic_type2.png", "vehicle_speed.png", "shoe.png")
+    if any(n in charts for n in papers):
+        from . import papers as drawn
 
-        extra = papers.charts
-        if "elliptic_type2" in extra:
-            charts.elliptic_type2_chart(extra["elliptic_type2"], folder / "elliptic_type2.png")
+        if "elliptic_type2.png" in charts:
+            drawn.elliptic_type2_chart(charts["elliptic_type2.png"], folder / "elliptic_type2.png")
             names.append("elliptic_type2.png")
-        if "walker_speed" in extra:
-            charts.walker_speed_chart(extra["walker_speed"], folder / "vehicle_speed.png")
-            charts.walker_pitch_chart(*extra["walker_pitch"], folder / "paper_pitch_curves.png")
+        if "vehicle_speed.png" in charts:
+            drawn.walker_speed_chart(charts["vehicle_speed.png"], folder / "vehicle_speed.png")
+            drawn.walker_pitch_chart(*charts["paper_pitch_curves.png"], folder / "paper_pitch_curves.png")
             names += ["vehicle_speed.png", "paper_pitch_curves.png"]
-        if "shoe" in extra:
-            charts.shoe_chart(*extra["shoe"], folder / "shoe.png")
+        if "shoe.png" in charts:
+            drawn.shoe_chart(*charts["shoe.png"], folder / "shoe.png")
             names.append("shoe.png")
     return names

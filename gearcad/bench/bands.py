@@ -1,0 +1,64 @@
+"""The certified band's cost (issue 33): CPU seconds of one warm ``pair_bands`` per example gear
+pair, as drawn and cut by a laser, with the positions the certificate measured and its least play.
+
+The goal: the laser focus pair's band in at most 1 s of CPU, warm.  CPU time of this process (both
+threads of the band's cases), not the wall clock: a shared machine's load stretches the latter.
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable
+
+from ..fitting import design
+from ..fitting.fit import pair_bands
+from ..profiles import load_profile
+from .commands import PROFILES
+
+__all__ = ["BAND_GOALS", "PAIRS", "bands_table", "bench_bands"]
+
+PAIRS = ("elliptic_focus", "oval_centre", "elliptic_centre", "spur_pair", "walker", "herringbone_elliptic")
+BAND_GOALS = {("elliptic_focus", "laser"): 1.0}
+"""CPU seconds a warm band may take."""
+_QUICK = {"output.charts": False, "output.animation": False}
+
+
+def bench_bands(quick: bool = False, step: Callable[[str], None] | None = None) -> list[dict]:
+    """One row per (pair, process): CPU seconds of the warm band, positions, least play
+    (``quick``: the laser focus pair only)."""
+    rows = []
+    cases = [("elliptic_focus", "laser")] if quick else [(p, k) for p in PAIRS for k in ("none", "laser")]
+    for name, kind in cases:
+        sets = {**_QUICK, **({"process.kind": kind} if kind != "none" else {})}
+        made = design(load_profile(PROFILES / f"{name}.toml", sets))
+        pair_bands(made)  # warm
+        start = time.process_time()
+        (band,) = pair_bands(made)
+        seconds = time.process_time() - start
+        goal = BAND_GOALS.get((name, kind))
+        cert = band.certificate
+        rows.append(
+            {
+                "study": "bands",
+                "method": f"{name} {kind}",
+                "n": cert.positions if cert else 0,
+                "seconds": seconds,
+                "per_second": 1 / seconds if seconds else float("inf"),
+                "least_mm": band.least,
+                "goal": f"s ≤ {goal:g}" if goal else "",
+                "met": seconds <= goal if goal else None,
+            }
+        )
+        if step is not None:
+            step(f"band {name} {kind}")
+    return rows
+
+
+def bands_table(rows: list[dict]) -> list[str]:
+    """The rows as lines: pair and process, CPU seconds, positions, certified least play."""
+    return [
+        f"{r['method']:28s} {r['seconds']:7.3f} s  {r['n']:5d} positions  least {r['least_mm'] * 1000:+8.2f} µm"
+        + (f"  ({r['goal']}: {'met' if r['met'] else 'MISSED'})" if r["goal"] else "")
+        for r in rows
+        if r["study"] == "bands"
+    ]
