@@ -61,7 +61,8 @@ def ensure_environment() -> None:
         pip = [sys.executable, "-m", "pip", "--python", str(PYTHON)]
     _say(INSTALLING)
     start = time.monotonic()
-    command = [*pip, "install", "--disable-pip-version-check", "--progress-bar", "off", "-e", f"{ROOT}[test,sweep]"]
+    extras = "test,sweep,optimise"
+    command = [*pip, "install", "--disable-pip-version-check", "--progress-bar", "off", "-e", f"{ROOT}[{extras}]"]
     with (
         open(LOG, "w", encoding="utf-8") as log,
         subprocess.Popen(

@@ -13,6 +13,7 @@ from .envelope import bench_envelope
 from .front import bench_front, front_summary
 from .goals import goal_rows, goals_table
 from .helical import helical_benchmark
+from .optimise import bench_optimise, optimise_summary
 from .output import bench_output
 from .peers import PEER, bench_peers, peer_version
 from .process import measure
@@ -55,7 +56,7 @@ def run_bench(
         peer = None if "peers" in skip else peer_version()
         timed = (3 * runs + 3 if peer else 0) + (0 if "goals" in skip else 6 * runs)
         staged = 0 if "stages" in skip else (6 if quick else 21)  # the stages, and (not quick) the bands
-        progress = Progress(10 + builds + timed + staged)
+        progress = Progress(11 + builds + timed + staged)
         rows = bench_quadrature(quick)
         progress.step("quadrature")
         rows += bench_envelope(quick)
@@ -69,11 +70,13 @@ def run_bench(
         rows += bench_builds(quick, work, progress.step)
         rows += bench_front(quick)  # the sweep's Pareto front, 10⁴…10⁶ rows
         progress.step("Pareto front")
+        rows += bench_optimise(quick)  # the sweep's NSGA-II against its grid; a screen the full stage refutes
+        progress.step("optimiser")
         hard = stability.stability_map(quick)
         progress.step("stability map")
         commands = gearcad_commands(work / "runs")
         labels = {key: text for key, (text, _) in commands.items()}
-        measured, lines = {}, [*step_lines(rows), *front_summary(rows)]
+        measured, lines = {}, [*step_lines(rows), *front_summary(rows), *optimise_summary(rows)]
         if "peers" not in skip and peer is None:
             lines.append(f"peers: {PEER} is not importable here (pip install {PEER}); the section is skipped")
         elif peer is not None:

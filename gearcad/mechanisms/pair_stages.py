@@ -247,6 +247,24 @@ class _FocusFrame:
         return self.pair.arc(phi)
 
 
+def _blind(pitch) -> list[dict]:
+    """The failures the teeth stage cannot see for this pair (its report's ``stage_blind``).
+
+    The closed form judges each gear's teeth at its smallest convex radius of curvature; where a
+    pitch curve is concave (the rack's path crosses itself) or follows a required motion (whose
+    fitted law is often concave and always asymmetric), only the full stage's mesh proof finds
+    teeth that overlap in mesh (``interference``) or whose play falls below zero (``jams``)."""
+    why = [f"{b['name']} is concave" for b in pitch.blocks if not b.get("convex", True)]
+    if "motion" in pitch.extra:
+        why.append("the pitch curves follow a required motion")
+    if not why:
+        return []
+    return [
+        {"code": code, "why": f"{'; '.join(why)}: only the full stage's mesh proof finds {what}"}
+        for code, what in (("interference", "teeth overlapping in mesh"), ("jams", "play below zero"))
+    ]
+
+
 def staged_design(params: GearPairParams, stage: str) -> Design:
     """The pair's ``pitch`` or ``teeth`` stage as a :class:`Design` with no parts."""
     tol = replace(DEFAULT, outline_mm=params.output.tolerance)
@@ -274,6 +292,7 @@ def staged_design(params: GearPairParams, stage: str) -> Design:
         summary += f", {t1['count']}/{t2['count']} teeth m = {t1['module']:.4f}" + (
             f" ({', '.join(flags)})" if flags else ""
         )
+        data["stage_blind"] = _blind(pitch)
     return Design(
         params=params,
         mechanism="gear-pair",

@@ -218,8 +218,21 @@ def sweep(
     client: Any = None,
     scheduler_timeout: float = 60.0,
     progress: Callable[[int, int], None] | None = None,
+    method: str = "grid",
+    population: int | None = None,
+    generations: int | None = None,
+    evaluations: int | None = None,
+    against_grid: bool = False,
+    confirm: str | None = None,
 ):
     """Design every point of the sweep and return the table (a pandas DataFrame).
+
+    ``method="nsga2"`` searches the ``KEY=a:b`` ranges with pymoo's NSGA-II instead
+    (``population`` × ``generations`` designs, or ``evaluations``; ``seed``), the table gaining a
+    ``generation`` column; ``against_grid`` also designs a grid of the same budget for the page's
+    hypervolume comparison (:mod:`gearcad.sweeps.optimise`).  ``confirm="full"`` re-designs the
+    front's rows at the full stage and keeps on the front only those that pass
+    (:mod:`gearcad.sweeps.confirm`).
 
     Everything the sweep is given — keys, values, constraints, objectives, arguments — is
     checked before the first design (a :class:`ProfileError`, one line).  ``client`` is a
@@ -250,23 +263,30 @@ def sweep(
         check_key(data, v.key)
         check_values(v)
     _check_bounds(conditions)
-    spec = SweepSpec(vary=varies, stage=stage, samples=samples, sampling=sampling, seed=seed)
-    overrides = points(spec)
+    from .confirm import check_confirm
+    from .optimise import check_method, first_point
+
+    check_method(method, varies, minimise, maximise, population, generations, evaluations, against_grid, samples)
+    check_confirm(confirm, stage)
+    if method == "grid":
+        spec = SweepSpec(vary=varies, stage=stage, samples=samples, sampling=sampling, seed=seed)
+        overrides = points(spec)
+    else:
+        overrides = [first_point(data, varies)]
     if overrides:
         _check_keys_exist(data, name, overrides[0])
         report = _probe(data, name, stage, overrides[0]) if conditions or minimise or maximise else None
         if report is not None:
             _check_goals(report, stage, conditions, [*minimise, *maximise], [f"set.{k}" for k in overrides[0]])
-    rows = _run(
-        data,
-        name,
-        stage,
-        overrides,
-        workers=workers,
-        client=client,
-        scheduler_timeout=scheduler_timeout,
-        progress=progress,
-    )
+    running = dict(workers=workers, client=client, scheduler_timeout=scheduler_timeout, progress=progress)
+    if method != "grid":
+        from .optimise import search
+
+        rows, overrides, extra = search(data, name, stage, varies, conditions, minimise, maximise, **running,
+                                        method=method, seed=seed, population=population, generations=generations,
+                                        evaluations=evaluations, against_grid=against_grid)  # fmt: skip
+    else:
+        rows, extra = _run(data, name, stage, overrides, **running), {}
     import numpy as np
     import pandas as pd  # once the designs are made: a sweep stopped early never needs it
 
@@ -285,6 +305,8 @@ def sweep(
     table.insert(len(inputs.columns) + 2, "pareto", front)
     for n, (column, amounts) in enumerate(violations(table, conditions).items()):
         table.insert(len(inputs.columns) + 3 + n, column, amounts)
+    if "generation" in extra:  # an optimiser's: which generation designed the row
+        table.insert(1, "generation", extra.pop("generation"))
     table.attrs.update(
         profile=path,
         name=name,
@@ -293,7 +315,13 @@ def sweep(
         maximise=list(maximise),
         constraints=[str(c) for c in conditions],
         inputs=list(inputs.columns),
+        method=method,
+        **extra,
     )
+    if confirm is not None:
+        from .confirm import confirm_front
+
+        table = confirm_front(table, data, name, conditions, _run, **running)
     return table
 
 

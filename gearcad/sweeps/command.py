@@ -15,8 +15,8 @@ from ..stages import STAGES
 __all__ = ["add_parser", "run", "EXIT_NONE_FEASIBLE"]
 
 EXIT_NONE_FEASIBLE = 3
-"""The exit status of a sweep in which no design is feasible (as ``build``'s failed check: the
-files are written all the same)."""
+"""The exit status of a sweep in which no design is feasible, or (``--confirm full``) no front row
+passes the full stage (as ``build``'s failed check: the files are written all the same)."""
 
 
 def add_parser(sub) -> None:
@@ -48,6 +48,18 @@ def add_parser(sub) -> None:
     )
     s.add_argument("--minimise", action="append", default=[], metavar="KEY", help="an objective (a report key)")
     s.add_argument("--maximise", action="append", default=[], metavar="KEY", help="an objective (a report key)")
+    s.add_argument(
+        "--method",
+        choices=["grid", "nsga2"],
+        help="grid: the varies' points (default); nsga2: search the KEY=a:b ranges (pymoo: gearcad[optimise])",
+    )
+    s.add_argument("--population", type=int, help="--method nsga2: designs a generation (default: 40)")
+    s.add_argument("--generations", type=int, help="--method nsga2: generations (default: 10)")
+    s.add_argument("--evaluations", type=int, help="--method nsga2: the budget in designs, instead of --generations")
+    s.add_argument("--against-grid", action="store_true", help="--method nsga2: also a grid of the same budget")
+    s.add_argument(
+        "--confirm", choices=["full"], help="re-design the front at the full stage; keep on it only what passes"
+    )
     s.add_argument("--workers", type=int, help="local processes (default: every core)")
     s.add_argument("--scheduler", metavar="ADDRESS", help="run on this Dask scheduler, e.g. tcp://10.0.0.5:8786")
     s.add_argument(
@@ -109,6 +121,7 @@ def _run(args: argparse.Namespace) -> int:
         client=args.scheduler,  # an address: sweep connects once everything is checked, and closes
         scheduler_timeout=SCHEDULER_TIMEOUT if args.scheduler_timeout is None else args.scheduler_timeout,
         progress=stderr_progress(),
+        **_search_arguments(args),
     )
     files = write_sweep(table, args.out)
     made, feasible = int(table["refusal"].isna().sum()), int(table["feasible"].sum())
@@ -117,11 +130,48 @@ def _run(args: argparse.Namespace) -> int:
         f"{int(table['pareto'].sum())} on the front) in {time.perf_counter() - start:.2f} s: "
         f"{', '.join(str(p) for p in files.values())}"
     )
+    for line in _search_lines(table):
+        print(line)
+    if feasible and "confirmed" in table and not table["pareto"].any():
+        print("gearcad: no front row passed the full stage (confirm_refusal says why each failed)", file=sys.stderr)
+        return EXIT_NONE_FEASIBLE
     if feasible:
         return 0
     why = "meets every constraint (the violation.* columns say by how much each missed)" if made else "was made"
     print(f"gearcad: no feasible design: none of the {len(table)} {why}", file=sys.stderr)
     return EXIT_NONE_FEASIBLE
+
+
+def _search_arguments(args: argparse.Namespace) -> dict:
+    """--method, its budget, --against-grid and --confirm, as sweep's keywords (only those given)."""
+    given = {
+        "method": args.method,
+        "population": args.population,
+        "generations": args.generations,
+        "evaluations": args.evaluations,
+        "against_grid": args.against_grid or None,
+        "confirm": args.confirm,
+    }
+    return {k: v for k, v in given.items() if v is not None}
+
+
+def _search_lines(table) -> list[str]:
+    """What a search and a confirmation add to stdout: the hypervolumes, the survivors."""
+    attrs, lines = table.attrs, []
+    if "hypervolumes" in attrs:
+        grid = (
+            f"; a grid of {attrs['grid_evaluations']}: {attrs['grid_hypervolume']:.6g}"
+            if "grid_hypervolume" in attrs
+            else ""
+        )
+        lines.append(
+            f"hypervolume after {len(attrs['hypervolumes'])} generations: {attrs['hypervolumes'][-1]:.6g}{grid}"
+        )
+    if "confirmed" in table:
+        tried = table["confirmed"].notna()
+        held = int(table["confirmed"].fillna(False).sum())
+        lines.append(f"confirmed at the full stage: {held} of {int(tried.sum())} front rows re-designed")
+    return lines
 
 
 def stderr_progress(every: float = 1.0) -> Callable[[int, int], None]:

@@ -82,7 +82,8 @@ def overridden(data: dict, overrides: dict[str, Any]) -> dict:
 
 
 def evaluate_chunk(data: dict, name: str, stage: str, chunk: list[tuple[int, dict]]) -> list[dict[str, Any]]:
-    """Rows ``{"index", "refusal", "warnings", <report keys>…}`` for the chunk's designs."""
+    """Rows ``{"index", "refusal", "warnings", <report keys>…}`` for the chunk's designs (at the
+    full stage also ``failures``: the codes of the findings that fail a check, space-separated)."""
     logging.getLogger("gearcad").setLevel(logging.ERROR)  # warnings are counted in the row
     rows = []
     for index, overrides in chunk:
@@ -92,6 +93,8 @@ def evaluate_chunk(data: dict, name: str, stage: str, chunk: list[tuple[int, dic
             report = d.report()
             row["warnings"] = len(report["warnings"])
             row.update(flatten(report))
+            if stage == "full":  # what a full design fails, by code (a cheaper stage proves no check)
+                row["failures"] = " ".join(f.code for f in d.failures())
         except GearcadError as exc:
             row["refusal"] = " ".join(str(exc).split())
         except Exception as exc:  # noqa: BLE001 - a sweep reports a design that breaks gearcad, and goes on

@@ -267,6 +267,8 @@ def _constraint_keys(table) -> list[str]:
 
 def sweep_page(table) -> str:
     """The page as one HTML string."""
+    from .search_page import confirmation_section, search_section
+
     attrs = table.attrs
     made = int(table["refusal"].isna().sum())
     objectives = [*attrs.get("minimise", []), *attrs.get("maximise", [])]
@@ -292,6 +294,7 @@ def sweep_page(table) -> str:
     inputs = list(attrs.get("inputs", []))
     shown = [*inputs, *[k for k in objectives if k not in inputs]]
     shown += [k for k in _constraint_keys(table) if k not in shown]
+    shown += [k for k in ("generation", "confirmed") if k in table.columns]
     head = "".join(f"<th>{html.escape(_titled(c)).replace('.', '.<wbr>')}</th>" for c in ["#", *shown])
     columns = list(dict.fromkeys(["index", *shown, *inputs]))
     records = listed[columns].to_dict("records")  # plain values: far quicker than iterrows
@@ -327,6 +330,7 @@ tr.build code{{white-space:normal;overflow-wrap:anywhere;font-size:12px}}
 svg.chart{{max-width:100%;height:auto}} svg text{{font-size:12px;fill:#111}} svg text.axis{{font-size:13px}}
 .front{{fill:#1a1a66;stroke:#000;stroke-width:1}} .ok{{fill:#fff;stroke:#555;stroke-width:1.5}}
 .out{{fill:none;stroke:#b0b0b0;stroke-width:1.5}} rect.frame{{fill:none;stroke:#666}} line.grid{{stroke:#e4e4e4}}
+polyline.hv{{fill:none;stroke:#1a1a66;stroke-width:2}} line.gridhv{{stroke:#555;stroke-dasharray:6 4;stroke-width:1.5}}
 .legend-item{{margin-right:1.5em;white-space:nowrap}} .legend-item svg{{vertical-align:middle}}</style></head><body>
 <h1>{title}</h1>
 <p>{len(table)} designs: {made} made, {len(table) - made} refused, {int(table["feasible"].sum())} feasible,
@@ -334,6 +338,7 @@ svg.chart{{max-width:100%;height:auto}} svg text{{font-size:12px;fill:#111}} svg
 <h2>Constraints</h2>
 {_constraints(table)}
 {chart}
+{search_section(table)}{confirmation_section(table)}
 <h2>{heading}</h2>
 {more}<table><tr>{head}</tr>{body}</table>
 <h2>Refusals</h2><ul>{refused or "<li>none</li>"}</ul>
@@ -342,6 +347,8 @@ svg.chart{{max-width:100%;height:auto}} svg text{{font-size:12px;fill:#111}} svg
 
 
 def _cell(value) -> str:
+    if value is None or type(value).__name__ == "NAType":  # pandas' missing value (a row not confirmed)
+        return ""
     if isinstance(value, (bool, np.bool_)):
         return "true" if value else "false"
     if isinstance(value, (float, np.floating)):
