@@ -90,7 +90,7 @@ def test_the_readme_commands_run_as_printed_after_the_quick_start(tmp_path, monk
 
 def test_the_launcher_the_readme_names_is_what_pip_installs():
     project = tomllib.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))["project"]
-    assert project["scripts"]["gearcad"] == "gearcad.cli:main"  # pip writes .venv/bin/gearcad
+    assert project["scripts"]["gearcad"] == "gearcad.cli:run"  # pip writes .venv/bin/gearcad
     assert "`.venv/bin/gearcad` is the command line" in README
 
 
