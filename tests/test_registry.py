@@ -35,6 +35,9 @@ def test_every_hook_an_entry_names_is_a_function():
 
     for entry in MECHANISMS.values():
         for f in fields(entry):
-            if f.name not in ("name", "module", "coupons", "play", "backlash_table") and getattr(entry, f.name) is not None:
+            if (
+                f.name not in ("name", "module", "coupons", "play", "backlash_table")
+                and getattr(entry, f.name) is not None
+            ):
                 assert callable(entry.hook(f.name)), (entry.name, f.name)
         assert callable(entry.design)
