@@ -383,32 +383,13 @@ def _band_certified(name, found, nominal, wide, *, edge, spread, tol, alpha) -> 
     plays at the first positions (None: no stack, the tight case is all three)."""
     g, tight, cert = found
     if nominal is None:
-        return band_of(
-            name,
-            (tight, tight, tight),
-            g.teeth,
-            g.phi1,
-            edge=edge,
-            spread=spread,
-            tol=tol,
-            alpha=alpha,
-            certificate=cert,
-            phi2=g.phi2,
-        )
-    # the tight case was measured at the first positions and those refined; the others at the first
-    more = np.full(len(tight) - len(nominal), np.nan)
-    nominal, wide = np.concatenate([nominal, more]), np.concatenate([wide, more])
+        cases = (tight, tight, tight)
+    else:
+        # the tight case was measured at the first positions and those refined; the others at the first
+        more = np.full(len(tight) - len(nominal), np.nan)
+        cases = (np.concatenate([nominal, more]), tight, np.concatenate([wide, more]))
     return band_of(
-        name,
-        (nominal, tight, wide),
-        g.teeth,
-        g.phi1,
-        edge=edge,
-        spread=spread,
-        tol=tol,
-        alpha=alpha,
-        certificate=cert,
-        phi2=g.phi2,
+        name, cases, g.teeth, g.phi1, edge=edge, spread=spread, tol=tol, alpha=alpha, certificate=cert, phi2=g.phi2
     )
 
 
