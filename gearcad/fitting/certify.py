@@ -1,6 +1,6 @@
 """The certificate of a pair's least play between the driver positions measured (docs/fit.md):
 the tight case's play bounded between positions and refined where the bound cannot settle the
-verdict (:func:`_certify`)."""
+verdict (:func:`certify_play`)."""
 
 from __future__ import annotations
 
@@ -8,9 +8,9 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from .band import PairGeometry, _measure
+from .play import PairGeometry, measure
 
-__all__ = ["PER_TOOTH", "Certificate"]
+__all__ = ["PER_TOOTH", "Certificate", "certify_play"]
 
 
 @dataclass(frozen=True)
@@ -18,7 +18,7 @@ class Certificate:
     """How the smallest play of the tight case was proven between the positions measured."""
 
     lower: float
-    """The certified least play (mm): no driver angle of the cycle has less (:func:`_certify`)."""
+    """The certified least play (mm): no driver angle of the cycle has less (:func:`certify_play`)."""
     positions: int
     """Driver positions measured for it (the first even ones and those refined)."""
     slack: float
@@ -49,7 +49,7 @@ JAM_HALVINGS = 1
 more to say how far short it falls (the verdict is settled)."""
 
 
-def _certify(g: PairGeometry, offsets, spread: float, tol: float, *, reach: float, margin: float, budget: int = 0):
+def certify_play(g: PairGeometry, offsets, spread: float, tol: float, *, reach: float, margin: float, budget: int = 0):
     """The tight case's signed play, measured at ``g``'s positions and refined where the bound
     between them cannot settle the verdict: (geometry at every position measured, play there,
     :class:`Certificate`).
@@ -70,7 +70,7 @@ def _certify(g: PairGeometry, offsets, spread: float, tol: float, *, reach: floa
     budget = budget or 4 * n0
     resolution = max(tol, 1e-4 * g.module)
     narrowest = 1e-6 * g.cycle
-    geo, play = g, _measure(g, offsets, spread, tol, reach=reach)
+    geo, play = g, measure(g, offsets, spread, tol, reach=reach)
     jammed = 0
     while True:
         order = np.argsort(geo.phi1, kind="stable")
@@ -104,7 +104,7 @@ def _certify(g: PairGeometry, offsets, spread: float, tol: float, *, reach: floa
             return geo, play, cert
         mids = (lo[split] + h[split] / 2) % g.cycle
         sub = g.at(mids)
-        geo, play = _joined(geo, sub), np.concatenate([play, _measure(sub, offsets, spread, tol, reach=reach)])
+        geo, play = _joined(geo, sub), np.concatenate([play, measure(sub, offsets, spread, tol, reach=reach)])
 
 
 def _joined(g: PairGeometry, more: PairGeometry) -> PairGeometry:

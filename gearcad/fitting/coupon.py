@@ -29,9 +29,9 @@ from shapely import affinity
 from ..errors import ProfileError
 from ..mechanisms.base import Design
 from ..mechanisms.registry import MECHANISMS
-from .band import play_along
 from .coupon_play import Placed, feeler_gap, play_of, tooth_mark, turned
 from .fit import pair_geometry
+from .play import play_along
 
 __all__ = [
     "STEPS",

@@ -20,8 +20,9 @@ import numpy as np
 from ..findings import Finding, finding
 from ..mechanisms.base import Design
 from ..mechanisms.registry import MECHANISMS
-from .band import Band, PairGeometry, pair_band
+from .band import Band, pair_band
 from .certify import PER_TOOTH
+from .play import PairGeometry
 
 __all__ = [
     "sliver",

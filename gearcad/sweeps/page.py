@@ -7,11 +7,12 @@ and the command that builds it.  A dot links to its row only where the page has 
 from __future__ import annotations
 
 import html
-import math
 import re
 import shlex
 
 import numpy as np
+
+from .ticks import nice_ticks, tick_label
 
 __all__ = ["sweep_page", "build_command", "unit", "nice_ticks"]
 
@@ -97,29 +98,6 @@ def _axes(table) -> list[str]:
     return (objectives + inputs)[:2] if len(objectives) < 2 else objectives[:2]
 
 
-def nice_ticks(lo: float, hi: float, most: int = 7) -> tuple[float, float, list[float], int]:
-    """(axis from, axis to, ticks, decimals): ticks 1, 2 or 5 × 10ᵏ apart, at most ``most`` of
-    them, the axis widened to whole ticks; decimals enough to tell neighbouring ticks apart."""
-    if not (math.isfinite(lo) and math.isfinite(hi)):
-        lo, hi = 0.0, 1.0
-    if hi <= lo:
-        pad = max(abs(lo) * 0.01, 0.5) if lo else 0.5
-        lo, hi = lo - pad, hi + pad
-    raw = (hi - lo) / max(most - 1, 1)
-    power = 10.0 ** math.floor(math.log10(raw))
-    step = next(m * power for m in (1, 2, 5, 10) if m * power >= raw * (1 - 1e-9))
-    first, last = math.floor(lo / step + 1e-9), math.ceil(hi / step - 1e-9)
-    ticks = [k * step for k in range(first, last + 1)]
-    decimals = max(0, -math.floor(math.log10(step) + 1e-9))
-    return ticks[0], ticks[-1], [0.0 if t == 0 else t for t in ticks], decimals
-
-
-def _label(value: float, decimals: int) -> str:
-    if abs(value) >= 1e6 or decimals > 6:
-        return f"{value:.3g}"
-    return f"{value:.{decimals}f}"
-
-
 def _marker(kind: str, x: float, y: float, legend: bool = False) -> str:
     """A row's marker (``legend``: the legend's, of class "<kind> key": one class="front" per front row)."""
     css = f"{kind} key" if legend else kind
@@ -167,12 +145,12 @@ def _scatter(table, xkey: str, ykey: str, linked: set[int]) -> tuple[str, int, i
     for t in xticks:
         grid.append(
             f'<line class="grid" x1="{sx(t):.1f}" y1="{TOP}" x2="{sx(t):.1f}" y2="{bottom + 5}"/>'
-            f'<text x="{sx(t):.1f}" y="{bottom + 18}" text-anchor="middle">{_label(t, xd)}</text>'
+            f'<text x="{sx(t):.1f}" y="{bottom + 18}" text-anchor="middle">{tick_label(t, xd)}</text>'
         )
     for t in yticks:
         grid.append(
             f'<line class="grid" x1="{LEFT - 5}" y1="{sy(t):.1f}" x2="{right}" y2="{sy(t):.1f}"/>'
-            f'<text x="{LEFT - 8}" y="{sy(t) + 4:.1f}" text-anchor="end">{_label(t, yd)}</text>'
+            f'<text x="{LEFT - 8}" y="{sy(t) + 4:.1f}" text-anchor="end">{tick_label(t, yd)}</text>'
         )
     goal = {k: " — minimised" for k in table.attrs.get("minimise", [])}
     goal.update({k: " — maximised" for k in table.attrs.get("maximise", [])})

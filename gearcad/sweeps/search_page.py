@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import html
 
-from .page import _label, nice_ticks
+from .ticks import nice_ticks, tick_label
 
 __all__ = ["search_section", "confirmation_section"]
 
@@ -33,7 +33,7 @@ def search_section(table) -> str:
 
     grid = "".join(
         f'<line class="grid" x1="{left}" y1="{sy(t):.1f}" x2="{w - 10}" y2="{sy(t):.1f}"/>'
-        f'<text x="{left - 6}" y="{sy(t) + 4:.1f}" text-anchor="end">{_label(t, yd)}</text>'
+        f'<text x="{left - 6}" y="{sy(t) + 4:.1f}" text-anchor="end">{tick_label(t, yd)}</text>'
         for t in yticks
     )
     line = " ".join(f"{sx(g):.1f},{sy(v):.1f}" for g, v in enumerate(volumes))

@@ -1,0 +1,258 @@
+"""The play of a placed gear pair at driver positions (mm on the pitch curve): gear 2 turned each
+way from the rolling angle until it touches gear 1, the made outlines offset by an edge offset
+and the centres moved; negative where the parts overlap (the shrink that frees them, −4ε/cos α).
+Only a window of each gear around the contact (three modules) is offset and intersected.  The
+band (:mod:`.band`) and its certificate (:mod:`.certify`) measure through it.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass, field, replace
+
+import numpy as np
+import shapely
+
+from ..geometry.depth import overlap_areas, overlap_exceeds
+from ..geometry.gap import distances
+from ..geometry.gap import runs as edge_runs
+from ..geometry.outline import place_each
+
+__all__ = ["PairGeometry", "measure", "play_along", "play_between", "signed_play"]
+
+_WINDOW = 3.0
+"""Radius of the window about the contact, modules: contact stays within about one pitch."""
+
+
+@dataclass(frozen=True)
+class PairGeometry:
+    """A gear pair as the band needs it: the made outlines' drawn outer rings (mm, pivot at the
+    origin), the centre distance E, and per driver angle φ1 (rad) the mate's angle φ2 and the
+    contact radius on gear 1; gear 1 turns by −φ1 about the origin, gear 2 by +φ2 about (E, 0)."""
+
+    rings: tuple[np.ndarray, np.ndarray]
+    center_distance: float
+    phi1: np.ndarray
+    phi2: np.ndarray
+    r1: np.ndarray
+    module: float
+    pressure_angle: float
+    teeth: np.ndarray
+    """Gear 1's tooth at the contact at each φ1 (index from its first)."""
+    at: Callable[[np.ndarray], PairGeometry] | None = field(default=None, compare=False, repr=False)
+    """The same pair at other driver angles (what the certificate refines with); None: no refining."""
+    ratio: Callable[[np.ndarray, np.ndarray], np.ndarray] | None = field(default=None, compare=False, repr=False)
+    """(lo, hi) -> the largest follower speed dφ2/dφ1 over each driver interval [lo, hi] (rad)."""
+    cycle: float = 2 * math.pi
+    """The driver's turn after which the pair repeats (rad): the positions wrap there."""
+    first: np.ndarray | None = field(default=None, compare=False, repr=False)
+    """The driver angles the certificate starts from (rad): even steps along the driver's pitch
+    curve, :data:`~.certify.PER_TOOTH` a tooth (None: ``phi1``)."""
+
+    def subset(self, keep) -> PairGeometry:
+        """The same pair at the positions ``keep`` (indices or a mask) only."""
+        return replace(self, phi1=self.phi1[keep], phi2=self.phi2[keep], r1=self.r1[keep], teeth=self.teeth[keep])
+
+
+def _windows(ring: np.ndarray, centres: np.ndarray, radius: float, offset, tol: float) -> np.ndarray:
+    """The gear's shape near each centre, grown by ``offset`` (mm, scalar or per centre), clipped
+    to ``radius``."""
+    gear = shapely.Polygon(ring)
+    largest = float(np.max(np.abs(offset)))
+    discs = shapely.buffer(shapely.points(centres), radius + largest + radius / 6, quad_segs=16)
+    pieces = shapely.intersection(gear, discs)
+    if largest:
+        steps = max(2, int(math.ceil(math.pi / 4 / math.acos(max(1 - tol / largest, -1.0)))))
+        pieces = shapely.buffer(pieces, offset, quad_segs=steps)
+    return shapely.intersection(pieces, shapely.buffer(shapely.points(centres), radius, quad_segs=16))
+
+
+def _placer(g: PairGeometry, offsets, spread: float, tol: float, *, gaps: bool = False):
+    """(w1, place, gap, reach): gear 1's windows, place(turn) -> gear 2's windows turned ``turn``
+    (rad, per position) beyond the assembled angle in gear 1's frame, gap(turn) -> the distance
+    between the windows so placed (mm; with ``gaps``, else None), and the farthest any point of
+    gear 2's lies from its pivot (mm); the parts grown by ``offsets``, E by ``spread``."""
+    e = g.center_distance + spread
+    c1 = g.r1[:, None] * np.column_stack([np.cos(g.phi1), np.sin(g.phi1)])
+    back = g.r1 - g.center_distance  # the contact in gear 2's frame, before its turn
+    c2 = back[:, None] * np.column_stack([np.cos(-g.phi2), np.sin(-g.phi2)])
+    radius = _WINDOW * g.module
+    w1 = _windows(g.rings[0], c1, radius, offsets[0], tol)
+    w2 = _windows(g.rings[1], c2, radius, offsets[1], tol)
+    shapely.prepare(w1)
+    coords, which = shapely.get_coordinates(w2, return_index=True)
+    far = np.zeros(len(g.phi1))
+    np.maximum.at(far, which, np.hypot(coords[:, 0], coords[:, 1]))
+    counts = np.bincount(which, minlength=len(g.phi1))
+    first = np.cumsum(counts) - counts  # each window's first row of ``coords``
+    centre = e * np.column_stack([np.cos(g.phi1), np.sin(g.phi1)])  # gear 2's pivot in gear 1's frame
+
+    def placed(turn: np.ndarray, at) -> tuple[np.ndarray, np.ndarray]:
+        """Gear 2's windows ``at`` turned ``turn`` and their coordinates."""
+        if at is None:
+            at, rows = slice(None), slice(None)
+            owner = which
+        else:
+            n = counts[at]  # the rows of the chosen windows, in order: a run per window
+            owner = np.repeat(np.arange(len(n)), n)
+            rows = np.repeat(first[at] - np.cumsum(n) + n, n) + np.arange(int(n.sum()))
+        xy = place_each(coords[rows], owner, g.phi1[at] + g.phi2[at] + turn, centre[at])
+        return shapely.set_coordinates(w2[at].copy(), xy), xy
+
+    def place(turn: np.ndarray, at=None) -> np.ndarray:
+        """Gear 2's windows turned ``turn`` (per position); ``at`` (ascending indices): only those
+        windows, ``turn`` given for them alone."""
+        return placed(turn, at)[0]
+
+    if not gaps:
+        return w1, place, None, far
+    edges1 = edge_runs(w1, c1).lines(shapely.get_coordinates(w1))
+    edges2 = edge_runs(w2, c2)
+
+    def gap(turn: np.ndarray, at=None) -> np.ndarray:
+        """The distance between the windows, gear 2's turned as :func:`place` turns them (mm)."""
+        windows, xy = placed(turn, at)
+        chosen = slice(None) if at is None else at
+        return distances(w1[chosen], windows, edges1[chosen], edges2.lines(xy, at))
+
+    return w1, place, gap, far
+
+
+def _least_overlap(w1, place, bound: np.ndarray, iterations: int = 24) -> np.ndarray:
+    """Per position, a turn of gear 2 (rad, within ±``bound``) where the parts do not overlap, or
+    where they overlap least: 0 where they are apart as placed, else a golden-section search (for
+    a turn where they are apart: the gap from there is what measures the play, and parts that
+    overlap even by a sliver show no gap either way).
+    The assembled angle map is the pitch curves' rolling; with the centres moved or the edges
+    grown unevenly the follower sits elsewhere in its play, and a pair that overlaps as placed
+    may turn free (today's jam at the nominal angle overstated what a noncircular pair needs)."""
+    turn = np.zeros_like(bound)
+    stuck = np.flatnonzero(overlap_areas(w1, place(turn)) > 0)
+    if not len(stuck):
+        return turn
+    golden = (math.sqrt(5) - 1) / 2
+
+    def area(at: np.ndarray) -> np.ndarray:
+        return overlap_areas(w1[stuck], place(at, stuck))
+
+    lo, hi = -bound[stuck], bound[stuck].copy()
+    a, b = hi - golden * (hi - lo), lo + golden * (hi - lo)
+    fa, fb = area(a), area(b)
+    for _ in range(iterations):
+        left = fa <= fb  # the least lies in [lo, b]: b becomes the upper end, a the new b
+        hi, lo = np.where(left, b, hi), np.where(left, lo, a)
+        a2, b2 = hi - golden * (hi - lo), lo + golden * (hi - lo)
+        a, b = np.where(left, a2, b), np.where(left, a, b2)
+        fresh = area(np.where(left, a, b))  # the one new probe of each position
+        fa, fb = np.where(left, fresh, fb), np.where(left, fa, fresh)
+        if not np.any(np.minimum(fa, fb)):
+            break
+    turn[stuck] = np.where(fa <= fb, a, b)
+    return turn
+
+
+def play_between(
+    g: PairGeometry,
+    offsets,
+    spread: float,
+    tol: float,
+    *,
+    reach: float,
+    steps: int = 8,
+    start=None,
+    halves=None,
+    keep=None,
+) -> tuple[np.ndarray, np.ndarray]:
+    """Free play at each position (mm on gear 2's pitch curve, at its nominal contact radius);
+    NaN where the parts overlap wherever gear 2 sits; and the turn of gear 2 it was measured from.
+
+    Gear 2 is first turned to where it is free (:func:`_least_overlap`; ``start`` given: there);
+    from there, each way, it is turned by the gap left over the farthest reach of its window (no
+    point of it moves farther than the gap, so it never passes through gear 1); the gap shrinks
+    by about cos α times that each step, so ``steps`` bring it under a millionth of a module.
+    ``reach`` (mm) bounds the play sought; ``halves`` (a list): the free turn each way (rad, (2, n))
+    is appended to it; ``keep`` (a dict): gear 1's windows, the placer and the reach stored in it."""
+    w1, place, gap_at, far = _placer(g, offsets, spread, tol, gaps=steps > 0)
+    if keep is not None:
+        keep.update(w1=w1, place=lambda turn, at: place(turn, at), far=far)
+    arm = g.center_distance - g.r1
+    limit = min(reach, 1.2 * math.pi * g.module) / arm  # more than a pitch never frees a tooth
+    touching = 1e-9 * g.module**2
+    if start is None:  # the follower's play lies within a quarter pitch of the rolling angle
+        start = _least_overlap(w1, place, np.minimum(limit, 0.25 * math.pi * g.module / arm))
+
+    def apart(turn: np.ndarray, at=None) -> np.ndarray:
+        if at is None:
+            return ~overlap_exceeds(w1, place(start + turn), touching)
+        return ~overlap_exceeds(w1[at], place(start[at] + turn, at), touching)
+
+    free = apart(np.zeros_like(start))
+    live = None if free.all() else np.flatnonzero(free)  # overlapping: the play is NaN, no gap to close
+
+    def gap(turn: np.ndarray) -> np.ndarray:
+        """The gap at the free positions, gear 2 turned ``turn`` (rad, one per free position)."""
+        if live is None:
+            return gap_at(start + turn)
+        return gap_at(start[live] + turn, live)
+
+    at = slice(None) if live is None else live
+    first = gap(np.zeros_like(start[at])) if steps and free.any() else None  # the same either way
+    total = np.zeros_like(g.phi1)
+    for sign in (1.0, -1.0):
+        turn, ahead = np.zeros_like(g.phi1), np.zeros_like(start[at])
+        for step in range(steps if free.any() else 0):
+            ahead = np.minimum(ahead + (first if step == 0 else gap(sign * ahead)) / far[at], limit[at])
+        turn[at] = ahead
+        if steps:  # the gap is the nearest flank's, which may be the one turning away: bisect there
+            nudge = 1e-4 * g.module / arm
+            stalled = np.flatnonzero(free & (turn + nudge < limit))
+            stalled = stalled[apart(sign * (turn + nudge)[stalled], stalled)]
+            lo, hi = turn[stalled], limit[stalled]
+            for _ in range(18 if len(stalled) else 0):
+                mid = 0.5 * (lo + hi)
+                ok = apart(sign * mid, stalled)
+                lo, hi = np.where(ok, mid, lo), np.where(ok, hi, mid)
+            turn[stalled] = lo
+        total += turn
+        if halves is not None:
+            halves.append(turn)
+    return np.where(free, total * arm, np.nan), start
+
+
+def measure(g: PairGeometry, offsets, spread: float, tol: float, *, reach: float) -> np.ndarray:
+    """The signed play at ``g``'s positions (:func:`signed_play`)."""
+    play, start = play_between(g, offsets, spread, tol, reach=reach)
+    return _signed_from(g, play, start, offsets, spread, tol, reach=reach)
+
+
+def play_along(g: PairGeometry, *, edge: float, tol: float, reach: float) -> np.ndarray:
+    """The play at each of ``g``'s driver angles (mm on the pitch curve; NaN where the parts
+    overlap), both parts grown by ``edge`` mm at the drawn centre distance."""
+    return play_between(g, (edge, edge), 0.0, tol, reach=reach)[0]
+
+
+def signed_play(g: PairGeometry, offsets, spread: float, tol: float, *, reach: float) -> np.ndarray:
+    """:func:`play_between`, negative where jammed: the shrink ε that frees it (gear 2 where it overlapped
+    least) counts −4ε/cos α."""
+    play, start = play_between(g, offsets, spread, tol, reach=reach)
+    return _signed_from(g, play, start, offsets, spread, tol, reach=reach)
+
+
+def _signed_from(g: PairGeometry, play, start, offsets, spread: float, tol: float, *, reach: float) -> np.ndarray:
+    """The play ``play`` (:func:`play_between`, gear 2 from ``start``) signed where it is NaN (jammed)."""
+    play = play.copy()
+    jammed = np.isnan(play)
+    if not jammed.any():
+        return play
+    sub = PairGeometry(
+        g.rings, g.center_distance, g.phi1[jammed], g.phi2[jammed], g.r1[jammed], g.module, g.pressure_angle, g.teeth
+    )
+    lo, hi = np.zeros(int(jammed.sum())), np.full(int(jammed.sum()), 0.5 * g.module)
+    for _ in range(14):
+        mid = 0.5 * (lo + hi)
+        shrunk = (offsets[0] - mid, offsets[1] - mid)
+        free = ~np.isnan(play_between(sub, shrunk, spread, tol, reach=reach, steps=0, start=start[jammed])[0])
+        hi, lo = np.where(free, mid, hi), np.where(free, lo, mid)
+    play[jammed] = -4 * hi / math.cos(g.pressure_angle)
+    return play
