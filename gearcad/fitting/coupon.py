@@ -30,7 +30,7 @@ from ..errors import ProfileError
 from ..mechanisms.base import Design
 from ..mechanisms.registry import MECHANISMS
 from .coupon_play import Placed, feeler_gap, play_of, tooth_mark, turned
-from .fit import pair_geometry
+from .pair_geometry import pair_geometry
 from .play import play_along
 
 __all__ = [

@@ -1,0 +1,81 @@
+"""A toothed gear pair's geometry as the band measures it: its made outlines, centre distance and
+the driver angles to measure at (even steps along the driver's pitch curve for the certificate),
+and the follower's largest speed over any driver interval (what bounds how fast the play changes)."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..mechanisms.base import Design
+from ..mechanisms.registry import MECHANISMS
+from .certify import PER_TOOTH
+from .play import PairGeometry
+
+__all__ = ["pair_geometry", "follower_speed"]
+
+
+def pair_geometry(design: Design, positions: int | None = None) -> PairGeometry | None:
+    """A toothed gear pair's geometry as the band measures it, at ``positions`` driver angles over
+    one cycle (default: one per driver tooth, 12 to 48), and at any others the certificate asks
+    for; ``None`` for any other design."""
+    detail = design.detail
+    teeth = getattr(detail, "teeth", None)
+    if MECHANISMS[design.mechanism].play != "pair" or teeth is None:
+        return None
+    pair = detail.pitch.pair
+    positions = positions or min(48, max(12, teeth.plan.teeth[0]))
+    first = teeth.gears[0]
+    rings = tuple(g.outline.outer for g in teeth.gears)
+    alpha = design.params.teeth.pressure_angle
+
+    def at(phi1: np.ndarray) -> PairGeometry:
+        arc = teeth.frames[0].arc(phi1 % (2 * np.pi))
+        return PairGeometry(
+            rings=rings,
+            center_distance=pair.center_distance,
+            phi1=phi1,
+            phi2=pair.angle_map(phi1),
+            r1=pair.gear1.r(phi1 % (2 * np.pi)),
+            module=teeth.plan.module,
+            pressure_angle=alpha,
+            teeth=np.floor((arc - first.phase) / first.rack.pitch).astype(int) % first.teeth,
+            at=at,
+            ratio=follower_speed(pair.angle_map.slope, pair.cycle),
+            cycle=pair.cycle,
+            first=start,
+        )
+
+    frame = teeth.frames[0]
+    turns = max(1, round(pair.cycle / (2 * np.pi)))
+    perimeter = float(frame.arc(np.array([2 * np.pi]))[0])
+    s = np.linspace(0.0, perimeter * turns, PER_TOOTH * first.teeth * turns, endpoint=False)
+    start = frame.angle(s % perimeter) + 2 * np.pi * np.floor(s / perimeter)
+    return at(np.linspace(0.0, pair.cycle, positions, endpoint=False))
+
+
+def follower_speed(slope, cycle: float, samples: int = 8192):
+    """ratio(lo, hi) -> (k, s) per driver interval [lo, hi] (rad; hi may pass the cycle): the
+    largest follower speed k = dφ2/dφ1 there and the largest speed of the unit instant centre
+    k/(1+k)·(cos φ1, sin φ1) (its distance from gear 1's pivot over E, and that turning), from
+    ``samples`` even driver angles over the ``cycle``, each raised by the largest step between
+    neighbours (what falls between two samples)."""
+    grid = np.linspace(0.0, cycle, samples + 1)
+    k = np.abs(slope(grid))
+    unit = k / (1 + k)
+    turn = np.gradient(unit, grid)
+    speed = np.hypot(unit, turn)
+    k_step, s_step = float(np.max(np.abs(np.diff(k)))), float(np.max(np.abs(np.diff(speed))))
+    k, speed = k[:-1], speed[:-1]
+    step = cycle / samples
+
+    def ratio(lo, hi) -> tuple[np.ndarray, np.ndarray]:
+        lo, hi = np.atleast_1d(np.asarray(lo, dtype=float)), np.atleast_1d(np.asarray(hi, dtype=float))
+        first = np.floor(lo / step).astype(int)
+        last = np.ceil(hi / step).astype(int)
+        kmax, smax = np.empty(len(lo)), np.empty(len(lo))
+        for i, (f, g) in enumerate(zip(first.tolist(), last.tolist())):
+            idx = np.arange(f, max(g, f) + 1) % samples
+            kmax[i], smax[i] = k[idx].max(), speed[idx].max()
+        return kmax + k_step, smax + s_step
+
+    return ratio
