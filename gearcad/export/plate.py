@@ -22,7 +22,7 @@ import numpy as np
 from ..errors import DesignError
 from ..geometry.outline import place
 from ..mechanisms import Design, Placement
-from .mesh import _CONTENT_TYPES, _RELS, SolidItem, _xml_name
+from .mesh import CONTENT_TYPES, RELS, SolidItem, xml_name
 
 __all__ = ["write_plate"]
 
@@ -37,7 +37,7 @@ def _matrix(angle: float, offset: tuple[float, float, float]) -> str:
 
 
 def _metadata(name: str, value: str) -> str:
-    return f'<metadata name="{name}">{_xml_name(value)}</metadata>\n'
+    return f'<metadata name="{name}">{xml_name(value)}</metadata>\n'
 
 
 def write_plate(path: Path, design: Design, items: Sequence[SolidItem]) -> int:
@@ -84,7 +84,7 @@ def write_plate(path: Path, design: Design, items: Sequence[SolidItem]) -> int:
         number = f" {seen[pl.part]}/{counts[pl.part]}" if counts[pl.part] > 1 else ""
         items.append(
             f'<item objectid="{ids[pl.part]}" transform="{_matrix(pl.angle, (*pl.offset, z))}" '
-            f'partnumber="{_xml_name(pl.part + number)}"/>\n'
+            f'partnumber="{xml_name(pl.part + number)}"/>\n'
         )
     text = io.StringIO()
     text.write('<?xml version="1.0" encoding="UTF-8"?>\n')
@@ -108,7 +108,7 @@ def write_plate(path: Path, design: Design, items: Sequence[SolidItem]) -> int:
     text.write("<resources>\n")
     for name in names:
         solid = solids[name]
-        text.write(f'<object id="{ids[name]}" type="model" name="{_xml_name(name)}"><mesh><vertices>\n')
+        text.write(f'<object id="{ids[name]}" type="model" name="{xml_name(name)}"><mesh><vertices>\n')
         text.write(solid.xml)
         text.write("</triangles></mesh></object>\n")
     text.write("</resources>\n<build>\n")
@@ -116,8 +116,8 @@ def write_plate(path: Path, design: Design, items: Sequence[SolidItem]) -> int:
     text.write("</build>\n</model>\n")
     with zipfile.ZipFile(path, "w", compression=zipfile.ZIP_DEFLATED, compresslevel=1) as z:
         for name, content in (
-            ("[Content_Types].xml", _CONTENT_TYPES),
-            ("_rels/.rels", _RELS),
+            ("[Content_Types].xml", CONTENT_TYPES),
+            ("_rels/.rels", RELS),
             ("3D/3dmodel.model", text.getvalue()),
         ):
             info = zipfile.ZipInfo(name, date_time=(1980, 1, 1, 0, 0, 0))
