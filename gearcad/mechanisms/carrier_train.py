@@ -17,6 +17,7 @@ from ..tolerances import budget
 from ..trains import carrier as CT
 from . import compound_ring as CR
 from .budget import check_backlash, check_teeth_work
+from .chart_data import Blocks
 from .finish import Contact, Draft, PartSpec
 from .parts import Placement
 
@@ -123,7 +124,7 @@ def _speeds(p: CarrierTrainParams, lay: TrainLayout):
     return train, direct, (meshes, block), [claim]
 
 
-def design(p: CarrierTrainParams) -> Draft:
+def design(p: CarrierTrainParams) -> Draft[None]:
     """Speeds, accelerations, parts and assembly of a train on a carrier."""
     lay = layout(p)
     radii, centres, ring = lay.radii, lay.centres, lay.ring
@@ -161,7 +162,7 @@ def design(p: CarrierTrainParams) -> Draft:
     contacts = tuple(
         Contact(k, k + 1, module=p.modules[k + 1], radius=r_to, touch="mesh") for k, (_, r_to) in enumerate(lay.sides)
     )
-    data = {
+    data: Blocks = {
         "train": {
             "module": p.module,
             "gear1_rpm": p.gear1_rpm,

@@ -19,6 +19,7 @@ from ..teeth.pair import ToothedPairData, cut_pair
 from ..tolerances import DEFAULT, budget, designed_play
 from .base import Motion, Table
 from .budget import check_section_work, check_teeth_work
+from .chart_data import Charts, MeshChart, PitchCurvesChart
 from .finish import Contact, Draft, PartSpec
 from .pair_motion import motion_block, motion_phrase
 from .pair_papers import PaperExtras, paper_extras
@@ -45,12 +46,12 @@ class GearPairDetail:
     """What the papers add: seed 004's statements, seed 002's shoe and vehicle speed."""
 
 
-def _charts(pitch, teeth, rings, papers) -> dict:
+def _charts(pitch, teeth, rings, papers) -> Charts:
     """Chart file name → what it is drawn from: the pitch curves in mesh, the kinematics, the teeth
     in mesh, and what the papers add (seed 004's type-2 pair, seed 002's vehicle and shoe)."""
-    charts = {"pitch_curves.png": (pitch, rings), "kinematics.png": pitch}
+    charts: Charts = {"pitch_curves.png": PitchCurvesChart(pitch, rings), "kinematics.png": pitch}
     if teeth is not None:
-        charts["mesh.png"] = (pitch, teeth)
+        charts["mesh.png"] = MeshChart(pitch, teeth)
     extra = papers.charts if papers is not None and papers.charts else {}
     if "elliptic_type2" in extra:
         charts["elliptic_type2.png"] = extra["elliptic_type2"]
@@ -324,11 +325,12 @@ def _details(pitch: PairDesign, teeth: ToothedPairData | None) -> list[str]:
     return lines
 
 
-def design(params: GearPairParams) -> Draft:
+def design(params: GearPairParams) -> Draft[GearPairDetail]:
     """Design, tooth, make and prove the pair a profile describes."""
     out = params.output
     tol = replace(DEFAULT, outline_mm=out.tolerance)
-    fine_tol = budget(out.tolerance).fine
+    b = budget(out.tolerance)  # made once for the design and passed down
+    fine_tol = b.fine
     pitch = pitch_design(params, tol=tol)
     teeth = helical = proofs = None
     if params.teeth is not None:
@@ -341,7 +343,7 @@ def design(params: GearPairParams) -> Draft:
         check_teeth_work([(g.perimeter / (math.pi * module), module) for g in pitch.gears], out.tolerance)
         alike = pitch.mate_shape_difference is not None and pitch.mate_shape_difference < 1e-6
         turn, fillet = pitch.mate_rotation if alike else None, params.process.tool_radius()
-        teeth = cut_pair(pitch.pair, pitch.gears, spec, mate_rotation=turn, tol=tol, min_fillet=fillet)
+        teeth = cut_pair(pitch.pair, pitch.gears, spec, mate_rotation=turn, tol=tol, budget=b, min_fillet=fillet)
         if beta > 0:
             for i, g in enumerate(pitch.gears):  # the bore first: cheap, where the sections are not
                 check_bore(g.name, teeth.fine[i], params.bore, out.tolerance, teeth.plan.module)
@@ -391,7 +393,7 @@ def design(params: GearPairParams) -> Draft:
         ("driver_angle_rad", "follower_angle_rad", "ratio", "follower_speed_rad_s", "follower_acceleration_rad_s2"),
         np.column_stack([kin.driver_angle, kin.follower_angle, kin.ratio, kin.speed, kin.acceleration]),
     )
-    rings = tuple(decimate(r, budget(out.tolerance).fit) for r in pitch_fine)
+    rings = tuple(decimate(r, b.fit) for r in pitch_fine)
     return Draft(
         params=params,
         mechanism="gear-pair",

@@ -21,11 +21,12 @@ from ..teeth.gear import cut_teeth
 from ..teeth.rack import Rack, RackParams
 from ..tolerances import budget
 from .budget import COARSEST_TOLERANCE, POINT_BUDGET, check_backlash, check_teeth_work
+from .chart_data import Blocks
 from .finish import Contact, Draft, PartSpec
 from .parts import Placement
 from .roller_charts import charts as _charts
 
-__all__ = ["RollerBodyDetail", "design", "PAPER_M"]
+__all__ = ["RollerBodyDetail", "ToothedBody", "design", "PAPER_M"]
 
 TWO_PI = 2 * math.pi
 PAPER_M = (3, 6, 9, 12, 15)
@@ -60,7 +61,43 @@ def _limits(p: RollerBodyParams) -> dict[int, tuple[float, float]]:
     }
 
 
-def _toothed_body(osc: RB.Oscillation, p: RollerBodyParams) -> dict:
+@dataclass(frozen=True)
+class ToothedBody:
+    """The body's teeth with the rollers as pinions: the report's numbers (:meth:`block`) and the
+    rings and turns the parts are drawn from."""
+
+    body_teeth: int
+    roller_teeth: int
+    module: float
+    backlash: float
+    roller_radius: float
+    """Units of R, adjusted so that the body carries a whole number of teeth."""
+    requested_roller_radius: float
+    body_undercut: bool
+    roller_undercut: bool
+    body_ring: np.ndarray
+    roller_ring: np.ndarray
+    roller_turns: tuple[float, float, float]
+    """Each roller's turn (rad) that meshes it with the body where it stands."""
+    pitch: ParametricFrame
+    """The body's pitch curve (mm, counter-clockwise arc)."""
+
+    def block(self) -> dict:
+        """The report's ``teeth`` block."""
+        names = (
+            "body_teeth",
+            "roller_teeth",
+            "module",
+            "backlash",
+            "roller_radius",
+            "requested_roller_radius",
+            "body_undercut",
+            "roller_undercut",
+        )
+        return {name: getattr(self, name) for name in names}
+
+
+def _toothed_body(osc: RB.Oscillation, p: RollerBodyParams) -> ToothedBody:
     """Teeth on the body, the rollers as pinions of pitch radius r (one generating rack).
 
     The rollers' count fixes the module (m = 2r/z_r); the body's contour is the roller path P
@@ -99,20 +136,20 @@ def _toothed_body(osc: RB.Oscillation, p: RollerBodyParams) -> dict:
         # body space centre `space` pitches behind the contact needs a roller tooth centre as far
         # ahead; the roller's spaces sit at arc r·(angle − turn) = pitch/2 + j·pitch
         turns.append(theta - (rack.pitch / 2 + ((0.5 - space) % 1.0) * rack.pitch) / (r * p.scale))
-    return {
-        "body_teeth": z_b,
-        "roller_teeth": z_r,
-        "module": module,
-        "backlash": p.backlash,
-        "roller_radius": r,
-        "requested_roller_radius": p.roller_radius,
-        "body_undercut": body.undercut,
-        "roller_undercut": roller.undercut,
-        "_body_ring": body.outline.outer,
-        "_roller_ring": roller.outline.outer,
-        "_roller_turns": turns,
-        "_pitch": frame,
-    }
+    return ToothedBody(
+        body_teeth=z_b,
+        roller_teeth=z_r,
+        module=module,
+        backlash=p.backlash,
+        roller_radius=r,
+        requested_roller_radius=p.roller_radius,
+        body_undercut=body.undercut,
+        roller_undercut=roller.undercut,
+        body_ring=body.outline.outer,
+        roller_ring=roller.outline.outer,
+        roller_turns=tuple(turns),
+        pitch=frame,
+    )
 
 
 def _body_ring(osc: RB.Oscillation, p: RollerBodyParams, r: float) -> tuple[np.ndarray, np.ndarray]:
@@ -144,7 +181,7 @@ def _body_ring(osc: RB.Oscillation, p: RollerBodyParams, r: float) -> tuple[np.n
     return body, RB.roller_path(osc, tau)[::-1] * p.scale
 
 
-def design(p: RollerBodyParams) -> Draft:
+def design(p: RollerBodyParams) -> Draft[RollerBodyDetail]:
     """The body, its three rollers and their proof, from a roller-body profile."""
     osc = _oscillation(p)
     r = p.roller_radius
@@ -166,7 +203,7 @@ def design(p: RollerBodyParams) -> Draft:
     t = np.linspace(0.0, TWO_PI / w, 20001)
     _, vel, acc = RB.point_motion(osc, 0.0, 0.0, w=w, t=t)
     vmax, amax = float(np.max(np.hypot(*vel.T))) * p.scale, float(np.max(np.hypot(*acc.T))) * p.scale
-    data = {
+    data: Blocks = {
         "body": {
             "scale": p.scale,
             "roller_radius": r,
@@ -210,18 +247,18 @@ def design(p: RollerBodyParams) -> Draft:
     )
     teeth = _toothed_body(osc, p) if p.roller_teeth else None
     if teeth is not None:
-        data["teeth"] = {k: v for k, v in teeth.items() if not k.startswith("_")}
-        summary += f", {teeth['body_teeth']}/{teeth['roller_teeth']} teeth m = {teeth['module']:.4f}"
-        if teeth["roller_radius"] != r:
+        data["teeth"] = teeth.block()
+        summary += f", {teeth.body_teeth}/{teeth.roller_teeth} teeth m = {teeth.module:.4f}"
+        if teeth.roller_radius != r:
             findings.append(
                 finding(
                     "teeth-fit",
-                    f"roller radius {r:g} R adjusted to {teeth['roller_radius']:.6f} R so that the body carries "
-                    f"a whole number of teeth ({teeth['body_teeth']}) of the rollers' module",
+                    f"roller radius {r:g} R adjusted to {teeth.roller_radius:.6f} R so that the body carries "
+                    f"a whole number of teeth ({teeth.body_teeth}) of the rollers' module",
                     "body",
                 )
             )
-        r = teeth["roller_radius"]
+        r = teeth.roller_radius
     fine = budget(p.output.tolerance).fine
     body, path = _body_ring(osc, p, r)
     roller_circle = circle_ring(r * p.scale, fine)
@@ -234,11 +271,11 @@ def design(p: RollerBodyParams) -> Draft:
         contacts = tuple(Contact(0, k, length=TWO_PI * r * p.scale, touch="rolling") for k in (1, 2, 3))
     else:
         parts = (
-            PartSpec("body", teeth["_body_ring"], bore=p.bore, wall=teeth["module"], marks=(body,)),
-            PartSpec("roller", teeth["_roller_ring"], bore=axle, marks=(roller_circle,)),
+            PartSpec("body", teeth.body_ring, bore=p.bore, wall=teeth.module, marks=(body,)),
+            PartSpec("roller", teeth.roller_ring, bore=axle, marks=(roller_circle,)),
         )
-        turns = teeth["_roller_turns"]
-        contacts = tuple(Contact(0, k, module=teeth["module"], radius=r * p.scale, touch="mesh") for k in (1, 2, 3))
+        turns = list(teeth.roller_turns)
+        contacts = tuple(Contact(0, k, module=teeth.module, radius=r * p.scale, touch="mesh") for k in (1, 2, 3))
     centres = [(p.scale * math.sin(a), p.scale * math.cos(a)) for a in (0.0, TWO_PI / 3, 2 * TWO_PI / 3)]
     placements = (Placement("body"),) + tuple(Placement("roller", a, c) for a, c in zip(turns, centres))
     return Draft(
@@ -251,7 +288,7 @@ def design(p: RollerBodyParams) -> Draft:
         contacts=contacts,
         data=data,
         units=UNITS,
-        detail=RollerBodyDetail(osc, r, None if teeth is None else teeth["_pitch"]),
+        detail=RollerBodyDetail(osc, r, None if teeth is None else teeth.pitch),
         charts=_charts(osc, p, r, data),
         where="body",
     )

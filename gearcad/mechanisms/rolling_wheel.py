@@ -13,6 +13,7 @@ from ..geometry.rings import circle_ring
 from ..profiles import RollingWheelParams
 from ..tolerances import budget
 from ..trains import rack_drive as RD
+from .chart_data import Blocks
 from .finish import Contact, Draft, PartSpec
 from .parts import Placement
 
@@ -50,7 +51,7 @@ def _motion(d: RD.RackDrive, p: RollingWheelParams, w1: float) -> RollingWheelDe
     return RollingWheelDetail(phi1, by_contour, by_rates, w2, w3, e2)
 
 
-def design(p: RollingWheelParams) -> Draft:
+def design(p: RollingWheelParams) -> Draft[RollingWheelDetail]:
     """The drive's geometry and motion, checked two ways, and its two wheels as parts."""
     d = RD.RackDrive(p.r, p.R, p.L, p.H)
     beta0 = float(RD.inclination(d))
@@ -91,7 +92,7 @@ def design(p: RollingWheelParams) -> Draft:
         if not check.get("holds", True) and check.get("code"):
             findings.append(finding(check["code"], check["message"], "drive"))
     paper_beta = RD.paper_inclination(d) if p.R != p.r else None
-    data = {
+    data: Blocks = {
         "drive": {"r": p.r, "R": p.R, "L": p.L, "H": p.H, "travel": p.travel, "driver_rpm": p.driver_rpm},
         "geometry": {
             "beta_start": beta0,

@@ -165,6 +165,7 @@ def cut_pair(
     *,
     mate_rotation: float | None = None,
     tol: Tolerances = DEFAULT,
+    budget: Budget | None = None,
     relief: bool = True,
     min_fillet: float = 0.0,
 ) -> ToothedPairData:
@@ -174,7 +175,8 @@ def cut_pair(
     pair), None otherwise: then the teeth are planned so the two gears are one part.
     ``relief`` trims gear 1 by the mate's sweep where the proof finds the rack-cut pair too deep
     (:mod:`.relief`); False keeps the rack's teeth as cut.  ``min_fillet`` (mm) is the smallest
-    root fillet: a router's tool radius.
+    root fillet: a router's tool radius.  ``budget`` is the design's (made once per design and
+    passed down); left out, the budget of ``tol.outline_mm``.
     """
     refuse_corners(gears)
     # a self-conjugate noncircular pair: gear 2 is gear 1 turned, and the count must make the
@@ -191,7 +193,8 @@ def cut_pair(
             f"the largest backlash module {plan.module:.4g} takes is {math.pi * plan.module / 2:.3f} mm"
         )
     shifts = (params.profile_shift, -params.profile_shift)
-    fine_tol = Budget(tol.outline_mm, tol.fine_fraction).fine
+    b = budget if budget is not None else Budget(tol.outline_mm, tol.fine_fraction)
+    fine_tol = b.fine
 
     stop = threading.Event()  # a gear that cannot be cut calls off its mate's cut
 
@@ -211,13 +214,13 @@ def cut_pair(
         if failed:
             raise failed[0]
         fine = tuple(job.result() for job in jobs)
-    toothed = tuple(_thinned(g, tol.outline_mm - fine_tol) for g in fine)
-    mesh, play_range = _prove(pair, toothed, frames, params, plan.module, tol.outline_mm)
+    toothed = tuple(_thinned(g, b.fit) for g in fine)
+    mesh, play_range = _prove(pair, toothed, frames, params, plan.module, b.tolerance)
     trim = None
     if mesh.too_deep and relief and not plan.identical and mesh.max_depth <= MAX_RELIEF_MODULES * plan.module:
         relieved, trim = relieve(pair, fine[0], toothed, frames, mesh, deep=np.array(mesh.too_deep))
-        fine, toothed = (relieved, fine[1]), (_thinned(relieved, tol.outline_mm - fine_tol), toothed[1])
-        mesh, play_range = _prove(pair, toothed, frames, params, plan.module, tol.outline_mm)
+        fine, toothed = (relieved, fine[1]), (_thinned(relieved, b.fit), toothed[1])
+        mesh, play_range = _prove(pair, toothed, frames, params, plan.module, b.tolerance)
     limits = tuple(
         undercut_free_module(g.shape.min_curvature_radius, toothed[i].rack.params) for i, g in enumerate(gears)
     )
@@ -229,7 +232,7 @@ def cut_pair(
             g.phase,
             g.outline.outer,
             concave_spans(frames[i], gears[i].shape.concave_intervals),
-            tolerance=tol.outline_mm,
+            tolerance=b.tolerance,
         )
         for i, g in enumerate(fine)
     )
