@@ -44,7 +44,7 @@ def _motion(d: RD.RackDrive, p: RollingWheelParams, w1: float) -> RollingWheelDe
         zero = np.zeros_like(phi1)
         return RollingWheelDetail(phi1, phi2, phi2.copy(), zero + w1 * p.r / (2 * p.R), zero, zero)
     beta_end = float(RD.inclination(d, p.L - p.travel))
-    phi1 = np.linspace(0.0, RD._contour_state(d, beta_end)[0], 401)
+    phi1 = np.linspace(0.0, RD.contour_state(d, beta_end)[0], 401)
     by_contour = RD.law_by_contour(d, phi1)
     by_rates = RD.law_by_rates(d, phi1)
     w2, w3, e2 = RD.rates(d, p.L - p.R * by_contour, omega1=w1)
