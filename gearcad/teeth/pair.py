@@ -158,6 +158,70 @@ def _rack(params: ToothSpec, module: float, shift: float, min_fillet: float = 0.
     return Rack.from_params(rack)
 
 
+def _planned(pair: PairData, params: ToothSpec, tol: Tolerances, identical: float | None):
+    """Both pitch curves by arc length and the teeth planned on them (the count checked on the
+    first before the mate's map is made), or a one-line refusal."""
+    counted = dict(module=params.module, count=params.count, identical_rotation=identical)
+    first = arc_frame(pair.gear1, tol=tol)
+    tooth_count(first, pair.lobes, **counted)  # a count that cannot be refuses before the mate's map
+    frames = (first, arc_frame(pair.gear2, tol=tol))
+    plan = plan_teeth(*frames, pair.lobes, **counted)
+    if params.backlash >= math.pi * plan.module / 2:
+        raise DesignError(
+            f"teeth.backlash = {params.backlash:g}: it would thin every tooth to under half its thickness; "
+            f"the largest backlash module {plan.module:.4g} takes is {math.pi * plan.module / 2:.3f} mm"
+        )
+    return frames, plan
+
+
+def _identical_deviation(fine, identical: float) -> float:
+    """Both gears are cut by the same code from the same curve, so their vertices coincide when
+    they are the same part: the largest vertex-to-nearest-vertex distance says so."""
+    turned = rotate(fine[0].outline.outer, -identical)
+    return float(np.max(nearest(fine[1].outline.outer, turned)[1]))
+
+
+def _cut_both(frames, plan, params: ToothSpec, min_fillet: float, fine_tol: float) -> tuple:
+    """Both gears cut side by side at the fine tolerance (opposite profile shifts), their flank
+    clearance taken off; a gear that cannot be cut calls off its mate's cut and raises."""
+    shifts = (params.profile_shift, -params.profile_shift)
+    stop = threading.Event()  # a gear that cannot be cut calls off its mate's cut
+
+    def cut(frame, z, phase, shift):
+        try:
+            gear = cut_teeth(
+                frame, _rack(params, plan.module, shift, min_fillet), z, phase, tolerance=fine_tol, stop=stop
+            )
+            return with_clearance(gear, params.clearance, fine_tol)
+        except BaseException:
+            stop.set()
+            raise
+
+    with side_by_side() as pool:  # the two gears side by side
+        jobs = [pool.submit(cut, *job) for job in zip(frames, plan.teeth, plan.phases, shifts)]
+        failed = [e for e in (job.exception() for job in jobs) if e is not None and not isinstance(e, Stopped)]
+        if failed:
+            raise failed[0]
+        return tuple(job.result() for job in jobs)
+
+
+def _overcuts(frames, fine, gears, tolerance: float) -> tuple:
+    """Where the rack's tip cuts into each gear's concave stretches beyond the tolerance (None
+    where it does not)."""
+    return tuple(
+        rack_overcut(
+            frames[i],
+            g.rack,
+            g.teeth,
+            g.phase,
+            g.outline.outer,
+            concave_spans(frames[i], gears[i].shape.concave_intervals),
+            tolerance=tolerance,
+        )
+        for i, g in enumerate(fine)
+    )
+
+
 def cut_pair(
     pair: PairData,
     gears: Sequence[GearData],
@@ -182,38 +246,9 @@ def cut_pair(
     # a self-conjugate noncircular pair: gear 2 is gear 1 turned, and the count must make the
     # toothed gears one part too (a circle's mate is the same part at any count and turn)
     identical = None if gears[0].round else mate_rotation
-    counted = dict(module=params.module, count=params.count, identical_rotation=identical)
-    first = arc_frame(pair.gear1, tol=tol)
-    tooth_count(first, pair.lobes, **counted)  # a count that cannot be refuses before the mate's map
-    frames = (first, arc_frame(pair.gear2, tol=tol))
-    plan = plan_teeth(*frames, pair.lobes, **counted)
-    if params.backlash >= math.pi * plan.module / 2:
-        raise DesignError(
-            f"teeth.backlash = {params.backlash:g}: it would thin every tooth to under half its thickness; "
-            f"the largest backlash module {plan.module:.4g} takes is {math.pi * plan.module / 2:.3f} mm"
-        )
-    shifts = (params.profile_shift, -params.profile_shift)
+    frames, plan = _planned(pair, params, tol, identical)
     b = budget if budget is not None else Budget(tol.outline_mm, tol.fine_fraction)
-    fine_tol = b.fine
-
-    stop = threading.Event()  # a gear that cannot be cut calls off its mate's cut
-
-    def cut(frame, z, phase, shift):
-        try:
-            gear = cut_teeth(
-                frame, _rack(params, plan.module, shift, min_fillet), z, phase, tolerance=fine_tol, stop=stop
-            )
-            return with_clearance(gear, params.clearance, fine_tol)
-        except BaseException:
-            stop.set()
-            raise
-
-    with side_by_side() as pool:  # the two gears side by side
-        jobs = [pool.submit(cut, *job) for job in zip(frames, plan.teeth, plan.phases, shifts)]
-        failed = [e for e in (job.exception() for job in jobs) if e is not None and not isinstance(e, Stopped)]
-        if failed:
-            raise failed[0]
-        fine = tuple(job.result() for job in jobs)
+    fine = _cut_both(frames, plan, params, min_fillet, b.fine)
     toothed = tuple(_thinned(g, b.fit) for g in fine)
     mesh, play_range = _prove(pair, toothed, frames, params, plan.module, b.tolerance)
     trim = None
@@ -224,24 +259,8 @@ def cut_pair(
     limits = tuple(
         undercut_free_module(g.shape.min_curvature_radius, toothed[i].rack.params) for i, g in enumerate(gears)
     )
-    overcut = tuple(
-        rack_overcut(
-            frames[i],
-            g.rack,
-            g.teeth,
-            g.phase,
-            g.outline.outer,
-            concave_spans(frames[i], gears[i].shape.concave_intervals),
-            tolerance=b.tolerance,
-        )
-        for i, g in enumerate(fine)
-    )
-    deviation = None
-    if plan.identical:
-        # both gears are cut by the same code from the same curve, so their vertices coincide
-        # when they are the same part: the largest vertex-to-nearest-vertex distance says so
-        turned = rotate(fine[0].outline.outer, -identical)
-        deviation = float(np.max(nearest(fine[1].outline.outer, turned)[1]))
+    overcut = _overcuts(frames, fine, gears, b.tolerance)
+    deviation = _identical_deviation(fine, identical) if plan.identical else None
     return ToothedPairData(
         plan=plan,
         gears=toothed,
