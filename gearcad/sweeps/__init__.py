@@ -245,24 +245,12 @@ def sweep(
     >>> [round(x, 3) for x in t["pair.ratio_max"]]
     [1.5, 2.333, 4.0]
     """
-    from .front import parse_constraint
-    from .space import SweepSpec, check_key, check_values
+    from .space import SweepSpec
 
-    constraints, minimise, maximise = (
-        _keys(constraints, "constraints"),
-        _keys(minimise, "minimise"),
-        _keys(maximise, "maximise"),
-    )
+    constraints, minimise, maximise = (_keys(constraints, "constraints"), _keys(minimise, "minimise"),
+                                       _keys(maximise, "maximise"))  # fmt: skip
     _check_arguments(stage, samples, sampling, seed, workers, client, scheduler_timeout, (minimise, maximise))
-    conditions = [parse_constraint(c) for c in constraints]
-    for condition in conditions:
-        _check_constraint(condition)
-    data, name, path = _profile_data(profile)
-    varies = _varies(vary)
-    for v in varies:
-        check_key(data, v.key)
-        check_values(v)
-    _check_bounds(conditions)
+    conditions, (data, name, path), varies = _checked_inputs(profile, vary, constraints)
     searched = (method, population, generations, evaluations, against_grid)
     spec = SweepSpec(vary=varies, stage=stage, samples=samples, sampling=sampling, seed=seed)
     overrides = _first_points(data, name, stage, varies, conditions, (minimise, maximise), searched, confirm, spec)
@@ -292,6 +280,24 @@ def sweep(
 
         table = confirm_front(table, data, name, conditions, _run, **running)
     return table
+
+
+def _checked_inputs(profile, vary, constraints):
+    """The constraints parsed, the profile read and the varied keys and values checked against
+    it: (conditions, (data, name, path), varies), or a one-line refusal."""
+    from .front import parse_constraint
+    from .space import check_key, check_values
+
+    conditions = [parse_constraint(c) for c in constraints]
+    for condition in conditions:
+        _check_constraint(condition)
+    data, name, path = _profile_data(profile)
+    varies = _varies(vary)
+    for v in varies:
+        check_key(data, v.key)
+        check_values(v)
+    _check_bounds(conditions)
+    return conditions, (data, name, path), varies
 
 
 def _first_points(data, name, stage, varies, conditions, goals, searched, confirm, spec) -> list[dict]:
