@@ -21,13 +21,13 @@ from contextlib import contextmanager, nullcontext, suppress
 from dataclasses import dataclass
 from pathlib import Path
 
-from .errors import GearcadError, OutputError, ProfileError
+from .errors import GearcadError, OutputError, ProfileError, shown
 from .findings import Finding
 from .fitting import design
 from .interrupts import Interrupted, end_with_parent, held_signals, interrupt_guard
 from .mechanisms import Design
 from .profiles import ProfileParams
-from .publish import Publisher, check_out, out_lock, shown
+from .publish import Publisher, check_out, out_lock
 from .threads import cores, set_threads
 
 __all__ = ["BuildResult", "build", "design_all", "worker_pool", "submit_all", "finished"]

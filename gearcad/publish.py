@@ -53,19 +53,10 @@ import tempfile
 from contextlib import contextmanager, suppress
 from pathlib import Path
 
-from .errors import GearcadError, OutputError, ProfileError
+from .errors import GearcadError, OutputError, ProfileError, shown
 from .interrupts import Interrupted, held_signals, interrupt_guard
 
-__all__ = [
-    "Publisher",
-    "Interrupted",
-    "interrupt_guard",
-    "check_out",
-    "resolve_out",
-    "out_lock",
-    "shown",
-    "write_files",
-]
+__all__ = ["Publisher", "Interrupted", "interrupt_guard", "check_out", "resolve_out", "out_lock", "write_files"]
 
 _NAME = re.compile(r"[\w-][\w.-]*")
 _PREFIX = ".gearcad-staging-"
@@ -111,12 +102,6 @@ def resolve_out(out: Path | str) -> Path:
     if len(os.fsencode(path)) >= 4096 - 64 or any(len(os.fsencode(c)) > 255 - 32 for c in path.parts):
         raise GearcadError(f"--out {shown(text)}: the path or one of its names is too long for this system")
     return path
-
-
-def shown(text) -> str:
-    """A path for a one-line message: control characters escaped, at most 200 characters."""
-    escaped = str(text).encode("unicode_escape", "backslashreplace").decode("ascii")
-    return escaped if len(escaped) <= 200 else escaped[:100] + "…" + escaped[-99:]
 
 
 def check_out(out: Path | str) -> None:

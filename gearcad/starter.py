@@ -16,8 +16,8 @@ from contextlib import suppress
 from pathlib import Path
 
 from .errors import OutputError, ProfileError
+from .errors import shown as _shown
 from .profiles import parse_profile, profile_schema, read_profile_text
-from .publish import shown as _shown
 from .publish import write_files
 
 __all__ = ["SCHEMA_LINE", "example_folders", "new_profile"]
