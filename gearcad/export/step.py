@@ -204,7 +204,7 @@ def _same(design: Design, part) -> bytes | None:
     return b"|".join([*data, np.array([out.thickness, out.chamfer]).tobytes()])
 
 
-def write_step_files(design: Design, folder: Path) -> dict[str, dict]:
+def write_step_files(design: Design, folder: Path, made: object = None) -> dict[str, dict]:
     """Every part's ``<name>.step`` and ``assembly.step`` (parts placed as in assembly.3mf) into
     ``folder``; returns their files entries (faces by type, volume in mm³).  A part alike an
     earlier one (the same solid) is that one's file with its own name: the bytes OpenCASCADE
