@@ -6,6 +6,7 @@ import io
 import itertools
 import json
 import re
+from pathlib import Path
 
 import ezdxf
 import numpy as np
@@ -18,6 +19,7 @@ from gearcad.export.sheet import NAME_HEIGHT_MM, name_strokes
 from gearcad.mechanisms.layouts import SKIRT_MM
 
 from .conftest import read_dxf
+from .test_html import CHROMIUM
 
 
 def _report(built, name):
@@ -148,6 +150,26 @@ def test_the_walker_plates_fit_a_common_bed_and_its_leg_is_named(built):
         (x0, y0, _), (x1, y1, _) = scene.bounds
         assert x0 >= 0 and y0 >= 0 and x1 <= 250 and y1 <= 210, path.name
         assert "shoe" not in scene.geometry
+
+
+@pytest.mark.skipif(
+    not Path(CHROMIUM).is_file(), reason="no chromium: install it with `apt-get install -y chromium` (Debian)"
+)
+def test_a_browser_shows_the_sheet_svgs_parts_on_its_first_screen(built, tmp_path):
+    """Issue 37 item 12 in a real browser: chromium opens the walker's sheet.svg (the largest
+    sheet, parts at their real size) at 1000 × 700 px and its first screen shows cut lines
+    (#ff0000) spread over a part's size, not a blank page."""
+    from PIL import Image
+
+    from .test_html import chromium
+
+    png = tmp_path / "sheet.png"
+    chromium((built / "walker" / "sheet.svg").as_uri(), png, tmp_path, size=(1000, 700))
+    pixels = np.asarray(Image.open(png).convert("RGB")).astype(int)
+    red = (pixels[..., 0] > 180) & (pixels[..., 1] < 110) & (pixels[..., 2] < 110)
+    rows, cols = np.nonzero(red)
+    assert len(rows) > 300, "no cut line on the first screen of sheet.svg"
+    assert rows.max() - rows.min() > 100 and cols.max() - cols.min() > 100  # a part, not a stray mark
 
 
 def test_the_sheet_svg_shows_its_parts_from_the_top_left(built):
