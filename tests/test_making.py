@@ -2,7 +2,6 @@
 the pitch curve engraved so that no filling program engraves a region, the print plate apart
 by its twisted footprints with room for a skirt, pilot holes and the assembly texts explained."""
 
-import io
 import itertools
 import json
 import re
@@ -158,7 +157,8 @@ def test_the_walker_plates_fit_a_common_bed_and_its_leg_is_named(built):
 def test_a_browser_shows_the_sheet_svgs_parts_on_its_first_screen(built, tmp_path):
     """Issue 37 item 12 in a real browser: chromium opens the walker's sheet.svg (the largest
     sheet, parts at their real size) at 1000 × 700 px and its first screen shows cut lines
-    (#ff0000) spread over a part's size, not a blank page."""
+    (#ff0000) spread over a part's size, not a blank page (in place of reading the SVG's paths
+    with svgelements, which took 8 s)."""
     from PIL import Image
 
     from .test_html import chromium
@@ -170,17 +170,3 @@ def test_a_browser_shows_the_sheet_svgs_parts_on_its_first_screen(built, tmp_pat
     rows, cols = np.nonzero(red)
     assert len(rows) > 300, "no cut line on the first screen of sheet.svg"
     assert rows.max() - rows.min() > 100 and cols.max() - cols.min() > 100  # a part, not a stray mark
-
-
-def test_the_sheet_svg_shows_its_parts_from_the_top_left(built):
-    """Issue 37 item 12: a browser opens sheet.svg at its real size at the page's top-left corner,
-    so the parts are laid out from there (the first screen of a 96 dpi browser: 1000 × 700 px)."""
-    from svgelements import SVG
-    from svgelements import Path as SvgPath
-
-    for profile in ("elliptic_focus", "walker"):
-        svg = SVG.parse(io.StringIO((built / profile / "sheet.svg").read_text(encoding="utf-8")))
-        boxes = [e.bbox() for e in svg.elements() if isinstance(e, SvgPath) and e.bbox() is not None]
-        # svgelements scales user units (mm here) to 96 dpi pixels, as a browser does
-        first = [b for b in boxes if b[0] < 1000 and b[1] < 700]
-        assert first, f"{profile}: no part drawn within the first screen of sheet.svg"
