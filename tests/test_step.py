@@ -180,21 +180,21 @@ def test_straight_parts_are_exact_named_extrusions_placed_as_assembled(spur, tmp
     write_step_files(design, tmp_path)
     for path in sorted(folder.glob("*.step")):
         assert (tmp_path / path.name).read_bytes() == path.read_bytes(), path.name
-    _shared_as_opencascade_wrote_it(design, folder, tmp_path, volumes)
+    _shared_as_opencascade_wrote_it(design, folder, tmp_path)
 
 
-def _shared_as_opencascade_wrote_it(design, folder, tmp_path, volumes):
+def _shared_as_opencascade_wrote_it(design, folder, tmp_path):
     """Issue 37 item 9: the files share their equal geometric entities (export/step_text.py):
-    no two points, directions, vectors, placements, curves or surfaces alike; against the file
-    OpenCASCADE writes itself (the compaction switched off), the same solid — valid, the same
-    faces and volume — in about two thirds of the bytes."""
+    no two points, directions, vectors, placements, curves or surfaces alike, and (read back
+    above: valid, the faces and the arcs' closed-form volume) in under three quarters of the
+    bytes OpenCASCADE writes itself (the sharing switched off)."""
     import re
     from unittest import mock
 
     from gearcad.export import step as step_module
     from gearcad.export.step_text import SHARED
 
-    part = design.parts()[1]  # the gear: the larger file
+    part = design.parts()[0]  # the pinion: the smaller file, the cheaper to write again
     text = (folder / f"{part.name}.step").read_text(encoding="latin-1")
     geometry = re.findall(r"^#\d+=((\w+)\(.*\));$", text, re.M)
     assert len(geometry) > 1000
@@ -206,9 +206,6 @@ def _shared_as_opencascade_wrote_it(design, folder, tmp_path, volumes):
         step_module.write_part_step(design, part.name, plain)
     raw = (plain / f"{part.name}.step").read_text(encoding="latin-1")
     assert "#1 = " in raw and len(text) < 0.75 * len(raw)
-    ours, theirs = _read(folder / f"{part.name}.step"), _read(plain / f"{part.name}.step")
-    assert BRepCheck_Analyzer(ours).IsValid() and _faces(ours) == _faces(theirs)
-    assert _volume(ours) == pytest.approx(_volume(theirs), rel=1e-12) == volumes[part.name]
 
 
 def test_compact_shares_geometry_only_and_keeps_strings():
