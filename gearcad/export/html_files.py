@@ -59,7 +59,7 @@ def section_charts(files: Mapping) -> str:
         return ""
     figures = "".join(
         f'<figure><a href="{escape(quote(n))}"><img src="{escape(quote(n))}" alt="{escape(n)}"></a>'
-        f"<figcaption>{escape(n)}</figcaption></figure>"
+        f'<figcaption>{escape(n)} (<a href="{escape(quote(n))}">full size</a>)</figcaption></figure>'
         for n in charts
     )
     return f'<h2 id="charts">Charts</h2><div class="charts">{figures}</div>'

@@ -281,7 +281,9 @@ def design(p: RollerBodyParams) -> Draft[RollerBodyDetail]:
     findings += [finding(c["code"], c["message"], "body") for c in checks if not c["holds"]]
     if p.direction != "series":
         radii = sorted({*LM.PAPER_RADII, p.roller_radius})
-        data["limits_vs_r"] = LM.amplitude_limit_table((p.direction,), radii=radii).as_dict()
+        # both directions for limits_vs_r.png (0.9 CPU-s more than the profile's own: only with charts)
+        directions = ("horizontal", "vertical") if p.output.charts else (p.direction,)
+        data["limits_vs_r"] = LM.amplitude_limit_table(directions, radii=radii).as_dict()
     summary = (
         f"{'convex' if convex else 'not convex'}, "
         + (f"amplitude limits convex {limits[p.m][0]:.5f} / simple {limits[p.m][1]:.5f} R, " if limits else "")
