@@ -1,0 +1,172 @@
+"""A sweep's designs' parameters: the profile validated once, each design's overrides alone.
+
+``Variants(data, name).params(overrides)`` is ``parse_profile(overridden(data, overrides),
+default_name=name)`` — the same parameters (fields, defaults, ``model_fields_set``), or the same
+:class:`~gearcad.errors.ProfileError` — without validating the whole profile for every design
+(issue 35: validation was a third of a pitch-stage design's time on the focus pair).
+
+Only the tables on an override's path are built again: each of their values that the override
+left as it was is taken as validated once (by its field's own schema), each new one validated
+by its field's schema, the table made with ``model_construct`` and its ``after`` validators run
+on it, as pydantic would; the tables off the path are each validated once (by their field's
+schema: a table's own validators, none of its parent's) and shared.  A model with anything else
+(``before`` or ``wrap`` validators, field validators, a post-init, private attributes, a config
+beyond the profiles' own) is validated whole; any error — a bad value, a rule between keys —
+sends the design through ``parse_profile`` itself, whose message it then carries.
+"""
+
+from __future__ import annotations
+
+import inspect
+from functools import cache
+from typing import Annotated, Any
+
+from pydantic import BaseModel, TypeAdapter
+
+from ..profiles.reading import MODEL_OF, parse_profile
+from .evaluate import overridden
+from .space import _admits
+
+__all__ = ["Variants"]
+
+_CONFIG = {"frozen", "extra", "json_schema_extra", "defer_build", "title"}
+"""Model settings that change nothing of how a field's value is validated (``extra`` is
+"forbid": an unknown key sends the design to ``parse_profile``)."""
+
+
+class _Slow(Exception):
+    """This design's parameters are not made here: ``parse_profile`` makes them (or says why not)."""
+
+
+@cache
+def _adapter(cls: type[BaseModel], key: str):
+    """The validator of the field's own schema (its type, constraints, validators, discriminator)."""
+    field = cls.model_fields[key]
+    return TypeAdapter(Annotated[field.annotation, field]).validator
+
+
+class _Model:
+    """What building a model here needs, found once: its keys, the required ones, the defaults
+    to fill in (each shared, as pydantic shares a hashable default) and its ``after`` validators."""
+
+    def __init__(self, cls: type[BaseModel], after: tuple) -> None:
+        self.cls, self.after = cls, after
+        self.fields = fields = dict(cls.model_fields)
+        self.keys = frozenset(fields)
+        self.required = frozenset(k for k, f in fields.items() if f.is_required())
+        self.defaults = {k: f.default for k, f in fields.items() if not f.is_required()}
+
+    def make(self, values: dict[str, Any], given: set[str]) -> BaseModel:
+        """The model of ``values`` (validated), as pydantic leaves it before its ``after`` validators."""
+        made = self.cls.__new__(self.cls)
+        full = {k: values[k] if k in given else self.defaults[k] for k in self.fields}
+        object.__setattr__(made, "__dict__", full)
+        object.__setattr__(made, "__pydantic_fields_set__", given)
+        object.__setattr__(made, "__pydantic_extra__", None)
+        object.__setattr__(made, "__pydantic_private__", None)
+        for check in self.after:
+            made = check(made)
+        return made
+
+
+def _shareable(value: Any) -> bool:
+    try:
+        hash(value)
+    except TypeError:
+        return False
+    return True
+
+
+@cache
+def _model(cls: type[BaseModel]) -> _Model | None:
+    """How to build ``cls`` here; None if it has any validation but ``after`` validators (which
+    building would skip), aliases, default factories or defaults that pydantic would copy."""
+    decorators = cls.__pydantic_decorators__
+    plain = not (decorators.field_validators or decorators.root_validators or decorators.validators)
+    plain = plain and cls.__pydantic_post_init__ is None and not cls.__private_attributes__
+    plain = plain and set(cls.model_config) <= _CONFIG and cls.model_config.get("extra") == "forbid"
+    for field in cls.model_fields.values():
+        plain = plain and field.alias is None and field.validation_alias is None and field.default_factory is None
+        plain = plain and (field.is_required() or _shareable(field.default))
+    if not plain:
+        return None
+    after = []
+    for decorator in decorators.model_validators.values():
+        if decorator.info.mode != "after" or len(inspect.signature(decorator.func).parameters) != 1:
+            return None
+        after.append(decorator.func)
+    return _Model(cls, tuple(after))
+
+
+@cache
+def _table_class(cls: type[BaseModel], key: str, tag: Any) -> type[BaseModel] | None:
+    """The model a table given for ``cls.key`` is (its tag ``tag`` where the field is a tagged
+    union), if it can be built here: the field admits tables only, with no constraint of its own."""
+    field = cls.model_fields[key]
+    tables, plain = _admits(field.annotation)
+    if plain or not tables or field.metadata:
+        return None
+    if len(tables) > 1:
+        name = field.discriminator
+        if not isinstance(name, str) or tag is None:
+            return None
+        tables = [t for t in tables if name in t.model_fields and tag in _literals(t.model_fields[name].annotation)]
+    return tables[0] if len(tables) == 1 and _model(tables[0]) is not None else None
+
+
+def _literals(annotation: Any) -> tuple:
+    return getattr(annotation, "__args__", ()) if getattr(annotation, "__origin__", None) is not None else ()
+
+
+class Variants:
+    """The parameters of a profile's variants, one design's overrides at a time."""
+
+    def __init__(self, data: dict, name: str) -> None:
+        self.data, self.name = data, name
+        self._base = data if "name" in data else {**data, "name": name}
+        self._known: dict[tuple, dict] = {}  # (model, id of the base's table) → its values validated
+        self.fast = 0
+        """Designs whose parameters were made here (the others went through parse_profile)."""
+
+    def params(self, overrides: dict[str, Any]):
+        """``parse_profile(overridden(data, overrides), default_name=name)``."""
+        try:
+            new = overridden(self._base, overrides)
+            mechanism = new.get("mechanism", "gear-pair")
+            cls = MODEL_OF.get(mechanism) if isinstance(mechanism, str) else None
+            if cls is None or _model(cls) is None:
+                raise _Slow
+            made = self._table(cls, new, self._base)
+        except Exception:  # noqa: BLE001 - whatever it is, parse_profile says it in its own words
+            made = None
+        if made is None:
+            return parse_profile(overridden(self.data, overrides), default_name=self.name)
+        self.fast += 1
+        return made
+
+    def _table(self, cls: type[BaseModel], data: dict, base: dict):
+        model = _model(cls)
+        given = set(data)
+        if not given <= model.keys or not model.required <= given:  # pydantic says which
+            raise _Slow
+        known = self._known.setdefault((cls, id(base)), {})  # key → (the base's value, validated)
+        values = {}
+        for key, raw in data.items():
+            hit = known.get(key)
+            if hit is not None and hit[0] is raw:  # as the profile gives it: validated once
+                values[key] = hit[1]
+                continue
+            was = base.get(key, _Slow)
+            if raw is was:
+                values[key] = _adapter(cls, key).validate_python(raw)
+                known[key] = (raw, values[key])
+            elif isinstance(raw, dict) and (table := self._table_of(model, key, raw)) is not None:
+                values[key] = self._table(table, raw, was if isinstance(was, dict) else {})
+            else:
+                values[key] = _adapter(cls, key).validate_python(raw)
+        return model.make(values, given)
+
+    @staticmethod
+    def _table_of(model: _Model, key: str, raw: dict) -> type[BaseModel] | None:
+        tag = model.fields[key].discriminator
+        return _table_class(model.cls, key, raw.get(tag) if isinstance(tag, str) else None)
