@@ -84,23 +84,31 @@ def overridden(data: dict, overrides: dict[str, Any]) -> dict:
     return result
 
 
-def scalars(d) -> dict[str, Any]:
-    """``flatten(d.report())`` without building the report: for a design before the full stage
-    (no parts, no assembly, no files), the report's top-level keys and its blocks walked once,
-    numpy scalars made plain and NaN or infinity None as the report makes them (issue 35: the
-    report and its walk were a fifth of a pitch-stage design's time)."""
-    if d.stage == "full" or d.part_list or not all(isinstance(g, dict) for g in d.data.get("gears", ())):
-        return flatten(d.report())
-    out: dict[str, Any] = {}
-    top = {"tolerance": d.params.output.tolerance, **d.data, "warnings": None, "ok": d.ok}
-    for key in _SKIP_EARLY:
-        top.pop(key, None)
-    _walk(top, "", out)
+def scalars(d, out: dict[str, Any] | None = None) -> dict[str, Any]:
+    """``flatten(d.report())`` without building the report (into ``out`` if given): for a design
+    before the full stage (no parts, no assembly, no files), its report blocks walked once, numpy
+    scalars made plain and NaN or infinity None as the report makes them (issue 35: the report
+    and its walk were a fifth of a pitch-stage design's time)."""
+    out = {} if out is None else out
+    data = d.data
+    if d.stage == "full" or d.part_list or not all(isinstance(g, dict) for g in data.get("gears", ())):
+        out.update(flatten(d.report()))
+    elif data.keys().isdisjoint(_TOP):  # the report: tolerance, the blocks, ok
+        out["tolerance"] = d.params.output.tolerance
+        _walk(data, "", out)
+        out["ok"] = d.ok
+    else:  # a block named as one of the report's own keys: built as the report builds it
+        top = {"tolerance": d.params.output.tolerance, **data, "warnings": None, "ok": d.ok}
+        _walk({k: v for k, v in top.items() if k not in _SKIP_EARLY}, "", out)
     return out
 
 
 _SKIP_EARLY = (*_SKIP, "parts", "assembly", "output", "files")
 """The report's top-level keys no row holds, and those a stage before "full" does not report."""
+_TOP = {*_SKIP_EARLY, "tolerance", "ok"}
+"""Keys of the report that a block of the same name would replace or be replaced by."""
+_F64 = np.float64
+_FINITE = math.isfinite
 
 
 def _walk(node: dict, prefix: str, out: dict[str, Any]) -> None:
@@ -108,15 +116,17 @@ def _walk(node: dict, prefix: str, out: dict[str, Any]) -> None:
     and lists of tables, the common cases, first)."""
     for key, value in node.items():
         kind = type(value)
-        if kind is float or kind is np.float64:
-            out[f"{prefix}{key}"] = float(value) if math.isfinite(value) else None
+        if kind is float or kind is _F64:
+            out[f"{prefix}{key}"] = float(value) if _FINITE(value) else None
         elif kind is str or kind is int or kind is bool or value is None:
             out[f"{prefix}{key}"] = value
         elif kind is dict:
             _walk(value, f"{prefix}{key}.", out)
         elif kind is list or kind is tuple:
             for i, item in enumerate(value):
-                if isinstance(item, dict):
+                if type(item) is dict:
+                    _walk(item, f"{prefix}{key}.{i}.", out)
+                elif isinstance(item, dict):
                     _walk(item, f"{prefix}{key}.{i}.", out)
         else:
             _put(value, f"{prefix}{key}", out)
@@ -180,14 +190,13 @@ def evaluate_chunk(data: dict, name: str, stage: str, chunk: list[tuple[int, dic
     for row, d in zip(rows, made):
         if d is None:
             continue
-        try:
-            values = scalars(d)
-            failures = " ".join(f.code for f in d.failures()) if stage == "full" else None
-        except Exception as exc:  # noqa: BLE001 - the design's row says why
-            row["refusal"] = _refusal(exc)
-            continue
         row["warnings"] = len(d.findings)
-        row.update(values)
-        if failures is not None:  # what a full design fails, by code (a cheaper stage proves no check)
-            row["failures"] = failures
+        try:
+            scalars(d, row)
+            if stage == "full":  # what a full design fails, by code (a cheaper stage proves no check)
+                row["failures"] = " ".join(f.code for f in d.failures())
+        except Exception as exc:  # noqa: BLE001 - the design's row says why, and holds nothing else
+            index = row["index"]
+            row.clear()
+            row.update(index=index, refusal=_refusal(exc))
     return rows
