@@ -118,55 +118,95 @@ def _literals(annotation: Any) -> tuple:
     return getattr(annotation, "__args__", ()) if getattr(annotation, "__origin__", None) is not None else ()
 
 
+class _Key:
+    """Where an override's value goes, in a plan (``overridden`` run once with these in place of
+    the values: which tables are copied, which keys set and which removed depends on the keys only)."""
+
+    __slots__ = ("key",)
+
+    def __init__(self, key: str) -> None:
+        self.key = key
+
+
+class _Plan:
+    """One table on the overrides' paths: its model, its keys, the values that the overrides leave
+    as the profile gives them (validated once) and, in order, the keys they change: ``(key, the
+    override's key)`` for a value, ``(key, plan)`` for a table further down the path."""
+
+    __slots__ = ("model", "given", "fixed", "changes")
+
+    def __init__(self, model: _Model, given: frozenset, fixed: dict, changes: list) -> None:
+        self.model, self.given, self.fixed, self.changes = model, given, fixed, changes
+
+    def make(self, overrides: dict[str, Any]) -> BaseModel:
+        values = dict(self.fixed)
+        cls = self.model.cls
+        for key, change in self.changes:
+            if type(change) is str:
+                values[key] = _adapter(cls, key).validate_python(overrides[change])
+            else:
+                values[key] = change.make(overrides)
+        return self.model.make(values, set(self.given))
+
+
 class Variants:
     """The parameters of a profile's variants, one design's overrides at a time."""
 
     def __init__(self, data: dict, name: str) -> None:
         self.data, self.name = data, name
         self._base = data if "name" in data else {**data, "name": name}
-        self._known: dict[tuple, dict] = {}  # (model, id of the base's table) → its values validated
+        self._plans: dict[tuple, _Plan | None] = {}  # the overrides' keys → how to make their parameters
         self.fast = 0
         """Designs whose parameters were made here (the others went through parse_profile)."""
 
     def params(self, overrides: dict[str, Any]):
         """``parse_profile(overridden(data, overrides), default_name=name)``."""
-        try:
-            new = overridden(self._base, overrides)
-            mechanism = new.get("mechanism", "gear-pair")
-            cls = MODEL_OF.get(mechanism) if isinstance(mechanism, str) else None
-            if cls is None or _model(cls) is None:
-                raise _Slow
-            made = self._table(cls, new, self._base)
-        except Exception:  # noqa: BLE001 - whatever it is, parse_profile says it in its own words
-            made = None
+        keys = tuple(overrides)
+        if keys not in self._plans:
+            self._plans[keys] = self._plan(keys)
+        plan, made = self._plans[keys], None
+        if plan is not None:
+            try:
+                made = plan.make(overrides)
+            except Exception:  # noqa: BLE001 - whatever it is, parse_profile says it in its own words
+                made = None
         if made is None:
             return parse_profile(overridden(self.data, overrides), default_name=self.name)
         self.fast += 1
         return made
 
-    def _table(self, cls: type[BaseModel], data: dict, base: dict):
-        model = _model(cls)
-        given = set(data)
-        if not given <= model.keys or not model.required <= given:  # pydantic says which
-            raise _Slow
-        known = self._known.setdefault((cls, id(base)), {})  # key → (the base's value, validated)
-        values = {}
-        for key, raw in data.items():
-            hit = known.get(key)
-            if hit is not None and hit[0] is raw:  # as the profile gives it: validated once
-                values[key] = hit[1]
-                continue
-            was = base.get(key, _Slow)
-            if raw is was:
-                values[key] = _adapter(cls, key).validate_python(raw)
-                known[key] = (raw, values[key])
-            elif isinstance(raw, dict) and (table := self._table_of(model, key, raw)) is not None:
-                values[key] = self._table(table, raw, was if isinstance(was, dict) else {})
-            else:
-                values[key] = _adapter(cls, key).validate_python(raw)
-        return model.make(values, given)
+    def _plan(self, keys: tuple) -> _Plan | None:
+        """How to make the parameters of overrides of these keys; None: through parse_profile."""
+        if "name" in keys:  # the title follows a new name when it is text: it depends on the value
+            return None
+        try:
+            new = overridden(self._base, {key: _Key(key) for key in keys})
+            mechanism = new.get("mechanism", "gear-pair")
+            cls = MODEL_OF.get(mechanism) if isinstance(mechanism, str) else None
+            return self._table(cls, new, self._base) if cls is not None else None
+        except Exception:  # noqa: BLE001 - a bad key, an invalid profile: parse_profile says so
+            return None
 
-    @staticmethod
-    def _table_of(model: _Model, key: str, raw: dict) -> type[BaseModel] | None:
-        tag = model.fields[key].discriminator
-        return _table_class(model.cls, key, raw.get(tag) if isinstance(tag, str) else None)
+    def _table(self, cls: type[BaseModel], data: dict, base: dict) -> _Plan | None:
+        model = _model(cls)
+        given = frozenset(data)
+        if model is None or not given <= model.keys or not model.required <= given:  # pydantic says which
+            return None
+        fixed, changes = {}, []
+        for key, raw in data.items():
+            if raw is base.get(key, _Slow):  # as the profile gives it: validated once
+                fixed[key] = _adapter(cls, key).validate_python(raw)
+            elif isinstance(raw, _Key):
+                changes.append((key, raw.key))
+            elif isinstance(raw, dict):  # a table on an override's path
+                tag = model.fields[key].discriminator
+                tag = raw.get(tag) if isinstance(tag, str) else None
+                table = _table_class(cls, key, tag) if not isinstance(tag, _Key) else None
+                was = base.get(key)
+                plan = self._table(table, raw, was if isinstance(was, dict) else {}) if table is not None else None
+                if plan is None:
+                    return None
+                changes.append((key, plan))
+            else:
+                return None
+        return _Plan(model, given, fixed, changes)
