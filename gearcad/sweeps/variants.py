@@ -5,14 +5,17 @@ default_name=name)`` — the same parameters (fields, defaults, ``model_fields_s
 :class:`~gearcad.errors.ProfileError` — without validating the whole profile for every design
 (issue 35: validation was a third of a pitch-stage design's time on the focus pair).
 
-Only the tables on an override's path are built again: each of their values that the override
-left as it was is taken as validated once (by its field's own schema), each new one validated
-by its field's schema, the table made with ``model_construct`` and its ``after`` validators run
-on it, as pydantic would; the tables off the path are each validated once (by their field's
-schema: a table's own validators, none of its parent's) and shared.  A model with anything else
-(``before`` or ``wrap`` validators, field validators, a post-init, private attributes, a config
-beyond the profiles' own) is validated whole; any error — a bad value, a rule between keys —
-sends the design through ``parse_profile`` itself, whose message it then carries.
+For each set of override keys a plan is made once (``overridden`` run on placeholders: which
+tables are copied, which keys set and which removed depend on the keys only): the tables on the
+overrides' paths are built again for each design — each value the overrides leave as the profile
+gives it validated once, each new one by its field's own schema, the table assembled as pydantic
+assembles it and its ``after`` validators run on it — and the tables off the paths are each
+validated once (by their field's schema: their own validators, none of their parent's) and
+shared.  A model with any other kind of validation (``before`` or ``wrap`` validators, field
+validators, a post-init, private attributes, aliases, a default pydantic would copy, a config
+beyond the profiles' own), a new ``name`` (the title follows it) or an overridden union tag goes
+through ``parse_profile``; so does any design whose values or rules fail here, so that its
+refusal is ``parse_profile``'s own message.
 """
 
 from __future__ import annotations
@@ -34,8 +37,8 @@ _CONFIG = {"frozen", "extra", "json_schema_extra", "defer_build", "title"}
 "forbid": an unknown key sends the design to ``parse_profile``)."""
 
 
-class _Slow(Exception):
-    """This design's parameters are not made here: ``parse_profile`` makes them (or says why not)."""
+_ABSENT = object()
+"""A key the profile does not give."""
 
 
 @cache
@@ -194,7 +197,7 @@ class Variants:
             return None
         fixed, changes = {}, []
         for key, raw in data.items():
-            if raw is base.get(key, _Slow):  # as the profile gives it: validated once
+            if raw is base.get(key, _ABSENT):  # as the profile gives it: validated once
                 fixed[key] = _adapter(cls, key).validate_python(raw)
             elif isinstance(raw, _Key):
                 changes.append((key, raw.key))
