@@ -59,10 +59,14 @@ class _Model:
         self.required = frozenset(k for k, f in fields.items() if f.is_required())
         self.defaults = {k: f.default for k, f in fields.items() if not f.is_required()}
 
-    def make(self, values: dict[str, Any], given: set[str]) -> BaseModel:
-        """The model of ``values`` (validated), as pydantic leaves it before its ``after`` validators."""
+    def full(self, values: dict[str, Any], given) -> dict[str, Any]:
+        """Every field's value, in the model's order: ``values`` for the keys given, else the default."""
+        return {k: values[k] if k in given else self.defaults[k] for k in self.fields}
+
+    def make(self, full: dict[str, Any], given: set[str]) -> BaseModel:
+        """The model of ``full`` (every field, validated), its ``after`` validators run on it: as
+        pydantic makes it."""
         made = self.cls.__new__(self.cls)
-        full = {k: values[k] if k in given else self.defaults[k] for k in self.fields}
         object.__setattr__(made, "__dict__", full)
         object.__setattr__(made, "__pydantic_fields_set__", given)
         object.__setattr__(made, "__pydantic_extra__", None)
@@ -132,24 +136,24 @@ class _Key:
 
 
 class _Plan:
-    """One table on the overrides' paths: its model, its keys, the values that the overrides leave
-    as the profile gives them (validated once) and, in order, the keys they change: ``(key, the
-    override's key)`` for a value, ``(key, plan)`` for a table further down the path."""
+    """One table on the overrides' paths: its model, its keys, every field's value but those the
+    overrides change (the profile's validated once, or the default) and, in order, the changes:
+    ``(key, validator, the override's key)`` for a value, ``(key, None, plan)`` for a table further
+    down the path."""
 
-    __slots__ = ("model", "given", "fixed", "changes")
+    __slots__ = ("model", "given", "template", "changes")
 
     def __init__(self, model: _Model, given: frozenset, fixed: dict, changes: list) -> None:
-        self.model, self.given, self.fixed, self.changes = model, given, fixed, changes
+        self.model, self.given, self.changes = model, given, changes
+        self.template = model.full({**fixed, **{key: None for key, _, _ in changes}}, given)
 
     def make(self, overrides: dict[str, Any]) -> BaseModel:
-        values = dict(self.fixed)
-        cls = self.model.cls
-        for key, change in self.changes:
-            if type(change) is str:
-                values[key] = _adapter(cls, key).validate_python(overrides[change])
-            else:
-                values[key] = change.make(overrides)
-        return self.model.make(values, set(self.given))
+        full = self.template.copy()
+        for key, validator, change in self.changes:
+            full[key] = (
+                validator.validate_python(overrides[change]) if validator is not None else change.make(overrides)
+            )
+        return self.model.make(full, set(self.given))
 
 
 class Variants:
@@ -200,7 +204,7 @@ class Variants:
             if raw is base.get(key, _ABSENT):  # as the profile gives it: validated once
                 fixed[key] = _adapter(cls, key).validate_python(raw)
             elif isinstance(raw, _Key):
-                changes.append((key, raw.key))
+                changes.append((key, _adapter(cls, key), raw.key))
             elif isinstance(raw, dict):  # a table on an override's path
                 tag = model.fields[key].discriminator
                 tag = raw.get(tag) if isinstance(tag, str) else None
@@ -209,7 +213,7 @@ class Variants:
                 plan = self._table(table, raw, was if isinstance(was, dict) else {}) if table is not None else None
                 if plan is None:
                     return None
-                changes.append((key, plan))
+                changes.append((key, None, plan))
             else:
                 return None
         return _Plan(model, given, fixed, changes)
