@@ -74,6 +74,9 @@ def test_bench_quick_smoke_run(tmp_path: Path, capsys, monkeypatch):
     stages = {r["method"]: float(r["per_second"]) for r in rows if r["study"] == "stages"}
     assert len(stages) == 6 and max(stages, key=stages.get) == "elliptic_focus pitch"
     assert "## Stages" in (out / "results.md").read_text(encoding="utf-8")
+    # a sweep's rows as the report's (checked in the bench), and what they cost beyond the design
+    (over,) = (r for r in rows if r["study"] == "overhead")
+    assert over["method"] == "elliptic_focus pitch" and float(over["before_seconds"]) > 0
     walker = next(r for r in rows if r["method"].startswith("paper: trapezoid"))
     assert float(walker["error"]) == pytest.approx(3.207678 - 3.182936, abs=1e-5)
     # the envelope keeps its promise: within each tolerance of the converged cut

@@ -10,7 +10,7 @@ from .goals import goals_table
 
 __all__ = ["write_csv", "markdown", "peers_table", "peer_ratios"]
 
-_OWN_TABLES = ("peers", "goals", "stages", "front")
+_OWN_TABLES = ("peers", "goals", "stages", "front", "overhead")
 
 
 def write_csv(rows: list[dict], path: Path) -> None:
@@ -99,6 +99,10 @@ def markdown(rows: list[dict], stability: list[dict]) -> str:
         from .stages import stages_table
 
         out += ["", "## Stages (warm, CPU time per design in process)", "", *stages_table(rows_of(rows, "stages"))]
+    if any(r["study"] == "overhead" for r in rows):
+        from .overhead import overhead_lines
+
+        out += ["", "## A sweep's overhead per pitch-stage design (CPU)", "", *overhead_lines(rows)]
     if any(r["study"] == "front" for r in rows):
         from .front import front_lines
 

@@ -108,7 +108,7 @@ def run_bench(
         builds = 1 if quick else len(list(PROFILES.glob("*.toml")))
         peer = None if "peers" in skip else peer_version()
         timed = (3 * runs + 3 if peer else 0) + (0 if "goals" in skip else 6 * runs)
-        staged = 0 if "stages" in skip else (6 if quick else 21)  # the stages, and (not quick) the bands
+        staged = 0 if "stages" in skip else (7 if quick else 23)  # the stages, the overhead, (not quick) the bands
         progress = Progress(11 + builds + timed + staged)
         rows, hard = _studies(quick, work, progress)
         commands = gearcad_commands(work / "runs")
@@ -128,6 +128,12 @@ def run_bench(
             stage_rows = bench_stages(quick, progress.step)
             rows += stage_rows
             lines += ["", "stages (warm, CPU time per design in process):", "", *stages_table(stage_rows)]
+            from .overhead import bench_overhead, overhead_lines, overhead_summary
+
+            over = bench_overhead(quick, progress.step)  # a sweep's cost per design beyond the design
+            rows += over
+            lines += ["", "a sweep's overhead per pitch-stage design (CPU):", "", *overhead_lines(over)]
+            lines += overhead_summary(over)
             if not quick:  # a full design of each pair under a laser: minutes, not the quick run's seconds
                 from .bands import bands_table, bench_bands
 
