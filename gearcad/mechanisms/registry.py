@@ -116,8 +116,8 @@ MECHANISMS: dict[str, Mechanism] = {
             backlash_table="train",
             meshes="gearcad.fitting.band_trains:train_meshes",
         ),
-        Mechanism("nc-internal", "nc_internal"),
-        Mechanism("nc-planetary", "nc_planetary"),
+        Mechanism("nc-internal", "nc_internal", fit=f"{_FITTING}:nc_fit", play="meshes"),
+        Mechanism("nc-planetary", "nc_planetary", fit=f"{_FITTING}:nc_fit", play="meshes"),
     )
 }
 """Every mechanism, the default (a profile that names none) first."""

@@ -37,9 +37,10 @@ class InternalTeethParams(ParamsModel):
     """Teeth on the pinion; the ring gets count × ring lobes / pinion lobes, which must be whole."""
     pressure_angle_deg: StandardRackPressureAngleDeg = 20.0
     """Pressure angle of the rack, degrees."""
-    backlash: LengthOrZero = 0.0
+    backlash: LengthOrZero = 0.2
     """Backlash on the pitch curves, mm: the pinion's teeth are cut half of it thinner, the ring's
-    spaces half of it wider."""
+    spaces half of it wider.  Left out: 0.2 for exact parts; under a process (``process.kind``)
+    gearcad chooses the smallest that keeps the mesh's worst case free (its band, certified)."""
 
     @property
     def pressure_angle(self) -> float:
@@ -60,7 +61,7 @@ class NcInternalParams(ParamsModel):
     bore: BoreParams = BoreParams()
     """The pinion's shaft hole (the ring turns in a bearing round its outer edge)."""
     process: ProcessParams = ProcessParams()
-    """How the parts are made (the band of this mesh is not measured yet)."""
+    """How the parts are made: the mesh's band (its least play certified over the whole cycle)."""
     output: OutputParams = OutputParams()
 
     @property

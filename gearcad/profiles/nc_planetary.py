@@ -47,8 +47,10 @@ class SetTeethParams(ParamsModel):
     count × ring_lobes / lobes."""
     pressure_angle_deg: StandardRackPressureAngleDeg = 20.0
     """Pressure angle of the rack, degrees."""
-    backlash: LengthOrZero = 0.0
-    """Backlash of every mesh on the pitch curves, mm."""
+    backlash: LengthOrZero = 0.2
+    """Backlash of every mesh on the pitch curves, mm.  Left out: 0.2 for exact parts; under a
+    process (``process.kind``) gearcad chooses the smallest that keeps every mesh's worst case free
+    (their bands, certified)."""
 
     @property
     def pressure_angle(self) -> float:
@@ -68,7 +70,8 @@ class NcPlanetaryParams(ParamsModel):
     bore: BoreParams = BoreParams()
     """The sun's shaft hole (the planets float; the ring turns in a bearing round its outer edge)."""
     process: ProcessParams = ProcessParams()
-    """How the parts are made (the bands of these meshes are not measured yet)."""
+    """How the parts are made: the bands of the sun–planet and planet–ring meshes (least play
+    certified over the whole cycle)."""
     output: OutputParams = OutputParams()
 
     @property
