@@ -49,7 +49,7 @@ from .mesh_fit import closed_form, with_backlash
 __all__ = ["NcMesh", "certify", "nc_meshes", "nc_bands", "nc_fit", "nc_with_bands"]
 
 TWO_PI = 2 * math.pi
-INSIDE_PER_TOOTH = 6
+INSIDE_PER_TOOTH = 4
 """Positions a driver tooth an internal mesh's certificate starts from: the tooth pair that
 closes the play may stand far from the pitch point for part of a tooth's passage (a dip of the
 play about a pitch wide, nc_internal.toml: 0.150 mm against 0.20 mm either side); two a tooth
@@ -69,7 +69,7 @@ class NcMesh:
     internal: bool
     contact: ContactData
     module: float
-    """The teeth's module (mm; the geometry's may be larger, :func:`_whole`)."""
+    """The teeth's module (mm; the geometry's may be larger, :func:`_window`)."""
 
 
 def _turned(xy: np.ndarray, angle) -> np.ndarray:
@@ -94,13 +94,32 @@ def _tooth(frame, phi: np.ndarray, pitch: float, teeth: int) -> np.ndarray:
     return np.floor(frame.arc(np.mod(phi, TWO_PI)) / pitch).astype(int) % teeth
 
 
-def _whole(r_max: float, module: float) -> float:
+def _window(r1, r2, centre2, angle2, contact, module: float, *, points: int = 360) -> float:
     """The module scale that makes a mesh's window (three modules about the pitch point,
-    :mod:`.band_mesh`) hold the whole of gear 1 (pitch radius up to ``r_max``, its tips and a
-    bite's shrink beyond): inside a ring any tooth pair may close the play, not only those at the
-    pitch point.  The window is sized by the geometry's module; the play's bounds by it too, so the
-    reach sought and the shrink tried grow with it, never the verdict."""
-    return max(1.0, (2 * r_max + 2.5 * module) / (3 * module))
+    :mod:`.band_mesh`) hold every stretch of gear 1 where a tooth of it may touch the ring: inside a
+    ring the pitch curves part slowly, and a tooth pair far from the pitch point can close the play
+    (nc_internal.toml: 20 mm away, ten modules).  At each position (``centre2``, ``angle2``,
+    ``contact``: the ring's pivot and turn and the pitch point in gear 1's frame) gear 1's pitch
+    curve ``r1`` is sampled and each point's radial gap to the ring's ``r2`` measured; where it is
+    under :data:`NEAR` modules (the two toothings' heights, the edges and a shift, over the cos of
+    any tilt) the point may be in contact, and the window reaches it and a tooth beyond.  The play's
+    bounds scale with the window too, so the reach sought and the shrink tried grow, never the
+    verdict."""
+    chi = np.linspace(0.0, TWO_PI, points, endpoint=False)
+    rho = r1(chi)
+    p = np.stack([rho * np.cos(chi), rho * np.sin(chi)], -1)  # (points, 2)
+    w = p[None, :, :] - centre2[:, None, :]
+    gamma = np.arctan2(w[..., 1], w[..., 0]) - angle2[:, None]
+    gap = r2(np.mod(gamma, TWO_PI)) - np.hypot(w[..., 0], w[..., 1])
+    far = np.hypot(*(p[None, :, :] - contact[:, None, :]).transpose(2, 0, 1))
+    reach = float(np.max(np.where(gap < NEAR * module, far, 0.0))) + 2 * module
+    return max(1.0, reach / (3 * module))
+
+
+NEAR = 4.0
+"""Modules of radial gap between gear 1's and the ring's pitch curves under which a tooth pair may
+touch (:func:`_window`): both toothings' heights (2), and the edges and shifts of a process with
+room to spare."""
 
 
 def internal_meshes(draft) -> list[NcMesh]:
@@ -110,7 +129,7 @@ def internal_meshes(draft) -> list[NcMesh]:
     e, curve = pair.center_distance, pair.pinion
     shapes = (_shape(draft.parts[0]), _shape(draft.parts[1]))
     frame = arc_frame(curve)
-    wide = _whole(curve.r(np.linspace(0.0, TWO_PI, 721)).max(), m)
+    wide = 1.0
 
     def at(phi) -> MeshGeometry:
         phi = np.asarray(phi, dtype=float)
@@ -128,6 +147,8 @@ def internal_meshes(draft) -> list[NcMesh]:
             teeth=_tooth(frame, phi, math.pi * m, z1),
         )
 
+    dense = at(np.linspace(0.0, pair.cycle, 96 * max(1, round(pair.cycle / TWO_PI)), endpoint=False))
+    wide = _window(curve.r, pair.ring.r, dense.centre2, dense.angle2, dense.contact, m)  # at() reads it from here on
     turns = max(1, round(pair.cycle / TWO_PI))
     s = np.arange(INSIDE_PER_TOOTH * z1 * turns) * frame.perimeter / (INSIDE_PER_TOOTH * z1)
     first = frame.angle(s % frame.perimeter) + TWO_PI * np.floor(s / frame.perimeter)
@@ -154,7 +175,7 @@ def planetary_meshes(draft) -> list[NcMesh]:
     ring_curve = NS.ring_pitch_curve(ps)
     pitch = math.pi * m
     lobe = ps.lobe
-    wide = _whole(planet.r(np.linspace(0.0, TWO_PI, 721)).max(), m)
+    wide = 1.0
 
     def state(theta):
         theta = np.asarray(theta, dtype=float)
@@ -193,6 +214,8 @@ def planetary_meshes(draft) -> list[NcMesh]:
             teeth=_tooth(frames[1], pose.chi, pitch, z),
         )
 
+    dense = planet_ring(np.linspace(0.0, lobe, 90, endpoint=False))
+    wide = _window(planet.r, ring_curve.r, dense.centre2, dense.angle2, dense.contact, m)  # planet_ring() reads it
     count = INSIDE_PER_TOOTH * z // sun.lobes
     first = np.arange(count) * lobe / count
     theta, pose, p2, phi_r = state(first)
