@@ -88,3 +88,22 @@ def test_planets_that_would_touch_are_refused_in_one_line():
     )
     with pytest.raises(DesignError, match=r"^set.planets = 6: neighbouring planets' tips would touch .*: use fewer"):
         nc_planetary.design(p)
+
+
+def test_the_fdm_fit_presets_are_the_makers_and_need_a_printer():
+    """process.fit: the published fits (normal backlash, tip clearance) — the backlash on the pitch
+    curve is the normal one over cos α — refused without process.kind = "fdm", and by a mechanism
+    whose fit does not take it (a gear pair), each in one line naming the key."""
+    from gearcad import api
+    from gearcad.errors import GearcadError, ProfileError
+    from gearcad.profiles.process import ProcessParams
+
+    alpha = math.radians(20)
+    for name, (normal, tip) in {"tight": (0.22, 0.08), "standard": (0.32, 0.14), "loose": (0.44, 0.22)}.items():
+        backlash, clearance = validated(ProcessParams, kind="fdm", fit=name).preset(alpha)
+        assert backlash * math.cos(alpha) == pytest.approx(normal, abs=1e-15) and clearance == tip
+    with pytest.raises(ProfileError, match=r"^fit = 'standard': a printer's fit preset needs process.kind = 'fdm'"):
+        validated(ProcessParams, kind="laser", fit="standard")
+    spur = api.load_profile("profiles/spur_pair.toml", {"process.kind": "fdm", "process.fit": "tight"})
+    with pytest.raises(GearcadError, match=r"^process.fit = 'tight': a gear-pair takes no printer's fit preset"):
+        api.design(spur)

@@ -29,7 +29,7 @@ pivot beyond the contact, so cannot hold a ring).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 import shapely
@@ -343,10 +343,33 @@ def _excess(bands) -> float:
     return min(mb.band.least - mb.band.margin for mb in bands)
 
 
-def chooses(params) -> bool:
-    """Whether gearcad chooses the backlash: a process named, ``teeth.backlash`` left out."""
+def _left_out(params) -> bool:
     table = getattr(params, MECHANISMS[params.mechanism].backlash_table)
-    return params.process.kind != "none" and "backlash" not in table.model_fields_set
+    return "backlash" not in table.model_fields_set
+
+
+def chooses(params) -> bool:
+    """Whether gearcad chooses the backlash: a process named, no fit preset, ``teeth.backlash``
+    left out."""
+    return params.process.kind != "none" and params.process.fit is None and _left_out(params)
+
+
+def _tip_line(draft) -> object:
+    """The draft with the fit preset's tip clearance set against the radial room (0.25 module less
+    both edges grown and the centres' error) in its report and checks' lines; as it is without one."""
+    p = draft.params
+    preset = p.process.preset(p.pressure_angle)
+    if preset is None:
+        return draft
+    room = radial_room(p, draft.data["teeth"]["module"])
+    line = (
+        f"process.fit = {p.process.fit!r}: backlash {preset[0]:.4f} mm on the pitch curves (normal "
+        f"{preset[0] * math.cos(p.pressure_angle):.2f}), tip clearance {preset[1]:.2f} mm against a radial room of "
+        f"{room:.3f} mm ({'kept' if room >= preset[1] else 'NOT kept'})"
+    )
+    data = {**draft.data, "fit_preset": {"name": p.process.fit, "backlash": preset[0], "tip_clearance": preset[1]}}
+    data["fit_preset"]["radial_room"] = room
+    return replace(draft, details=(*draft.details, line), data=data)
 
 
 def nc_fit(given, design_of):
@@ -354,8 +377,11 @@ def nc_fit(given, design_of):
     backlash chosen (the smallest that keeps every mesh's worst case free by the margin, as
     :func:`.mesh_fit.chosen` chooses a train's) when the profile leaves it out."""
     params = made(given)
+    preset = given.process.preset(given.pressure_angle)
+    if preset is not None and _left_out(given):
+        params = with_backlash(params, preset[0])
     if not chooses(given):
-        return nc_with_bands(design_of(params))
+        return _tip_line(nc_with_bands(design_of(params)))
     tol = params.output.tolerance
     draft = design_of(with_backlash(params, closed_form(params)))
     module = draft.data["teeth"]["module"]
