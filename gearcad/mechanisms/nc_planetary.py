@@ -21,7 +21,6 @@ import shapely
 
 from ..errors import DesignError
 from ..findings import finding
-from ..geometry.depth import overlap_depths
 from ..geometry.rings import circle_ring
 from ..pitch.curve import radius_range
 from ..pitch.discretize import polyline
@@ -33,7 +32,7 @@ from ..trains import nc_planetary as NP
 from ..trains import nc_set as NS
 from .base import Motion
 from .finish import Contact, Draft, PartSpec
-from .nc_internal import _rack
+from .nc_internal import _rack, whole_proof
 from .parts import Placement
 
 __all__ = ["SetProof", "design"]
@@ -73,30 +72,15 @@ def _prove(name, fixed, moving_xy, place, arm, *, positions, module, tol, play) 
     def placed(at, turn):
         return np.array([shapely.Polygon(place(k, t)) for k, t in zip(at, turn)], dtype=object)
 
-    assembled = placed(every, np.zeros(positions))
-    touch = np.nonzero(shapely.intersects(fixed, assembled))[0]
-    areas, depth = np.zeros(positions), np.zeros(positions)
-    if len(touch):
-        found = overlap_depths(np.array([fixed] * len(touch), dtype=object), assembled[touch], step=0.1 * module)
-        areas[touch], depth[touch] = found.area, found.depth
     at = every[::2]
     nudge = b.nudge_arc(module=module, play=play) / arm[at]
-    ahead = shapely.area(shapely.intersection(fixed, placed(at, nudge)))
-    back = shapely.area(shapely.intersection(fixed, placed(at, -nudge)))
-    free = np.zeros(len(at))
-    for sign in (1.0, -1.0):
-        lo, hi = np.zeros(len(at)), nudge.copy()
-        for _ in range(12):
-            mid = 0.5 * (lo + hi)
-            hit = shapely.intersects(fixed, placed(at, sign * mid))
-            lo, hi = np.where(hit, lo, mid), np.where(hit, mid, hi)
-        free += lo
+    areas, depth, nudged, free = whole_proof(fixed, placed, positions, at, nudge, module)
     return SetProof(
         name,
         positions,
         float(areas.max()),
         b.teeth_overlap(module),
-        float(np.min(np.maximum(ahead, back))),
+        nudged,
         float(depth.max()),
         float(np.min(free * arm[at])),
     )

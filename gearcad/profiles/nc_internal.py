@@ -38,9 +38,10 @@ class InternalTeethParams(ParamsModel):
     pressure_angle_deg: StandardRackPressureAngleDeg = 20.0
     """Pressure angle of the rack, degrees."""
     backlash: LengthOrZero = 0.2
-    """Backlash on the pitch curves, mm: the pinion's teeth are cut half of it thinner, the ring's
-    spaces half of it wider.  Left out: 0.2 for exact parts; under a process (``process.kind``)
-    gearcad chooses the smallest that keeps the mesh's worst case free (its band, certified)."""
+    """Backlash of every mesh on the pitch curves, mm: gears' teeth are cut half of it thinner, a
+    ring's spaces half of it wider.  Left out: 0.2 for exact parts; under a process
+    (``process.kind``) the preset's (``process.fit``), else the smallest that keeps every mesh's
+    worst case free (the bands, certified)."""
 
     @property
     def pressure_angle(self) -> float:
