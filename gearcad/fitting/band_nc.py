@@ -285,8 +285,9 @@ def certify(measure, first: np.ndarray, cycle: float, *, module: float, tol: flo
         phi, play = np.concatenate([phi, mids]), np.concatenate([play, measure(mids)])
 
 
-def _band(mesh: NcMesh, params):
-    """The certified band of one mesh under the profile's process."""
+def _band(mesh: NcMesh, params, *, quick: bool = False):
+    """The certified band of one mesh under the profile's process; ``quick``: the tight case
+    alone at the first positions, not certified between them (the backlash search's look)."""
     process, tol = params.process, params.output.tolerance
     edge, spread = process.edge(params.output.chamfer), process.center_spread()
     g0 = mesh.at(mesh.first)
@@ -304,6 +305,12 @@ def _band(mesh: NcMesh, params):
         return signed(phi, edge[2], spread)
 
     stack = any(edge) or spread
+    if quick:
+        play = tight(mesh.first)
+        teeth = mesh.at(mesh.first).teeth
+        plays = (play, play, play)
+        found = band_of(mesh.name, plays, teeth, mesh.first, edge=edge, spread=spread, tol=tol, alpha=alpha)
+        return MeshBand(found, mesh.internal, mesh.contact)
     with side_by_side() as pool:
         job = pool.submit(certify, tight, mesh.first, mesh.cycle, module=m, tol=tol, margin=margin)
         if stack:
@@ -329,9 +336,10 @@ def nc_meshes(draft) -> list[NcMesh]:
     return planetary_meshes(draft) if hasattr(draft.detail, "ring_turn") else internal_meshes(draft)
 
 
-def nc_bands(draft) -> tuple[MeshBand, ...]:
-    """The certified band of every mesh of the draft under its profile's process."""
-    return tuple(_band(mesh, draft.params) for mesh in nc_meshes(draft))
+def nc_bands(draft, *, quick: bool = False) -> tuple[MeshBand, ...]:
+    """The certified band of every mesh of the draft under its profile's process (``quick``:
+    the tight case at the first positions only, :func:`_band`)."""
+    return tuple(_band(mesh, draft.params, quick=quick) for mesh in nc_meshes(draft))
 
 
 def nc_with_bands(draft, bands=None, *, chosen: bool = False):
@@ -388,12 +396,16 @@ def nc_fit(given, design_of):
 
     def cut(backlash: float):
         d = design_of(with_backlash(params, backlash))
-        found = nc_bands(d)
+        found = nc_bands(d, quick=True)
         return d.params.backlash, _excess(found), (d, found)
 
-    bands = nc_bands(draft)
-    if radial_room(params, module) >= 2 * tol:
-        draft, bands = smallest_fit(
-            (draft.params.backlash, _excess(bands), (draft, bands)), cut, tol, limit=sliver(module)
-        )
-    return nc_with_bands(draft, bands, chosen=True)
+    if radial_room(params, module) >= 2 * tol:  # else no backlash frees it: the closed form's flanks
+        first = (draft.params.backlash, _excess(quick := nc_bands(draft, quick=True)), (draft, quick))
+        draft, _ = smallest_fit(first, cut, tol, limit=sliver(module))  # looks at the first positions
+        bands = nc_bands(draft)  # certified: between the positions it may ask a little more, once
+        short = -_excess(bands)
+        if short > 0 and draft.params.backlash + short + tol < sliver(module):
+            draft = design_of(with_backlash(params, draft.params.backlash + short + tol / 4))
+            bands = nc_bands(draft)
+        return nc_with_bands(draft, bands, chosen=True)
+    return nc_with_bands(draft, nc_bands(draft), chosen=True)
