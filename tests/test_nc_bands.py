@@ -107,3 +107,18 @@ def test_the_fdm_fit_presets_are_the_makers_and_need_a_printer():
     spur = api.load_profile("profiles/spur_pair.toml", {"process.kind": "fdm", "process.fit": "tight"})
     with pytest.raises(GearcadError, match=r"^process.fit = 'tight': a gear-pair takes no printer's fit preset"):
         api.design(spur)
+
+
+def test_a_ring_no_sun_closes_is_refused_in_one_line():
+    """Four planets of e = 0.05 in a 16-lobe ring: the natural lobe count is about 12.01 and no sun
+    eccentricity within convexity brings it to 16; refused naming set.e, its value and the count."""
+    from gearcad.errors import DesignError
+
+    p = validated(
+        NcPlanetaryParams,
+        set={"lobes": 4, "e": 0.05, "radius": 12.0, "planets": 4, "ring_lobes": 16},
+        teeth={"count": 16},
+        output=OUTPUT,
+    )
+    with pytest.raises(DesignError, match=r"^set.e = 0.05: no sun eccentricity .* at 16 lobes .* lobe count 12.0"):
+        nc_planetary.design(p)
