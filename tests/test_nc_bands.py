@@ -122,3 +122,16 @@ def test_a_ring_no_sun_closes_is_refused_in_one_line():
     )
     with pytest.raises(DesignError, match=r"^set.e = 0.05: no sun eccentricity .* at 16 lobes .* lobe count 12.0"):
         nc_planetary.design(p)
+
+
+def test_a_spike_of_no_width_is_cut_like_a_loop():
+    """The lobed sun's flank at backlash 0.3 (nc_square.toml) ran out to a vertex and back beside
+    itself, 0.2 µm off its outgoing segment: no crossing, so no loop, but a spike a chamfer's
+    inset crosses itself on.  The vertices are the sun's (mm)."""
+    from gearcad.teeth.loops import remove_loops_each
+
+    flank = np.array([[14.024086, 10.774451], [14.140218, 10.903768], [14.089339, 10.847426], [14.210684, 11.028043]])
+    line = np.vstack([[13.784268, 10.4651], [13.928924, 10.659712], flank, [14.312155, 11.196619]])
+    (cut, loops), (plain, none) = remove_loops_each([line, np.delete(line, 3, axis=0)])
+    assert loops == 1 and none == 0
+    assert np.array_equal(cut, plain)  # the spike's tip gone, nothing else
