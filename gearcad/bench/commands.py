@@ -56,6 +56,11 @@ def gearcad_commands(work: Path) -> dict[str, tuple[str, Command]]:
                 work / "teeth2000" / "out",
             ),
         ),
+        "nc_square": (
+            "the square noncircular planetary set (issue 38), every output",
+            _build([PROFILES / "nc_square.toml"], [], work / "nc_square" / "out"),
+        ),
+        "nc_square_check": ("gearcad check nc_square.toml", ["check", str(PROFILES / "nc_square.toml")]),
         "tol1e-4": (
             "focus pair, 39 teeth, tolerance 1e-4 mm, DXF only",
             _build([focus], count + ["output.tolerance=0.0001", *DXF_ONLY], work / "tol1e-4" / "out"),

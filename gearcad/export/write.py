@@ -56,13 +56,16 @@ def _animation(design: Design, folder: Path) -> dict[str, dict]:
         from .animation import write_gif
 
         path = folder / "animation.gif"
-        where = {pl.part: pl for pl in design.placements}
         m = design.motion
+        placed, seen = [], {}
+        for name in m.parts:  # a name listed again is its next placement
+            k = seen[name] = seen.get(name, -1) + 1
+            placed.append([pl for pl in design.placements if pl.part == name][k])
         frames = write_gif(
             path,
-            [design.part(name).outline.outer for name in m.parts],
-            [where[name].offset for name in m.parts],
-            m.angles + [where[name].angle for name in m.parts],
+            [list(design.part(name).outline.rings) for name in m.parts],
+            [pl.offset for pl in placed] if m.pivots is None else m.pivots,
+            m.angles + [pl.angle for pl in placed],
         )
         files[path.name] = _entry(path, kind="gif", frames=frames)
     return files

@@ -26,6 +26,13 @@ def design(params: ProfileParams, stage: str = "full") -> Design:
     ``stage`` other than "full" stops early, for a mechanism whose entry has ``stages``."""
     start = time.perf_counter()
     entry = MECHANISMS[params.mechanism]
+    preset = getattr(getattr(params, "process", None), "fit", None)
+    if preset is not None and not entry.presets:
+        have = ", ".join(m.name for m in MECHANISMS.values() if m.presets)
+        raise GearcadError(
+            f"process.fit = {preset!r}: a {params.mechanism} takes no printer's fit preset yet (only: {have}); "
+            "give teeth.backlash instead"
+        )
     if stage != "full":
         stages = entry.hook("stages")
         if stages is None:

@@ -3,9 +3,9 @@ calls the fitting functions a kind of mesh needs, and none says a mechanism's na
 
 from __future__ import annotations
 
-from . import band_trains, fit, mesh_fit
+from . import band_nc, band_trains, fit, mesh_fit
 
-__all__ = ["gear_pair_fit", "meshes_fit"]
+__all__ = ["gear_pair_fit", "meshes_fit", "nc_fit"]
 
 
 def gear_pair_fit(params, design_of):
@@ -41,3 +41,9 @@ def meshes_fit(params, design_of):
     """A carrier train's meshes or a toothed body's rollers as made: their backlash chosen under
     the process and their bands measured (:func:`.mesh_fit.chosen`)."""
     return mesh_fit.chosen(params, design_of)
+
+
+def nc_fit(params, design_of):
+    """A noncircular internal pair's or planetary set's meshes as made: their backlash chosen
+    under the process and their bands certified over the whole cycle (:func:`.band_nc.nc_fit`)."""
+    return band_nc.nc_fit(params, design_of)

@@ -39,10 +39,15 @@ SCHEMA_VERSION = 2
 @dataclass(frozen=True)
 class Motion:
     """The assembly in motion over one cycle: each row of ``angles`` (frames, parts) turns the
-    parts named in ``parts`` about their placed pivots (rad, added to the placement's angle)."""
+    parts named in ``parts`` about their placed pivots (rad, added to the placement's angle).  A
+    name placed several times (a set's planets) is listed once per placement, in the placements'
+    order."""
 
     parts: tuple[str, ...]
     angles: np.ndarray
+    pivots: np.ndarray | None = None
+    """(frames, parts, 2): where each part's pivot is at each frame (mm), for parts whose pivots
+    move (a carrier-less set's planets); None: the placements' pivots throughout."""
 
 
 @dataclass(frozen=True)

@@ -35,7 +35,7 @@ from .base import Motion
 from .finish import Contact, Draft, PartSpec
 from .parts import Placement
 
-__all__ = ["MeshProof", "design", "pinion_curve"]
+__all__ = ["MeshProof", "design", "pinion_curve", "whole_proof"]
 
 UNITS = {"length": "mm", "angle": "rad"}
 RPM = 2 * math.pi / 60
@@ -91,6 +91,32 @@ class MeshProof:
     the ring turned each way until it first touches the pinion (bisection to 1e-4 of the nudge)."""
 
 
+def whole_proof(material, placed, positions: int, at: np.ndarray, nudge: np.ndarray, module: float):
+    """The whole-outline proof of a part turning against ``material`` (a prepared polygon):
+    ``placed(indices, turns)`` -> its polygons at those positions turned so much more.  Returns
+    the overlap area and depth at every position, and at the positions ``at`` the least of the
+    overlaps with the part turned ±``nudge`` (it must bite) and the free turn each way summed
+    (the part turned until it first touches, 12 bisections of the nudge), rad."""
+    every = np.arange(positions)
+    assembled = placed(every, np.zeros(positions))
+    touch = np.nonzero(shapely.intersects(material, assembled))[0]
+    areas, depth = np.zeros(positions), np.zeros(positions)
+    if len(touch):
+        found = overlap_depths(assembled[touch], np.array([material] * len(touch), dtype=object), step=0.1 * module)
+        areas[touch], depth[touch] = found.area, found.depth
+    ahead = shapely.area(shapely.intersection(material, placed(at, nudge)))
+    back = shapely.area(shapely.intersection(material, placed(at, -nudge)))
+    free = np.zeros(len(at))
+    for sign in (1.0, -1.0):
+        lo, hi = np.zeros(len(at)), nudge.copy()
+        for _ in range(12):
+            mid = 0.5 * (lo + hi)
+            hit = shapely.intersects(material, placed(at, sign * mid))
+            lo, hi = np.where(hit, lo, mid), np.where(hit, mid, hi)
+        free += lo
+    return areas, depth, float(np.min(np.maximum(ahead, back))), free
+
+
 def _prove(pair: InternalPairData, pinion: np.ndarray, ring_material, *, module: float, tol: float, play: float):
     """Overlap area and depth of the whole pinion and the whole ring as assembled at pinion angles
     over the cycle (one position per third of a pinion tooth, at least 96); at every fourth, the
@@ -118,31 +144,15 @@ def _prove(pair: InternalPairData, pinion: np.ndarray, ring_material, *, module:
             out.append(shapely.Polygon(xy @ np.array([[math.cos(c), math.sin(c)], [-math.sin(c), math.cos(c)]])))
         return np.array(out, dtype=object)
 
-    every = np.arange(positions)
-    placed = pinions(every, np.zeros(positions))
-    touch = np.nonzero(shapely.intersects(ring_material, placed))[0]
-    areas, depth = np.zeros(positions), np.zeros(positions)
-    if len(touch):
-        found = overlap_depths(placed[touch], np.array([ring_material] * len(touch), dtype=object), step=0.1 * module)
-        areas[touch], depth[touch] = found.area, found.depth
-    at = every[::4]
+    at = np.arange(positions)[::4]
     nudge = b.nudge_arc(module=module, play=play) / radius[at]
-    ahead = shapely.area(shapely.intersection(ring_material, pinions(at, nudge)))
-    back = shapely.area(shapely.intersection(ring_material, pinions(at, -nudge)))
-    free = np.zeros(len(at))
-    for sign in (1.0, -1.0):
-        lo, hi = np.zeros(len(at)), nudge.copy()
-        for _ in range(12):
-            mid = 0.5 * (lo + hi)
-            hit = shapely.intersects(ring_material, pinions(at, sign * mid))
-            lo, hi = np.where(hit, lo, mid), np.where(hit, mid, hi)
-        free += lo
+    areas, depth, nudged, free = whole_proof(ring_material, pinions, positions, at, nudge, module)
     worst = int(np.argmax(areas))
     return MeshProof(
         positions=positions,
         max_overlap=float(areas[worst]),
         allowed_overlap=b.teeth_overlap(module),
-        nudged_min_overlap=float(np.min(np.maximum(ahead, back))),
+        nudged_min_overlap=nudged,
         max_depth=float(np.max(depth)),
         worst_phi=float(phi1[worst]),
         least_play=float(np.min(free * radius[at])),

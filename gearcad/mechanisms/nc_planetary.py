@@ -21,7 +21,6 @@ import shapely
 
 from ..errors import DesignError
 from ..findings import finding
-from ..geometry.depth import overlap_depths
 from ..geometry.rings import circle_ring
 from ..pitch.curve import radius_range
 from ..pitch.discretize import polyline
@@ -31,8 +30,9 @@ from ..teeth.gear import cut_teeth
 from ..tolerances import budget
 from ..trains import nc_planetary as NP
 from ..trains import nc_set as NS
+from .base import Motion
 from .finish import Contact, Draft, PartSpec
-from .nc_internal import _rack
+from .nc_internal import _rack, whole_proof
 from .parts import Placement
 
 __all__ = ["SetProof", "design"]
@@ -72,33 +72,45 @@ def _prove(name, fixed, moving_xy, place, arm, *, positions, module, tol, play) 
     def placed(at, turn):
         return np.array([shapely.Polygon(place(k, t)) for k, t in zip(at, turn)], dtype=object)
 
-    assembled = placed(every, np.zeros(positions))
-    touch = np.nonzero(shapely.intersects(fixed, assembled))[0]
-    areas, depth = np.zeros(positions), np.zeros(positions)
-    if len(touch):
-        found = overlap_depths(np.array([fixed] * len(touch), dtype=object), assembled[touch], step=0.1 * module)
-        areas[touch], depth[touch] = found.area, found.depth
     at = every[::2]
     nudge = b.nudge_arc(module=module, play=play) / arm[at]
-    ahead = shapely.area(shapely.intersection(fixed, placed(at, nudge)))
-    back = shapely.area(shapely.intersection(fixed, placed(at, -nudge)))
-    free = np.zeros(len(at))
-    for sign in (1.0, -1.0):
-        lo, hi = np.zeros(len(at)), nudge.copy()
-        for _ in range(12):
-            mid = 0.5 * (lo + hi)
-            hit = shapely.intersects(fixed, placed(at, sign * mid))
-            lo, hi = np.where(hit, lo, mid), np.where(hit, mid, hi)
-        free += lo
+    areas, depth, nudged, free = whole_proof(fixed, placed, positions, at, nudge, module)
     return SetProof(
         name,
         positions,
         float(areas.max()),
         b.teeth_overlap(module),
-        float(np.min(np.maximum(ahead, back))),
+        nudged,
         float(depth.max()),
         float(np.min(free * arm[at])),
     )
+
+
+def _cycle_lobes(ps, most: int = 60) -> int:
+    """Sun lobes (sun held, θ) after which the set with its ring held looks as it started: the sun
+    turned by whole lobes and the planets' carrier by whole planet spacings (1 if none within
+    ``most``)."""
+    turn = float(ps.ring_turn(ps.lobe))  # the ring's turn per sun lobe, sun held
+    orbit = ps.lobe - turn  # the planets' carrier's, ring held
+    for k in range(1, most + 1):
+        a, b = k * orbit / (TWO_PI / ps.planets), k * turn / ps.lobe
+        if abs(a - round(a)) < 1e-6 and abs(b - round(b)) < 1e-6:
+            return k
+    return 1
+
+
+def _motion(ps, placements) -> Motion:
+    """One cycle with the ring held: the sun turned by −φ_r(θ), each planet on its orbit (its
+    pivot moves: ``Motion.pivots``), 24 frames a sun lobe (at most 240)."""
+    lobes = _cycle_lobes(ps)
+    frames = min(240, 24 * lobes)
+    theta = np.arange(frames) * lobes * ps.lobe / frames
+    angles, pivots = [], []
+    for t in theta:
+        held = ps.ring_held(float(t))
+        angles.append([held["sun"], *(held["turns"] - [pl.angle for pl in placements[1:-1]]), 0.0])
+        pivots.append([(0.0, 0.0), *held["centres"], (0.0, 0.0)])
+    return Motion(tuple(pl.part for pl in placements), np.array(angles), np.array(pivots))
 
 
 def design(p: NcPlanetaryParams) -> Draft:
@@ -186,6 +198,7 @@ def design(p: NcPlanetaryParams) -> Draft:
     contacts = tuple(Contact(0, 1 + k, module=module, nudge=False) for k in range(big_n)) + tuple(
         Contact(1 + k, 1 + big_n, module=module, nudge=False) for k in range(big_n)
     )
+    motion = _motion(ps, placements)
     data = {
         "set": {
             "lobes": n,
@@ -225,6 +238,7 @@ def design(p: NcPlanetaryParams) -> Draft:
         data=data,
         units=UNITS,
         detail=ps,
+        motion=motion,
         proofs=proofs,
         where="teeth",
     )

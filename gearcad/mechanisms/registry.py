@@ -62,6 +62,9 @@ class Mechanism:
     only) or ``"none"``."""
     backlash_table: str = "teeth"
     """The profile table holding the ``backlash`` key the fitting chooses (``teeth``, ``train``)."""
+    presets: bool = False
+    """Whether its fit honours the printer's fit presets (``process.fit``); else a profile naming
+    one is refused."""
     meshes: Hook = None
     """``meshes(draft) -> list``: the meshes the fitting measures bands of, other than a pair's:
     (name, geometry, inside, contact) each (:mod:`gearcad.fitting.band_trains`)."""
@@ -116,8 +119,8 @@ MECHANISMS: dict[str, Mechanism] = {
             backlash_table="train",
             meshes="gearcad.fitting.band_trains:train_meshes",
         ),
-        Mechanism("nc-internal", "nc_internal"),
-        Mechanism("nc-planetary", "nc_planetary"),
+        Mechanism("nc-internal", "nc_internal", fit=f"{_FITTING}:nc_fit", play="meshes", presets=True),
+        Mechanism("nc-planetary", "nc_planetary", fit=f"{_FITTING}:nc_fit", play="meshes", presets=True),
     )
 }
 """Every mechanism, the default (a profile that names none) first."""

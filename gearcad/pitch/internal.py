@@ -16,7 +16,6 @@ inside the ring near the contact its pitch curve must bend more: κ1 > κ2 at ev
 from __future__ import annotations
 
 from dataclasses import dataclass
-from math import gcd
 
 import numpy as np
 
@@ -25,7 +24,7 @@ from ..roots import brentq
 from ..tolerances import DEFAULT, Tolerances
 from . import chebyshev
 from .curve import TWO_PI, PitchCurve, polar_curvature, radius_range, segments
-from .pair import AngleMap, turn_on_nodes
+from .pair import AngleMap, Rolled, cycle_of, turn_on_nodes
 
 __all__ = ["InternalPairData", "internal_angle_map", "solve_internal_distance", "ring_curve", "internal_pair"]
 
@@ -97,28 +96,13 @@ def ring_curve(pinion: PitchCurve, center_distance: float, amap: AngleMap, *, lo
 
 
 @dataclass(frozen=True)
-class InternalPairData:
+class InternalPairData(Rolled):
     """A pinion and the ring it rolls in, with the measured residuals."""
 
     pinion: PitchCurve
     ring: PitchCurve
-    center_distance: float
-    lobes: tuple[int, int]
-    angle_map: AngleMap
-    closure_error: float
-    """|φ2(2π) − 2π·n1/n2|, rad."""
-    contact_residual: float
-    """max |r2 − r1 − E| over a cycle, mm."""
-    slip_residual: float
-    """max |r1 − r2·dφ2/dφ1| over a cycle, mm per rad of pinion."""
     curvature_margin: float
     """min over the cycle of κ1 − κ2 at the contact, 1/mm: > 0 keeps the pinion inside."""
-
-    @property
-    def cycle(self) -> float:
-        """Pinion angle after which the pair returns to its start, rad."""
-        n1, n2 = self.lobes
-        return TWO_PI * n2 / gcd(n1, n2)
 
 
 def internal_pair(
@@ -140,7 +124,7 @@ def internal_pair(
         center_distance = solve_internal_distance(pinion, target, tol=tol)
     amap = internal_angle_map(pinion, center_distance, tol=tol)
     ring = ring_curve(pinion, center_distance, amap, lobes=n2)
-    phi1 = np.linspace(0.0, TWO_PI * n2 / gcd(n1, n2), 4097)
+    phi1 = np.linspace(0.0, cycle_of((n1, n2)), 4097)
     phi2 = amap(phi1)
     r1 = pinion.r(phi1)
     r2 = ring.r(phi2)

@@ -25,11 +25,13 @@ __all__ = [
     "turn_on_nodes",
     "AngleMap",
     "PairData",
+    "Rolled",
     "ClaimData",
     "angle_map",
     "solve_center_distance",
     "mate_curve",
     "conjugate_pair",
+    "cycle_of",
     "rolling_residuals",
     "shape_difference",
     "identical_mate_claim",
@@ -217,30 +219,44 @@ def rolling_residuals(
 
 
 @dataclass(frozen=True)
-class PairData:
-    """A pair of pitch curves that roll on each other, with its measured residuals."""
+class Rolled:
+    """Two pitch curves that roll on each other about fixed centres, with the measured residuals
+    (a gear pair's, :class:`PairData`; a pinion in a ring's, :class:`~.internal.InternalPairData`)."""
 
-    gear1: PitchCurve
-    gear2: PitchCurve
     center_distance: float
     lobes: tuple[int, int]
     angle_map: AngleMap
     closure_error: float
     """|φ2(2π) − 2π·n1/n2|, rad."""
     contact_residual: float
-    """max |r1 + r2 − E| over a full cycle, mm."""
+    """max over a full cycle of how far the pitch curves stand from touching on the line of
+    centres, mm: |r1 + r2 − E| (a ring: |r2 − r1 − E|)."""
     slip_residual: float
     """max |r1 − r2·dφ2/dφ1| over a full cycle, mm per rad of driver."""
+
+    @property
+    def cycle(self) -> float:
+        """Driver angle after which the pair returns to its start, rad."""
+        return cycle_of(self.lobes)
+
+
+@dataclass(frozen=True)
+class PairData(Rolled):
+    """A pair of pitch curves that roll on each other, with its measured residuals."""
+
+    gear1: PitchCurve
+    gear2: PitchCurve
 
     @property
     def rolling_residual(self) -> float:
         return max(self.contact_residual, self.slip_residual)
 
-    @property
-    def cycle(self) -> float:
-        """Driver angle after which the pair returns to its start, rad."""
-        n1, n2 = self.lobes
-        return TWO_PI * n2 / gcd(n1, n2)
+
+def cycle_of(lobes: tuple[int, int]) -> float:
+    """The driver's turn after which a pair of ``lobes`` (driver, mate) returns to its start:
+    2π·n2/gcd(n1, n2), rad (an internal pair's too)."""
+    n1, n2 = lobes
+    return TWO_PI * n2 / gcd(n1, n2)
 
 
 def conjugate_pair(
@@ -262,7 +278,7 @@ def conjugate_pair(
         center_distance = solve_center_distance(driver, target, tol=tol)
     amap = angle_map(driver, center_distance, tol=tol)
     mate = mate_curve(driver, center_distance, amap, lobes=n2, name=mate_name)
-    cycle = TWO_PI * n2 / gcd(n1, n2)
+    cycle = cycle_of((n1, n2))
     phi1 = np.linspace(0.0, cycle, 4097)
     contact, slip = rolling_residuals(driver, mate, center_distance, amap, amap.slope, phi1)
     return PairData(

@@ -37,9 +37,11 @@ class InternalTeethParams(ParamsModel):
     """Teeth on the pinion; the ring gets count × ring lobes / pinion lobes, which must be whole."""
     pressure_angle_deg: StandardRackPressureAngleDeg = 20.0
     """Pressure angle of the rack, degrees."""
-    backlash: LengthOrZero = 0.0
-    """Backlash on the pitch curves, mm: the pinion's teeth are cut half of it thinner, the ring's
-    spaces half of it wider."""
+    backlash: LengthOrZero = 0.2
+    """Backlash of every mesh on the pitch curves, mm: gears' teeth are cut half of it thinner, a
+    ring's spaces half of it wider.  Left out: 0.2 for exact parts; under a process
+    (``process.kind``) the preset's (``process.fit``), else the smallest that keeps every mesh's
+    worst case free (the bands, certified)."""
 
     @property
     def pressure_angle(self) -> float:
@@ -60,7 +62,7 @@ class NcInternalParams(ParamsModel):
     bore: BoreParams = BoreParams()
     """The pinion's shaft hole (the ring turns in a bearing round its outer edge)."""
     process: ProcessParams = ProcessParams()
-    """How the parts are made (the band of this mesh is not measured yet)."""
+    """How the parts are made: the mesh's band (its least play certified over the whole cycle)."""
     output: OutputParams = OutputParams()
 
     @property

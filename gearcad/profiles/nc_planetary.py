@@ -9,8 +9,9 @@ from typing import Literal
 from pydantic import model_validator
 
 from .common import BoreParams, OutputParams, ParamsModel, distinct_names
+from .nc_internal import InternalTeethParams
 from .process import ProcessParams
-from .values import Length, LengthOrZero, PartName, Problems, StandardRackPressureAngleDeg, Text, integer, number
+from .values import Length, PartName, Problems, Text, integer, number
 
 __all__ = ["PlanetarySetParams", "SetTeethParams", "NcPlanetaryParams"]
 
@@ -39,20 +40,12 @@ class PlanetarySetParams(ParamsModel):
     """The ring's wall outside its tooth roots, × module."""
 
 
-class SetTeethParams(ParamsModel):
-    """``[teeth]``: the rack that cuts sun, planets and ring."""
+class SetTeethParams(InternalTeethParams):
+    """``[teeth]``: the rack that cuts sun, planets and ring (the ring's spaces as a gear-shaped hole)."""
 
     count: integer(ge=8, le=400)
     """Teeth on the sun (a multiple of set.lobes); each planet has as many, the ring
     count × ring_lobes / lobes."""
-    pressure_angle_deg: StandardRackPressureAngleDeg = 20.0
-    """Pressure angle of the rack, degrees."""
-    backlash: LengthOrZero = 0.0
-    """Backlash of every mesh on the pitch curves, mm."""
-
-    @property
-    def pressure_angle(self) -> float:
-        return math.radians(self.pressure_angle_deg)
 
 
 class NcPlanetaryParams(ParamsModel):
@@ -68,7 +61,8 @@ class NcPlanetaryParams(ParamsModel):
     bore: BoreParams = BoreParams()
     """The sun's shaft hole (the planets float; the ring turns in a bearing round its outer edge)."""
     process: ProcessParams = ProcessParams()
-    """How the parts are made (the bands of these meshes are not measured yet)."""
+    """How the parts are made: the bands of the sun–planet and planet–ring meshes (least play
+    certified over the whole cycle)."""
     output: OutputParams = OutputParams()
 
     @property

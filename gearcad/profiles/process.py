@@ -8,12 +8,15 @@ backlash that keeps the worst case free.
 
 from __future__ import annotations
 
+import math
 from typing import Any
 
-from .common import ParamsModel
-from .values import choice, number
+from pydantic import model_validator
 
-__all__ = ["ProcessParams", "DEFAULTS", "KINDS"]
+from .common import ParamsModel
+from .values import Problems, choice, number
+
+__all__ = ["ProcessParams", "DEFAULTS", "KINDS", "FDM_FITS"]
 
 KINDS = ("none", "laser", "fdm", "cnc")
 
@@ -36,6 +39,13 @@ DEFAULTS: dict[str, dict[str, float]] = {
     "none": {},
 }
 """Each process's defaults for the keys the profile leaves out; any other key defaults to 0."""
+
+FDM_FITS: dict[str, tuple[float, float]] = {
+    "tight": (0.22, 0.08),
+    "standard": (0.32, 0.14),
+    "loose": (0.44, 0.22),
+}
+"""The FDM fits makers publish for printed gear sets (issue 38): (normal backlash, tip clearance), mm."""
 
 
 class ProcessParams(ParamsModel):
@@ -64,6 +74,28 @@ class ProcessParams(ParamsModel):
     """Diametral play of each shaft in its bore (mm; default 0): adds half of each to ±Δa."""
     max_play: Small | None = None
     """Worst-case play a maker still accepts (mm on the pitch curve; default 0.5, FDM 1.0): more warns."""
+    fit: choice(*FDM_FITS) | None = None
+    """FDM: the makers' fit preset, "tight", "standard" or "loose": a normal backlash of 0.22, 0.32
+    or 0.44 mm and a tip clearance of 0.08, 0.14 or 0.22 mm.  Where the profile leaves
+    teeth.backlash out, the preset's backlash (over cos α, on the pitch curve) is cut instead of the
+    one gearcad would choose, and the bands say whether it holds under the tolerances above; the
+    tip clearance is checked against the radial room the teeth leave (noncircular internal pairs
+    and planetary sets; other mechanisms refuse it)."""
+
+    @model_validator(mode="after")
+    def _fit(self) -> ProcessParams:
+        if self.fit is not None and self.kind != "fdm":
+            problems = Problems()
+            problems.add("fit", self.fit, f"a printer's fit preset needs process.kind = 'fdm', not {self.kind!r}")
+            problems.raise_any()
+        return self
+
+    def preset(self, pressure_angle: float) -> tuple[float, float] | None:
+        """The fit preset's (backlash on the pitch curve, tip clearance), mm; None without one."""
+        if self.fit is None:
+            return None
+        normal, tip = FDM_FITS[self.fit]
+        return normal / math.cos(pressure_angle), tip
 
     def value(self, key: str) -> float:
         """The key's value, or the process's default for it (0 when none applies)."""

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 import shapely
 
@@ -67,7 +69,31 @@ def remove_loops_each(lines: list[np.ndarray]) -> list[tuple[np.ndarray, int]]:
             if len(points) > 3:
                 again.append(k)
         todo = again
-    return out
+    return [_spikes_cut(p, n) for p, n in out]
+
+
+REVERSAL = math.radians(175)
+"""A vertex where the path turns back by more than this is a spike's tip (no tooth outline turns
+so sharply: a tooth's tip corner turns about 60°)."""
+
+
+def _spikes_cut(points: np.ndarray, loops: int) -> tuple[np.ndarray, int]:
+    """``points`` with every spike cut off — a vertex the path reaches and leaves the way it came
+    (it turns back by more than :data:`REVERSAL`): a loop of no width, whose return runs along its
+    outgoing segment without crossing it (where the rack's tip fillet starts tangent to the flank
+    it cut, a flank's envelope meets its fillet's there), so the crossings test cannot see it —
+    and the loops counted with them."""
+    while len(points) > 3:
+        d = np.diff(points, axis=0)
+        heading = np.arctan2(d[:, 1], d[:, 0])
+        turn = np.abs((np.diff(heading) + math.pi) % (2 * math.pi) - math.pi)
+        tips = np.flatnonzero(turn > REVERSAL) + 1
+        if not len(tips):
+            break
+        tips = tips[np.concatenate([[True], np.diff(tips) > 1])]  # one of two neighbours a pass
+        points = np.delete(points, tips, axis=0)
+        loops += len(tips)
+    return points, loops
 
 
 def remove_loops(points: np.ndarray) -> tuple[np.ndarray, int]:

@@ -375,8 +375,8 @@ def close_ring(planet: Lobed, ring_lobes: int, *, key: str = "e") -> tuple[Lobed
     limit = convex_limit(planet.lobes)
     e0 = planet.e
     r0 = residual(e0)
-    if r0 == 0:
-        return matched_sun(planet, e0), 0.0
+    if abs(r0) <= 1e-12:  # closed already (circles: the residual's double root at e = 0)
+        return matched_sun(planet, e0), abs(r0)
     step = 0.1 * limit
     bracket = None
     for k in range(1, 11):
@@ -393,8 +393,8 @@ def close_ring(planet: Lobed, ring_lobes: int, *, key: str = "e") -> tuple[Lobed
     if bracket is None:
         natural = TWO_PI / abs(by_arc_length(planet, extremes=False).sweep)
         raise DesignError(
-            f"{key}: no sun eccentricity in [0, {limit:.4g}) closes the ring at {ring_lobes} lobes round "
-            f"planets of e = {e0:g} (natural lobe count {natural:.4f}); choose another e or ring lobes"
+            f"{key} = {e0:g}: no sun eccentricity in [0, {limit:.4g}) closes the ring at {ring_lobes} lobes round "
+            f"these planets (natural lobe count {natural:.4f}); choose another e or ring lobes"
         )
     es = brentq(residual, *bracket, xtol=1e-16, rtol=1e-15)
     sun = matched_sun(planet, es)

@@ -152,7 +152,7 @@ def planet_gap(ps: PlanetarySet, *, points: int = 720, tol: float = 5e-3) -> tup
     and the distance is Lipschitz in θ with L = 2v (the maxima on a dense grid, 1 % over).  An
     interval [a, b] holds no distance below (g(a) + g(b))/2 − L·(b − a)/2; intervals whose bound
     lies more than ``tol``·R under the least value found are halved until none does."""
-    from shapely.geometry import Polygon
+    import shapely
 
     sun, planet = ps.sun, ps.planet
     dense = np.linspace(0.0, TWO_PI, 4097)
@@ -177,12 +177,16 @@ def planet_gap(ps: PlanetarySet, *, points: int = 720, tol: float = 5e-3) -> tup
         if not len(new):
             return
         pose = poses(sun, planet, new, arcs)
-        for theta, c0, b0 in zip(new, pose.centre, pose.beta):
-            rings = []
-            for c, b in ((c0, b0), (np.array([cr * c0[0] - sr * c0[1], sr * c0[0] + cr * c0[1]]), b0 + turn)):
-                cb, sb = math.cos(b), math.sin(b)
-                rings.append(np.stack([c[0] + cb * q[:, 0] - sb * q[:, 1], c[1] + sb * q[:, 0] + cb * q[:, 1]], -1))
-            cache[float(theta)] = float(Polygon(rings[0]).distance(Polygon(rings[1])))
+        c0, b0 = pose.centre, pose.beta
+        c1 = np.column_stack([cr * c0[:, 0] - sr * c0[:, 1], sr * c0[:, 0] + cr * c0[:, 1]])
+        placed = []
+        for c, b in ((c0, b0), (c1, b0 + turn)):  # each planet's polygon at every θ at once
+            cb, sb = np.cos(b)[:, None], np.sin(b)[:, None]
+            x = c[:, :1] + cb * q[:, 0] - sb * q[:, 1]
+            y = c[:, 1:] + sb * q[:, 0] + cb * q[:, 1]
+            placed.append(shapely.polygons(np.stack([x, y], -1)))
+        for theta, gap in zip(new, shapely.distance(*placed)):
+            cache[float(theta)] = float(gap)
 
     def gap(theta: float) -> float:
         return cache[float(theta)]

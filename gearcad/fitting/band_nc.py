@@ -1,0 +1,411 @@
+"""The bands of the noncircular internal pair's mesh and of a carrier-less planetary set's meshes
+(sun–planet, planet–ring), their least play certified over the whole cycle, and the backlash
+chosen under a process (issue 38).
+
+Each mesh is a :class:`~.band_mesh.MeshGeometry` at any driver angle (``at(phi)``): gear 1's own
+frame, gear 2's pivot, turn and the pitch point there.
+
+* The internal pair: the pinion (gear 1) turns by −φ1 about O, the ring by −φ2(φ1) about (−E, 0)
+  (:mod:`gearcad.pitch.internal`); in the pinion's frame the ring's pivot is −E·u, u = (cos φ1,
+  sin φ1), its turn φ1 − φ2, the pitch point r1(φ1)·u.  Both turn the same way.  A centre error
+  takes play from an internal mesh with the centres *farther* apart (:mod:`.band_mesh`): the
+  ring's pivot moves along −u.  The cycle is n2/gcd(n1, n2) pinion turns.
+* The planetary set, sun held (:mod:`gearcad.trains.nc_set`): at the sun angle θ the first planet
+  is turned β(θ) about its centre C(θ), the ring φ_r(θ) about O.  Sun–planet in the sun's frame:
+  the planet's pivot C, its turn β, the pitch point S(θ); its centre moved towards O takes play.
+  Planet–ring in the planet's frame (x ↦ Rot(−β)·(x − C)): the ring's pivot Rot(−β)·(−C), its turn
+  φ_r − β, the pitch point Rot(−β)·(P2 − C); the ring moved away from the planet takes play.
+  The set repeats after one sun lobe (every toothing invariant under 2π/n), and every planet is
+  the first turned by 2π/N: the cycle is one sun lobe, the first planet's meshes are all.
+  The planets float (no carrier): the process's centre tolerance is applied to each mesh alone,
+  the worst a ring out of centre by it can do to one planet's either mesh.
+
+The tight case's least play is certified between driver positions as
+:func:`~.certify.certify_play` certifies a gear pair's — the same bound, constants and refining
+(:func:`certify`; ``certify_play`` measures a :class:`~.play.PairGeometry`, which places gear 2's
+pivot beyond the contact, so cannot hold a ring).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, replace
+
+import numpy as np
+import shapely
+
+from ..mechanisms.registry import MECHANISMS
+from ..pitch.curve import curvature, polar_curvature
+from ..teeth.contact import ContactData, contact_ratio
+from ..teeth.frame import arc_frame
+from ..threads import side_by_side
+from .band import band_of
+from .band_mesh import MeshGeometry, _signed_play, clip, mesh_play
+from .band_trains import MeshBand, radial_room, with_mesh_bands
+from .certify import JAM_HALVINGS, REACH, SAFETY, Certificate
+from .fit import made, sliver, smallest_fit
+from .mesh_fit import closed_form, with_backlash
+
+__all__ = ["NcMesh", "certify", "nc_meshes", "nc_bands", "nc_fit", "nc_with_bands"]
+
+TWO_PI = 2 * math.pi
+INSIDE_PER_TOOTH = 4
+"""Positions a driver tooth an internal mesh's certificate starts from: the tooth pair that
+closes the play may stand far from the pitch point for part of a tooth's passage (a dip of the
+play about a pitch wide, nc_internal.toml: 0.150 mm against 0.20 mm either side); two a tooth
+(:data:`~.certify.PER_TOOTH`) can straddle it, unseen by the slopes either side."""
+
+
+@dataclass(frozen=True)
+class NcMesh:
+    """One mesh: its name, its geometry at any driver angle, the driver angles to start from,
+    its cycle (rad), whether it is internal, and its contact along the first positions."""
+
+    name: str
+    at: object
+    """phi (n,) -> :class:`~.band_mesh.MeshGeometry` at those driver angles."""
+    first: np.ndarray
+    cycle: float
+    internal: bool
+    contact: ContactData
+    module: float
+    """The teeth's module (mm; the geometry's may be larger, :func:`_window`)."""
+
+
+def _turned(xy: np.ndarray, angle) -> np.ndarray:
+    """Points (n, 2) each turned by its ``angle`` (n,) about O."""
+    c, s = np.cos(angle), np.sin(angle)
+    return np.column_stack([c * xy[:, 0] - s * xy[:, 1], s * xy[:, 0] + c * xy[:, 1]])
+
+
+def _shape(spec) -> shapely.Polygon:
+    return shapely.Polygon(spec.outer, None if spec.hole is None else [spec.hole])
+
+
+def _tilt(normal_angle: np.ndarray, contact: np.ndarray, pivot: np.ndarray) -> np.ndarray:
+    """The angle (rad, within ±π/2) between the pitch curves' common normal at the contact and the
+    line from the contact to the driven part's pivot: the working pressure angle is α ∓ it."""
+    d = np.arctan2(pivot[:, 1] - contact[:, 1], pivot[:, 0] - contact[:, 0])
+    return (d - normal_angle + math.pi / 2) % math.pi - math.pi / 2
+
+
+def _tooth(frame, phi: np.ndarray, pitch: float, teeth: int) -> np.ndarray:
+    """The tooth (counted from polar angle 0) whose pitch arc holds the point at ``phi``."""
+    return np.floor(frame.arc(np.mod(phi, TWO_PI)) / pitch).astype(int) % teeth
+
+
+def _window(r1, r2, centre2, angle2, contact, module: float, *, points: int = 360) -> float:
+    """The module scale that makes a mesh's window (three modules about the pitch point,
+    :mod:`.band_mesh`) hold every stretch of gear 1 where a tooth of it may touch the ring: inside a
+    ring the pitch curves part slowly, and a tooth pair far from the pitch point can close the play
+    (nc_internal.toml: 20 mm away, ten modules).  At each position (``centre2``, ``angle2``,
+    ``contact``: the ring's pivot and turn and the pitch point in gear 1's frame) gear 1's pitch
+    curve ``r1`` is sampled and each point's radial gap to the ring's ``r2`` measured; where it is
+    under :data:`NEAR` modules (the two toothings' heights, the edges and a shift, over the cos of
+    any tilt) the point may be in contact, and the window reaches it and a tooth beyond.  The play's
+    bounds scale with the window too, so the reach sought and the shrink tried grow, never the
+    verdict."""
+    chi = np.linspace(0.0, TWO_PI, points, endpoint=False)
+    rho = r1(chi)
+    p = np.stack([rho * np.cos(chi), rho * np.sin(chi)], -1)  # (points, 2)
+    w = p[None, :, :] - centre2[:, None, :]
+    gamma = np.arctan2(w[..., 1], w[..., 0]) - angle2[:, None]
+    gap = r2(np.mod(gamma, TWO_PI)) - np.hypot(w[..., 0], w[..., 1])
+    far = np.hypot(*(p[None, :, :] - contact[:, None, :]).transpose(2, 0, 1))
+    reach = float(np.max(np.where(gap < NEAR * module, far, 0.0))) + 2 * module
+    return max(1.0, reach / (3 * module))
+
+
+NEAR = 4.0
+"""Modules of radial gap between gear 1's and the ring's pitch curves under which a tooth pair may
+touch (:func:`_window`): both toothings' heights (2), and the edges and shifts of a process with
+room to spare."""
+
+
+def internal_meshes(draft) -> list[NcMesh]:
+    """The pinion–ring mesh of a noncircular internal pair."""
+    pair, teeth = draft.detail, draft.data["teeth"]
+    m, z1, alpha = teeth["module"], teeth["pinion_teeth"], draft.params.pressure_angle
+    e, curve = pair.center_distance, pair.pinion
+    shapes = (_shape(draft.parts[0]), _shape(draft.parts[1]))
+    frame = arc_frame(curve)
+    wide = 1.0
+
+    def at(phi) -> MeshGeometry:
+        phi = np.asarray(phi, dtype=float)
+        u = np.column_stack([np.cos(phi), np.sin(phi)])
+        r1 = curve.r(np.mod(phi, TWO_PI))
+        return MeshGeometry(
+            shapes=shapes,
+            phi1=phi,
+            centre2=-e * u,
+            angle2=phi - pair.angle_map(phi),
+            contact=r1[:, None] * u,
+            tighter=-u,
+            module=wide * m,
+            pressure_angle=alpha,
+            teeth=_tooth(frame, phi, math.pi * m, z1),
+        )
+
+    dense = at(np.linspace(0.0, pair.cycle, 96 * max(1, round(pair.cycle / TWO_PI)), endpoint=False))
+    wide = _window(curve.r, pair.ring.r, dense.centre2, dense.angle2, dense.contact, m)  # at() reads it from here on
+    turns = max(1, round(pair.cycle / TWO_PI))
+    s = np.arange(INSIDE_PER_TOOTH * z1 * turns) * frame.perimeter / (INSIDE_PER_TOOTH * z1)
+    first = frame.angle(s % frame.perimeter) + TWO_PI * np.floor(s / frame.perimeter)
+    phi2 = pair.angle_map(first)
+    k1 = curvature(curve, np.mod(first, TWO_PI))
+    k2 = -curvature(pair.ring, np.mod(phi2, TWO_PI))  # the ring is concave at the contact
+    ratio = contact_ratio(k1, k2, (m, m), alpha, m)
+    mu = np.arctan2(curve.dr(np.mod(first, TWO_PI)), curve.r(np.mod(first, TWO_PI)))
+    contact = ContactData(first, ratio, alpha - mu, alpha + mu)
+    name = f"{draft.parts[0].name}/{draft.parts[1].name}"
+    return [NcMesh(name, at, first, pair.cycle, True, contact, m)]
+
+
+def planetary_meshes(draft) -> list[NcMesh]:
+    """The first planet's meshes with the sun and with the ring, over one sun lobe."""
+    from ..trains import nc_planetary as NP
+    from ..trains import nc_set as NS
+
+    ps, teeth, p = draft.detail, draft.data["teeth"], draft.params
+    m, z, alpha = teeth["module"], teeth["sun"], p.pressure_angle
+    sun, planet = ps.sun, ps.planet
+    shapes = [_shape(part) for part in draft.parts]
+    frames = [arc_frame(NS.as_pitch_curve(c, "curve")) for c in (sun, planet)]
+    ring_curve = NS.ring_pitch_curve(ps)
+    pitch = math.pi * m
+    lobe = ps.lobe
+    wide = 1.0
+
+    def state(theta):
+        theta = np.asarray(theta, dtype=float)
+        pose = NP.poses(sun, planet, theta)
+        p2 = pose.rho[:, None] * np.column_stack([np.cos(theta), np.sin(theta)])
+        return theta, pose, p2, ps.ring_turn(theta)
+
+    def sun_planet(theta) -> MeshGeometry:
+        theta, pose, _, _ = state(theta)
+        out = -pose.centre / np.hypot(*pose.centre.T)[:, None]
+        return MeshGeometry(
+            shapes=(shapes[0], shapes[1]),
+            phi1=theta,
+            centre2=pose.centre,
+            angle2=pose.beta,
+            contact=sun.point(theta),
+            tighter=out,
+            module=m,
+            pressure_angle=alpha,
+            teeth=_tooth(frames[0], theta, pitch, z),
+        )
+
+    def planet_ring(theta) -> MeshGeometry:
+        theta, pose, p2, phi_r = state(theta)
+        back = -pose.beta
+        towards_o = -pose.centre / np.hypot(*pose.centre.T)[:, None]
+        return MeshGeometry(
+            shapes=(shapes[1], shapes[2]),
+            phi1=theta,
+            centre2=_turned(-pose.centre, back),
+            angle2=phi_r - pose.beta,
+            contact=_turned(p2 - pose.centre, back),
+            tighter=_turned(towards_o, back),
+            module=wide * m,
+            pressure_angle=alpha,
+            teeth=_tooth(frames[1], pose.chi, pitch, z),
+        )
+
+    dense = planet_ring(np.linspace(0.0, lobe, 90, endpoint=False))
+    wide = _window(planet.r, ring_curve.r, dense.centre2, dense.angle2, dense.contact, m)  # planet_ring() reads it
+    count = INSIDE_PER_TOOTH * z // sun.lobes
+    first = np.arange(count) * lobe / count
+    theta, pose, p2, phi_r = state(first)
+    s_point = sun.point(theta)
+    normal_sun = sun.tangent_angle(theta) - math.pi / 2
+    k_sun, k_planet = sun.curvature(theta), planet.curvature(pose.psi)
+    mu1 = _tilt(normal_sun, s_point, pose.centre)
+    gamma = ps.ring_angle(theta)
+    rho, drho, d2rho = (f(np.mod(gamma, TWO_PI)) for f in (ring_curve.r, ring_curve.dr, ring_curve.d2r))
+    k_ring, k_far = -polar_curvature(rho, drho, d2rho), planet.curvature(pose.chi)
+    normal_far = planet.tangent_angle(pose.chi) + pose.beta - math.pi / 2
+    mu2 = _tilt(normal_far, p2, pose.centre)
+    contacts = (
+        ContactData(first, contact_ratio(k_sun, k_planet, (m, m), alpha, m), alpha - mu1, alpha + mu1),
+        ContactData(first, contact_ratio(k_far, k_ring, (m, m), alpha, m), alpha - mu2, alpha + mu2),
+    )
+    names = (f"{p.set.sun}/{p.set.planet}", f"{p.set.planet}/{p.set.ring}")
+    return [
+        NcMesh(names[0], sun_planet, first, lobe, False, contacts[0], m),
+        NcMesh(names[1], planet_ring, first, lobe, True, contacts[1], m),
+    ]
+
+
+def certify(measure, first: np.ndarray, cycle: float, *, module: float, tol: float, margin: float, budget: int = 0):
+    """The tight case's signed play measured at the driver angles ``first`` and refined where the
+    bound between them cannot settle the verdict: (angles measured, play there, certificate).
+    ``measure(phi) -> play``.  The bound, constants and refining are
+    :func:`~.certify.certify_play`'s: between a and b = a + h the play is at least
+    min(p(a), p(b)) − L·h/2, L :data:`~.certify.SAFETY` times the steepest slope over the interval
+    and :data:`~.certify.REACH` either side, never under the resolution over the cycle."""
+    budget = budget or 4 * len(first)
+    resolution = max(tol, 1e-4 * module)
+    narrowest = 1e-6 * cycle
+    phi, play = np.asarray(first, dtype=float), measure(np.asarray(first, dtype=float))
+    jammed = 0
+    while True:
+        order = np.argsort(phi, kind="stable")
+        a, b = order, np.roll(order, -1)
+        lo = phi[a]
+        h = (phi[b] - lo) % cycle
+        slope = np.abs(play[b] - play[a]) / np.maximum(h, narrowest)
+        near = np.max([np.roll(slope, j) for j in range(-REACH, REACH + 1)], axis=0)
+        lipschitz = np.maximum(SAFETY * near, resolution / cycle)
+        ends = np.minimum(play[a], play[b])
+        low = ends - lipschitz * h / 2
+        least = float(np.min(play))
+        if least < margin:
+            jammed += 1
+            split = (low < least - resolution) & (ends < least + 8 * resolution) & (jammed <= JAM_HALVINGS)
+        else:
+            split = low < margin
+        split &= h > narrowest
+        bound = float(np.min(low))
+        proven = least < margin or bound >= margin
+        if not split.any() or len(phi) + int(split.sum()) > budget:
+            worst = int(np.argmin(low))
+            lower = least if least < margin else min(bound, least)
+            cert = Certificate(
+                lower=lower,
+                positions=len(phi),
+                slack=least - lower,
+                proven=proven,
+                open=(0.0, 0.0) if proven else (float(lo[worst]), float(lo[worst] + h[worst])),
+            )
+            return phi, play, cert
+        mids = (lo[split] + h[split] / 2) % cycle
+        phi, play = np.concatenate([phi, mids]), np.concatenate([play, measure(mids)])
+
+
+def _band(mesh: NcMesh, params, *, quick: bool = False):
+    """The certified band of one mesh under the profile's process; ``quick``: the tight case
+    alone at the first positions, not certified between them (the backlash search's look)."""
+    process, tol = params.process, params.output.tolerance
+    edge, spread = process.edge(params.output.chamfer), process.center_spread()
+    g0 = mesh.at(mesh.first)
+    alpha = g0.pressure_angle
+    grow = max(abs(x) for x in edge)
+    m = mesh.module
+    reach = params.backlash + 4 * grow / math.cos(alpha) + 2 * spread * math.tan(alpha) + 0.5 * m
+    margin = 2 * tol if any(edge) or spread else -4 * tol / math.cos(alpha)
+
+    def signed(phi, e, shift):
+        g = mesh.at(phi)
+        return _signed_play(g, clip(g, grow + 0.5 * m), e, shift, tol, reach=reach)
+
+    def tight(phi):
+        return signed(phi, edge[2], spread)
+
+    stack = any(edge) or spread
+    if quick:  # every second first position: the certificate at the end looks at all and between
+        first = mesh.first[::2]
+        play = tight(first)
+        plays = (play, play, play)
+        found = band_of(mesh.name, plays, mesh.at(first).teeth, first, edge=edge, spread=spread, tol=tol, alpha=alpha)
+        return MeshBand(found, mesh.internal, mesh.contact)
+    with side_by_side() as pool:
+        job = pool.submit(certify, tight, mesh.first, mesh.cycle, module=m, tol=tol, margin=margin)
+        if stack:
+            pieces = clip(g0, grow)
+            nominal = pool.submit(mesh_play, g0, (edge[0], edge[0]), 0.0, tol, reach=reach, pieces=pieces)
+            wide = pool.submit(mesh_play, g0, (edge[1], edge[1]), -spread, tol, reach=reach, pieces=pieces)
+            nominal, wide = nominal.result(), wide.result()
+        phi, play, cert = job.result()
+    if not stack:
+        nominal = wide = play
+    else:
+        more = np.full(len(play) - len(nominal), np.nan)
+        nominal, wide = np.concatenate([nominal, more]), np.concatenate([wide, more])
+    teeth = mesh.at(phi).teeth
+    found = band_of(
+        mesh.name, (nominal, play, wide), teeth, phi, edge=edge, spread=spread, tol=tol, alpha=alpha, certificate=cert
+    )
+    return MeshBand(found, mesh.internal, mesh.contact)
+
+
+def nc_meshes(draft) -> list[NcMesh]:
+    """The meshes of a noncircular internal pair or planetary set (by what its detail holds)."""
+    return planetary_meshes(draft) if hasattr(draft.detail, "ring_turn") else internal_meshes(draft)
+
+
+def nc_bands(draft, *, quick: bool = False) -> tuple[MeshBand, ...]:
+    """The certified band of every mesh of the draft under its profile's process (``quick``:
+    the tight case at the first positions only, :func:`_band`)."""
+    return tuple(_band(mesh, draft.params, quick=quick) for mesh in nc_meshes(draft))
+
+
+def nc_with_bands(draft, bands=None, *, chosen: bool = False):
+    """The draft with its meshes' bands in the report, lines and findings (:func:`.band_trains.with_mesh_bands`)."""
+    return with_mesh_bands(draft, nc_bands(draft) if bands is None else bands, chosen=chosen)
+
+
+def _excess(bands) -> float:
+    return min(mb.band.least - mb.band.margin for mb in bands)
+
+
+def _left_out(params) -> bool:
+    table = getattr(params, MECHANISMS[params.mechanism].backlash_table)
+    return "backlash" not in table.model_fields_set
+
+
+def chooses(params) -> bool:
+    """Whether gearcad chooses the backlash: a process named, no fit preset, ``teeth.backlash``
+    left out."""
+    return params.process.kind != "none" and params.process.fit is None and _left_out(params)
+
+
+def _tip_line(draft) -> object:
+    """The draft with the fit preset's tip clearance set against the radial room (0.25 module less
+    both edges grown and the centres' error) in its report and checks' lines; as it is without one."""
+    p = draft.params
+    preset = p.process.preset(p.pressure_angle)
+    if preset is None:
+        return draft
+    room = radial_room(p, draft.data["teeth"]["module"])
+    line = (
+        f"process.fit = {p.process.fit!r}: backlash {preset[0]:.4f} mm on the pitch curves (normal "
+        f"{preset[0] * math.cos(p.pressure_angle):.2f}), tip clearance {preset[1]:.2f} mm against a radial room of "
+        f"{room:.3f} mm ({'kept' if room >= preset[1] else 'NOT kept'})"
+    )
+    data = {**draft.data, "fit_preset": {"name": p.process.fit, "backlash": preset[0], "tip_clearance": preset[1]}}
+    data["fit_preset"]["radial_room"] = room
+    return replace(draft, details=(*draft.details, line), data=data)
+
+
+def nc_fit(given, design_of):
+    """The draft as made under the process, its meshes' bands measured and certified, the
+    backlash chosen (the smallest that keeps every mesh's worst case free by the margin, as
+    :func:`.mesh_fit.chosen` chooses a train's) when the profile leaves it out."""
+    params = made(given)
+    preset = given.process.preset(given.pressure_angle)
+    if preset is not None and _left_out(given):
+        params = with_backlash(params, preset[0])
+    if not chooses(given):
+        return _tip_line(nc_with_bands(design_of(params)))
+    tol = params.output.tolerance
+    draft = design_of(with_backlash(params, closed_form(params)))
+    module = draft.data["teeth"]["module"]
+
+    def cut(backlash: float):
+        d = design_of(with_backlash(params, backlash))
+        found = nc_bands(d, quick=True)
+        return d.params.backlash, _excess(found), (d, found)
+
+    if radial_room(params, module) >= 2 * tol:  # else no backlash frees it: the closed form's flanks
+        first = (draft.params.backlash, _excess(quick := nc_bands(draft, quick=True)), (draft, quick))
+        draft, _ = smallest_fit(first, cut, tol, limit=sliver(module))  # looks at the first positions
+        bands = nc_bands(draft)  # certified: between the positions it may ask a little more, once
+        short = -_excess(bands)
+        if short > 0 and draft.params.backlash + short + tol < sliver(module):
+            draft = design_of(with_backlash(params, draft.params.backlash + short + tol / 4))
+            bands = nc_bands(draft)
+        return nc_with_bands(draft, bands, chosen=True)
+    return nc_with_bands(draft, nc_bands(draft), chosen=True)
