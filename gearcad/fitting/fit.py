@@ -28,11 +28,14 @@ __all__ = [
     "smallest_fit",
     "chose_backlash",
     "chosen",
+    "chosen_values",
+    "largest_chamfer",
     "made",
     "needed_backlash",
     "pair_bands",
     "radial_room",
     "remedies",
+    "tip_choices",
     "tips_reach_roots",
     "with_bands",
     "writing_play",
@@ -53,7 +56,8 @@ def writing_play(params) -> float:
 def needed_backlash(params) -> float:
     """The backlash the closed form asks for (mm): under a process 4·δ/cos α for the edges,
     2·Δa·tan α for the centres, and the band's margin (2·tol) with a quarter of a tolerance to
-    spare; with none, what the writing can take (:func:`writing_play`) and the mesh proof's
+    spare, less what ``teeth.clearance`` leaves (4·c/cos α); with none, what the writing can take
+    (:func:`writing_play`) and the mesh proof's
     allowed bite (its depth 2·tol, over cos α), less what ``teeth.clearance`` leaves."""
     process, teeth = _process(params), getattr(params, "teeth", None)
     if teeth is None:
@@ -62,7 +66,8 @@ def needed_backlash(params) -> float:
     if process is None or process.kind == "none":
         return max(0.0, 1.5 * writing_play(params) - 4 * teeth.clearance / math.cos(alpha))
     edge = max(0.0, process.edge(params.output.chamfer)[2])
-    return 4 * edge / math.cos(alpha) + 2 * process.center_spread() * math.tan(alpha) + 9 * tol / 4
+    need = 4 * edge / math.cos(alpha) + 2 * process.center_spread() * math.tan(alpha) + 9 * tol / 4
+    return max(0.0, need - 4 * teeth.clearance / math.cos(alpha))  # the clearance moved every flank in
 
 
 def chose_backlash(params) -> bool:
@@ -130,21 +135,34 @@ def _excess(params, band: Band) -> float:
 
 
 def chosen(given, design_of, *, designs: int = 6):
-    """(draft, bands) of ``given`` as made, with the backlash gearcad chooses: the smallest that
-    keeps the band's worst case free, found over at most ``designs`` cuts of the pair.
+    """(draft, bands) of ``given`` as made, with what gearcad chooses for the keys the profile
+    leaves out: first the room of the tips in the mate's roots (:func:`tip_choices`: the chamfer
+    against a printer's elephant foot, ``teeth.clearance``, a shorter ``teeth.addendum``), then
+    the smallest backlash that keeps the band's worst case free — all over at most ``designs``
+    cuts of the pair.
 
-    The first cut takes the closed form's backlash (:func:`needed_backlash`).  While it is short
+    The first backlash is the closed form's (:func:`needed_backlash`).  While it is short
     the next adds what the band says it lacks; a pair that fits by more than the resolution
     (a tolerance, or 1 % of the backlash) is cut again with the excess taken off, and between a
     backlash that jams and one that fits the next lies where the jam's shortfall runs out.  A
     noncircular pair's play is not linear in the backlash (the tips leave the roots at once), so
     this is a bracketing search, not one step.  With no process the closed form's play is cut
     once: more backlash must not hide an interference the mesh proof reports."""
-    params = made(given)
+    first = _foot_chamfer(given)  # a printer's teeth drafted with the chamfer they will most likely get
+    params = made(with_choices(given, first))
     draft = design_of(params)
     bands = pair_bands(draft)
     exact = _process(given) is None or _process(given).kind == "none"
-    if not bands or not chose_backlash(given) or exact:  # exact parts: the closed form, never a cure
+    if not bands or exact:  # exact parts: the closed form, never a cure
+        return draft, bands
+    tips = tip_choices(given, draft)
+    given = with_choices(given, tips)
+    if tips != first:  # the tips reach the roots: give them room first (no backlash frees them)
+        params = made(given)
+        draft = design_of(params)
+        bands = pair_bands(draft)
+        designs -= 1
+    if not chose_backlash(given):
         return draft, bands
 
     def cut(backlash: float):
@@ -162,19 +180,135 @@ def chosen(given, design_of, *, designs: int = 6):
     return smallest_fit(first, cut, given.output.tolerance, limit=limit, gain=1.1, designs=designs)
 
 
+TIP_KEYS = ("output.chamfer", "teeth.clearance", "teeth.addendum")
+"""The keys gearcad may choose for the tips' room, in the order it tries them."""
+LEAST_ADDENDUM = 0.8
+"""The shortest addendum (× module) gearcad chooses: 0.2·m of tip relief, the contact ratio kept."""
+LEAST_TIP_LAND = 0.2
+"""The tip land (× module) a chosen ``teeth.clearance`` leaves the thinnest tooth."""
+
+
+def tip_choices(given, draft) -> dict[str, float]:
+    """The values gearcad chooses, of the keys the profile leaves out, so that the tips keep
+    twice the margin and a tolerance (5·tol) of room in the mate's roots (:func:`radial_room`);
+    {} when they have it.  In turn, as far as each goes: a printer's first-layer chamfer
+    (``output.chamfer`` = the elephant foot, as far as the parts take it), ``teeth.clearance``
+    (every flank in: gives twice itself; the thinnest tip land kept 0.2·m) and a shorter
+    ``teeth.addendum`` (tip relief, down to 0.8).  What they cannot give is left: the band jams,
+    and its finding says so.  ``draft`` is ``given`` as made, designed."""
+    process, out, teeth = given.process, given.output, getattr(given, "teeth", None)
+    if process is None or process.kind == "none" or teeth is None or not hasattr(teeth, "addendum"):
+        return {}
+    module, tol = draft.detail.teeth.plan.module, out.tolerance
+    lack = 5 * tol - radial_room(made(given), module)
+    picks: dict[str, float] = {}
+    if lack <= 0:
+        return picks
+    foot = process.value("elephant_foot") if process.kind == "fdm" else 0.0
+    if foot > out.chamfer and "chamfer" not in out.model_fields_set:
+        chamfer = largest_chamfer(draft, foot)
+        if chamfer > out.chamfer:
+            picks["output.chamfer"] = chamfer
+            lack -= 2 * (chamfer - out.chamfer)
+    if lack > 0 and "clearance" not in teeth.model_fields_set:
+        land = min(float(np.min(g.tip_thickness)) for g in draft.detail.teeth.gears)
+        most = math.floor((land - LEAST_TIP_LAND * module) / 2 * 1000) / 1000
+        clearance = min(math.ceil((teeth.clearance + lack / 2) * 1000) / 1000, most)
+        if clearance > teeth.clearance:
+            picks["teeth.clearance"] = clearance
+            lack -= 2 * (clearance - teeth.clearance)
+    if lack > 0 and "addendum" not in teeth.model_fields_set:
+        unit = _height_unit(given, module)
+        addendum = max(math.floor((teeth.addendum - lack / unit) * 1000) / 1000, LEAST_ADDENDUM)
+        if addendum < teeth.addendum:
+            picks["teeth.addendum"] = addendum
+    return picks
+
+
+def _foot_chamfer(given) -> dict[str, float]:
+    """``{"output.chamfer": elephant foot}`` for a printed gear pair given by its module whose
+    tips would reach the mate's roots and whose profile leaves the chamfer out (what
+    :func:`tip_choices` gives first, unless the teeth cannot take it); else {}."""
+    process, out, teeth = given.process, given.output, getattr(given, "teeth", None)
+    if process.kind != "fdm" or "chamfer" in out.model_fields_set or getattr(teeth, "module", None) is None:
+        return {}
+    foot = process.value("elephant_foot")
+    if foot <= out.chamfer or radial_room(made(given), teeth.module / _height_unit(given, 1.0)) >= 5 * out.tolerance:
+        return {}
+    return {"output.chamfer": foot}
+
+
+def largest_chamfer(draft, chamfer: float) -> float:
+    """``chamfer`` (mm), or the largest every part's solid takes (under half its thickness, no cap's
+    inset crossing itself: to 0.01 mm, 90 % of it, as the refusal suggests).  ``draft`` a
+    mechanism's draft: its parts' outer rings and end sections (the bores are far from the teeth)."""
+    from ..geometry.inset import chamfer_fits
+
+    thickness = draft.params.output.thickness
+    rings = [(p.outer, () if p.hole is None else (p.hole,)) for p in draft.parts]  # a ring's teeth: its hole
+    rings += [(cap, ()) for p in draft.parts for cap in p.caps]
+
+    def fits(c: float) -> bool:
+        return 2 * c < thickness and all(chamfer_fits(outer, holes, c) for outer, holes in rings)
+
+    if fits(chamfer):
+        return chamfer
+    good, bad = 0, math.ceil(chamfer * 100)
+    while bad - good > 1:
+        mid = (good + bad) // 2
+        good, bad = (mid, bad) if fits(mid / 100) else (good, mid)
+    return math.floor(0.9 * good) / 100
+
+
+def with_choices(given, picks: dict[str, float]):
+    """``given`` with the values ``picks`` gives its keys ("section.key")."""
+    update: dict = {}
+    for key, value in picks.items():
+        section, name = key.split(".")
+        table = update.get(section, getattr(given, section))
+        update[section] = table.model_copy(update={name: value})
+    return given.model_copy(update=update)
+
+
+def chosen_values(given, used) -> dict:
+    """What the report says of the keys gearcad may choose for a gear pair (``used``: the
+    parameters as made): each key's value and whether gearcad chose it (``backlash``,
+    ``backlash_chosen``, ``clearance``, …)."""
+    teeth = getattr(given, "teeth", None)
+    if teeth is None or not hasattr(teeth, "addendum"):
+        return {}
+    out = {"backlash": used.teeth.backlash, "backlash_chosen": chose_backlash(given)}
+    for key in TIP_KEYS:
+        section, name = key.split(".")
+        table = getattr(given, section)
+        value = getattr(getattr(used, section), name)
+        out[name] = value
+        out[f"{name}_chosen"] = name not in table.model_fields_set and value != getattr(table, name)
+    return out
+
+
 CLEARANCE = 0.25
 """Radial clearance of the standard rack the teeth are cut by (dedendum 1.25 less addendum 1), × module."""
 
 
 def radial_room(params, module: float) -> float:
     """What is left of the radial clearance (mm) with both edges at their largest and the
-    centres' error taken from it (``teeth.clearance`` moves every flank in, the tips too: it adds
-    twice itself): below the band's margin, the tips reach the mate's roots."""
+    centres' error taken from it: the rack's (dedendum − addendum)·m, 0.25·m for the standard
+    rack (``teeth.clearance`` moves every flank in, the tips too: it adds twice itself; ``module``
+    the pitch curve's, transverse for helical teeth): below twice the band's margin, the tips
+    reach the mate's roots."""
     process = params.process
     edge = max(0.0, process.edge(params.output.chamfer)[2])
     teeth = getattr(params, "teeth", None)
     extra = 2 * getattr(teeth, "clearance", 0.0) if teeth is not None else 0.0
-    return CLEARANCE * module - 2 * edge - process.center_spread() + extra
+    gap = teeth.dedendum - teeth.addendum if hasattr(teeth, "addendum") else CLEARANCE
+    return gap * _height_unit(params, module) - 2 * edge - process.center_spread() + extra
+
+
+def _height_unit(params, module: float) -> float:
+    """The length (mm) the rack's height coefficients multiply: the module, the normal one for
+    helical teeth (heights are the same lengths in every section; ``module`` the transverse)."""
+    return module * math.cos(getattr(getattr(params, "teeth", None), "helix_angle", 0.0))
 
 
 def tips_reach_roots(params, band: Band, module: float) -> bool:
@@ -189,8 +323,9 @@ def remedies(given, band: Band, design, module: float) -> tuple[tuple[str, ...],
     makes the pair fit — tried here by ``design`` (a full design of the profile so changed) — and
     what was tried and did not (one line each, why).  Which keys are tried follows the contact
     that closes the play: a tip in the mate's root (:func:`tips_reach_roots`) takes the first
-    layers' bulge off (``output.chamfer``, printers) or moves every flank in (``teeth.clearance``);
-    flanks take more backlash (``teeth.backlash``)."""
+    layers' bulge off (``output.chamfer``, printers), moves every flank in (``teeth.clearance``)
+    or shortens the tips (``teeth.addendum``); flanks take more backlash (``teeth.backlash``).
+    Each is tried on the profile as given: the keys it leaves out are still chosen."""
     from ..errors import GearcadError
 
     process, tol = given.process, given.output.tolerance
@@ -204,6 +339,9 @@ def remedies(given, band: Band, design, module: float) -> tuple[tuple[str, ...],
         lack = 2 * abs(band.margin) - radial_room(made(given), module)
         clearance = math.ceil((teeth.clearance + lack / 2 + tol) * 1000) / 1000
         tried.append(("teeth.clearance", clearance, {"teeth": teeth.model_copy(update={"clearance": clearance})}))
+        addendum = math.floor((teeth.addendum - (lack + tol) / _height_unit(given, module)) * 1000) / 1000
+        if addendum > 0:
+            tried.append(("teeth.addendum", addendum, {"teeth": teeth.model_copy(update={"addendum": addendum})}))
     else:
         backlash = math.ceil((teeth.backlash + band.needed_backlash + tol / 4) * 1000) / 1000
         tried.append(("teeth.backlash", backlash, {"teeth": teeth.model_copy(update={"backlash": backlash})}))
@@ -228,10 +366,13 @@ def smallest_fit(first, cut, tol: float, *, limit: float, gain: float = 1.0, des
 
     A cut is (backlash as cut, excess, what was made): ``excess`` the worst case's play above
     its margin (negative: short).  While the cuts are short the next adds ``gain`` × what the
-    shortest lacks; one that fits by more than the resolution (a tolerance, or 1 % of the
-    backlash) is cut again with the excess taken off; between a backlash that jams and one that
-    fits the next halves the bracket (a noncircular pair's play jumps as the tips leave the roots:
-    the secant crept).
+    shortest lacks — over the slope of the last two where that is less than one; one that fits
+    by more than the resolution (a tolerance, or 1 % of the backlash) is cut again with the
+    excess taken off; between a backlash that jams and one that fits the next is where the line
+    between them crosses the margin, a tenth of the bracket off either end, the fit's excess
+    halved for each short cut since it (the Illinois rule: a jam's play, the shrink that frees
+    it, grows more slowly with the backlash than a free pair's, so the plain line falls short
+    again and again).
     No cut at ``limit`` mm or more (the teeth would be slivers).  Returns the smallest cut that
     fits, else the last."""
     tries = [first]
@@ -248,8 +389,17 @@ def smallest_fit(first, cut, tol: float, *, limit: float, gain: float = 1.0, des
             guess = best[0] - best[1]
         else:
             guess = short[0] - gain * short[1] + 0.25 * tol
-            if best is not None:  # bracketed: halve it (the play jumps as the tips leave the roots)
-                guess = 0.5 * (short[0] + best[0])
+            below = sorted(jams, key=lambda t: t[0])[-2:]
+            if best is None and len(below) == 2 and below[1][0] > below[0][0]:  # two short: their slope
+                slope = (below[1][1] - below[0][1]) / (below[1][0] - below[0][0])
+                if slope > 0.1:  # the play grows more slowly than the backlash (a body's rollers: ~0.5)
+                    guess = max(guess, short[0] + gain * (0.25 * tol - short[1]) / slope)
+            if best is not None:  # bracketed: where the line between them crosses (Illinois: the fit's
+                # excess halved for each short cut since it, so the line cannot keep falling short)
+                since = next((k for k, t in enumerate(reversed(tries)) if t[1] >= 0), 0)
+                width, over = best[0] - short[0], best[1] * 0.5**since
+                cross = short[0] + width * (0.25 * tol - short[1]) / (over - short[1])
+                guess = min(max(cross, short[0] + 0.1 * width), best[0] - 0.1 * width)
         if guess >= limit:
             break
         tries.append(cut(max(guess, 0.0)))
@@ -325,16 +475,27 @@ def _jam_sentence(params, b: Band, where: str, cures, module: float) -> str:
     return text
 
 
-def with_bands(design: Design, bands: tuple[Band, ...], cures=None, fixed: bool | None = None) -> Design:
+def with_bands(
+    design: Design, bands: tuple[Band, ...], cures=None, fixed: bool | None = None, chosen: dict | None = None
+) -> Design:
     """The design with its bands in the report, the checks' lines and the findings (``cures``:
     the remedies tried for a jam, :func:`remedies`; ``fixed``: whether the profile gave the
-    backlash, default whether the design's parameters name it)."""
+    backlash, default whether the design's parameters name it; ``chosen``: the keys gearcad may
+    choose, :func:`chosen_values`, into each band's entry and a check line for those it chose)."""
     if not bands:
         return design
     process = design.params.process
     findings, lines = list(design.findings), list(design.details)
     fixed = "backlash" in design.params.teeth.model_fields_set if fixed is None else fixed
     module = design.detail.teeth.plan.module
+    chosen = chosen or {}
+    picked = [
+        f"{key} = {chosen[key.split('.')[1]]:g}{' × module' if key == 'teeth.addendum' else ' mm'}"
+        for key in TIP_KEYS
+        if chosen.get(f"{key.split('.')[1]}_chosen")
+    ]
+    if picked:
+        lines.append(", ".join(picked) + " (chosen: the tips' room in the mate's roots under the process's worst case)")
     for b in bands:
         lines.append(
             f"band {b.mesh} ({process.kind}): play {b.nominal[0]:.4f}…{b.nominal[1]:.4f} mm as drawn, "
@@ -365,7 +526,7 @@ def with_bands(design: Design, bands: tuple[Band, ...], cures=None, fixed: bool 
             findings.append(
                 finding("loose", f"{b.mesh}: the play may reach {b.band[1]:.3f} mm (process.max_play = {limit:g})")
             )
-    data = {**design.data, "bands": [b.as_dict() for b in bands], "process": _process_block(process)}
+    data = {**design.data, "bands": [{**b.as_dict(), **chosen} for b in bands], "process": _process_block(process)}
     return replace(design, findings=tuple(findings), details=tuple(lines), data=data)
 
 

@@ -20,7 +20,7 @@ import math
 from ..mechanisms.registry import MECHANISMS
 from . import band_trains
 from .band_trains import radial_room
-from .fit import made, sliver, smallest_fit
+from .fit import largest_chamfer, made, sliver, smallest_fit, with_choices
 
 __all__ = ["chooses", "closed_form", "chosen", "with_backlash"]
 
@@ -60,6 +60,22 @@ def closed_form(params) -> float:
     return 4 * edge / math.cos(alpha) + 2 * process.center_spread() * math.tan(alpha) + 2 * tol + tol / 4
 
 
+def _chamfered(given, design_of):
+    """``given`` with ``output.chamfer`` the elephant foot (as far as the parts take it) when it is
+    printed, leaves the chamfer out and the tips would reach the mates' roots (:func:`.band_trains.
+    radial_room` under twice the margin and a tolerance): the first layers' bulge is the one
+    error a chamfer takes off, and no backlash frees the tips."""
+    process, out = given.process, given.output
+    foot = process.value("elephant_foot") if process.kind == "fdm" else 0.0
+    if foot <= out.chamfer or "chamfer" in out.model_fields_set:
+        return given
+    draft = design_of(made(given))
+    if radial_room(made(given), _module(given, draft)) >= 5 * out.tolerance:
+        return given
+    chamfer = largest_chamfer(draft, foot)
+    return with_choices(given, {"output.chamfer": chamfer}) if chamfer > out.chamfer else given
+
+
 def _excess(bands) -> float:
     """How far the tightest mesh's worst case is above its margin (mm; negative: short)."""
     return min(mb.band.least - mb.band.margin for mb in bands)
@@ -68,6 +84,7 @@ def _excess(bands) -> float:
 def chosen(given, design_of):
     """The draft of ``given`` as made (:func:`.fit.made`) with its bands in it, its backlash
     chosen when the profile leaves it to gearcad (:func:`chooses`), else as given."""
+    given = _chamfered(given, design_of)
     params = made(given)
     if not chooses(given):
         return band_trains.with_mesh_bands(design_of(params))
