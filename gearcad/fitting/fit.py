@@ -186,21 +186,31 @@ LEAST_ADDENDUM = 0.8
 """The shortest addendum (× module) gearcad chooses: 0.2·m of tip relief, the contact ratio kept."""
 LEAST_TIP_LAND = 0.2
 """The tip land (× module) a chosen ``teeth.clearance`` leaves the thinnest tooth."""
+TIP_SPARE = 0.03
+"""Room (× module) the tips keep beyond twice the margin when gearcad gives them room: the mate's
+root fillet rises from its root circle towards the flank, and a tip's corner passes near it (a
+module-1.5 train at 5·tol of room took a backlash a third larger than at 0.03·m more)."""
+
+
+def tip_target(params, module: float) -> float:
+    """The radial room (mm) gearcad gives the tips when it chooses their keys: twice the margin and
+    a tolerance (5·tol) and :data:`TIP_SPARE` of the module (the normal one for helical teeth)."""
+    return 5 * params.output.tolerance + TIP_SPARE * _height_unit(params, module)
 
 
 def tip_choices(given, draft) -> dict[str, float]:
     """The values gearcad chooses, of the keys the profile leaves out, so that the tips keep
-    twice the margin and a tolerance (5·tol) of room in the mate's roots (:func:`radial_room`);
-    {} when they have it.  In turn, as far as each goes: a printer's first-layer chamfer
-    (``output.chamfer`` = the elephant foot, as far as the parts take it), ``teeth.clearance``
-    (every flank in: gives twice itself; the thinnest tip land kept 0.2·m) and a shorter
-    ``teeth.addendum`` (tip relief, down to 0.8).  What they cannot give is left: the band jams,
-    and its finding says so.  ``draft`` is ``given`` as made, designed."""
+    :func:`tip_target` of room in the mate's roots (:func:`radial_room`); {} when they have it.
+    In turn, as far as each goes: a printer's first-layer chamfer (``output.chamfer`` = the
+    elephant foot, as far as the parts take it), ``teeth.clearance`` (every flank in: gives twice
+    itself; the thinnest tip land kept 0.2·m) and a shorter ``teeth.addendum`` (tip relief, down
+    to 0.8).  What they cannot give is left: the band jams, and its finding says so.  ``draft``
+    is ``given`` as made, designed."""
     process, out, teeth = given.process, given.output, getattr(given, "teeth", None)
     if process is None or process.kind == "none" or teeth is None or not hasattr(teeth, "addendum"):
         return {}
-    module, tol = draft.detail.teeth.plan.module, out.tolerance
-    lack = 5 * tol - radial_room(made(given), module)
+    module = draft.detail.teeth.plan.module
+    lack = tip_target(given, module) - radial_room(made(given), module)
     picks: dict[str, float] = {}
     if lack <= 0:
         return picks
@@ -233,7 +243,8 @@ def _foot_chamfer(given) -> dict[str, float]:
     if process.kind != "fdm" or "chamfer" in out.model_fields_set or getattr(teeth, "module", None) is None:
         return {}
     foot = process.value("elephant_foot")
-    if foot <= out.chamfer or radial_room(made(given), teeth.module / _height_unit(given, 1.0)) >= 5 * out.tolerance:
+    module = teeth.module / _height_unit(given, 1.0)  # the transverse module (about: no draft yet)
+    if foot <= out.chamfer or radial_room(made(given), module) >= tip_target(given, module):
         return {}
     return {"output.chamfer": foot}
 
