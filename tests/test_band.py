@@ -105,8 +105,15 @@ def test_the_page_and_check_show_the_band(tmp_path, spur):
     "sets",
     [
         {"process.kind": "laser", "teeth.backlash": 0.1},  # flanks: too little backlash
-        # the tips reach the roots (every key that helps them fixed, else gearcad chooses it)
-        {"process.kind": "fdm", "output.chamfer": 0.0, "teeth.clearance": 0.0, "teeth.addendum": 1.0},
+        # the tips reach the roots (every key that helps them fixed, else gearcad chooses it; the
+        # backlash too, which the flanks keep free once the tips have room: one cut a design)
+        {
+            "process.kind": "fdm",
+            "output.chamfer": 0.0,
+            "teeth.clearance": 0.0,
+            "teeth.addendum": 1.0,
+            "teeth.backlash": 0.7,
+        },
     ],
 )
 def test_each_remedy_a_jam_names_fits_as_printed(sets):

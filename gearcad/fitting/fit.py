@@ -222,17 +222,24 @@ def tip_choices(given, draft) -> dict[str, float]:
             lack -= 2 * (chamfer - out.chamfer)
     if lack > 0 and "clearance" not in teeth.model_fields_set:
         land = min(float(np.min(g.tip_thickness)) for g in draft.detail.teeth.gears)
-        most = math.floor((land - LEAST_TIP_LAND * module) / 2 * 1000) / 1000
-        clearance = min(math.ceil((teeth.clearance + lack / 2) * 1000) / 1000, most)
+        most = _thousandths((land - LEAST_TIP_LAND * module) / 2, math.floor)
+        clearance = min(_thousandths(teeth.clearance + lack / 2, math.ceil), most)
         if clearance > teeth.clearance:
             picks["teeth.clearance"] = clearance
             lack -= 2 * (clearance - teeth.clearance)
     if lack > 0 and "addendum" not in teeth.model_fields_set:
         unit = _height_unit(given, module)
-        addendum = max(math.floor((teeth.addendum - lack / unit) * 1000) / 1000, LEAST_ADDENDUM)
+        addendum = max(_thousandths(teeth.addendum - lack / unit, math.floor), LEAST_ADDENDUM)
         if addendum < teeth.addendum:
             picks["teeth.addendum"] = addendum
     return picks
+
+
+def _thousandths(value: float, rounding) -> float:
+    """``value`` rounded to 0.001 by ``rounding`` (math.floor, math.ceil), a nanometre's noise
+    forgiven (0.1/2 is 0.05, not 0.049)."""
+    nudge = 1e-6 if rounding is math.floor else -1e-6
+    return rounding(value * 1000 + nudge) / 1000
 
 
 def _foot_chamfer(given) -> dict[str, float]:
@@ -332,7 +339,8 @@ def tips_reach_roots(params, band: Band, module: float) -> bool:
 def remedies(given, band: Band, design, module: float) -> tuple[tuple[str, ...], tuple[str, ...]]:
     """(remedies, refused): ``--set KEY=VALUE`` lines each of which, applied alone to ``given``,
     makes the pair fit — tried here by ``design`` (a full design of the profile so changed) — and
-    what was tried and did not (one line each, why).  Which keys are tried follows the contact
+    what was tried and did not (one line each, ``KEY = VALUE`` and why: no ``--set`` line the
+    message names fails when applied).  Which keys are tried follows the contact
     that closes the play: a tip in the mate's root (:func:`tips_reach_roots`) takes the first
     layers' bulge off (``output.chamfer``, printers), moves every flank in (``teeth.clearance``)
     or shortens the tips (``teeth.addendum``); flanks take more backlash (``teeth.backlash``).
@@ -358,16 +366,15 @@ def remedies(given, band: Band, design, module: float) -> tuple[tuple[str, ...],
         tried.append(("teeth.backlash", backlash, {"teeth": teeth.model_copy(update={"backlash": backlash})}))
     good, bad = [], []
     for key, value, update in tried:
-        line = f"--set {key}={value:g}"
         try:
             trial = design(given.model_copy(update=update))
         except GearcadError as error:
-            bad.append(f"{line} is refused ({error})")
+            bad.append(f"{key} = {value:g} is refused ({error})")
             continue
         if any(f.code == "jams" for f in trial.findings):
-            bad.append(f"{line} still jams")
+            bad.append(f"{key} = {value:g} still jams")
         else:
-            good.append(line)
+            good.append(f"--set {key}={value:g}")
     return tuple(good), tuple(bad)
 
 

@@ -91,7 +91,7 @@ def _tips(given, design_of):
             lack -= 2 * (chamfer - out.chamfer)
     table, section = _table(given), MECHANISMS[given.mechanism].backlash_table
     if lack > 0 and hasattr(table, "addendum") and "addendum" not in table.model_fields_set:
-        addendum = max(math.floor((table.addendum - lack / module) * 1000) / 1000, LEAST_ADDENDUM)
+        addendum = max(math.floor((table.addendum - lack / module) * 1000 + 1e-6) / 1000, LEAST_ADDENDUM)
         if addendum < table.addendum:
             picks[f"{section}.addendum"] = addendum
     return with_choices(given, picks) if picks else given
