@@ -137,7 +137,9 @@ def test_every_example_pair_printed_with_fdm_defaults_fits(tmp_path, name):
     gear1, gear2, driver, positions = PAIRS[name]
     folder = _build(tmp_path, name, {"process.kind": "fdm"})
     play, phi, reported = _least(folder, "pair", gear1, gear2, driver, positions)
-    tol = json.loads((folder / "report.json").read_text(encoding="utf-8"))["tolerance"]
+    report = json.loads((folder / "report.json").read_text(encoding="utf-8"))
+    tol, band = report["tolerance"], report["bands"][0]
+    assert band["verdict"] == "fits" and all(f"{k}_chosen" in band for k in ("backlash", "clearance", "chamfer"))
     assert play >= 2 * tol, (name, play, math.degrees(phi))
     assert abs(play - reported) <= MICRON, (play, math.degrees(phi), reported)
 

@@ -378,13 +378,15 @@ def remedies(given, band: Band, design, module: float) -> tuple[tuple[str, ...],
     return tuple(good), tuple(bad)
 
 
-def smallest_fit(first, cut, tol: float, *, limit: float, gain: float = 1.0, designs: int = 4):
+def smallest_fit(first, cut, tol: float, *, limit: float, gain: float = 1.0, designs: int = 4, slope: bool = False):
     """What ``cut`` made of the smallest backlash that keeps the worst case free, by a
     bracketing search over at most ``designs`` cuts (``first`` is the first, already made).
 
     A cut is (backlash as cut, excess, what was made): ``excess`` the worst case's play above
     its margin (negative: short).  While the cuts are short the next adds ``gain`` × what the
-    shortest lacks — over the slope of the last two where that is less than one; one that fits
+    shortest lacks (``slope``: over the slope of the last two where that is less than one — a
+    body's rollers, whose play grows about half as fast as the backlash; not a noncircular pair's,
+    whose jammed plays grow more slowly than the free ones beyond them); one that fits
     by more than the resolution (a tolerance, or 1 % of the backlash) is cut again with the
     excess taken off; between a backlash that jams and one that fits the next is where the line
     between them crosses the margin, a tenth of the bracket off either end, the fit's excess
@@ -408,10 +410,10 @@ def smallest_fit(first, cut, tol: float, *, limit: float, gain: float = 1.0, des
         else:
             guess = short[0] - gain * short[1] + 0.25 * tol
             below = sorted(jams, key=lambda t: t[0])[-2:]
-            if best is None and len(below) == 2 and below[1][0] > below[0][0]:  # two short: their slope
-                slope = (below[1][1] - below[0][1]) / (below[1][0] - below[0][0])
-                if slope > 0.1:  # the play grows more slowly than the backlash (a body's rollers: ~0.5)
-                    guess = max(guess, short[0] + gain * (0.25 * tol - short[1]) / slope)
+            if slope and best is None and len(below) == 2 and below[1][0] > below[0][0]:  # two short: their slope
+                rate = (below[1][1] - below[0][1]) / (below[1][0] - below[0][0])
+                if rate > 0.1:  # the play grows more slowly than the backlash (a body's rollers: ~0.5)
+                    guess = max(guess, short[0] + gain * (0.25 * tol - short[1]) / rate)
             if best is not None:  # bracketed: where the line between them crosses (Illinois: the fit's
                 # excess halved for each short cut since it, so the line cannot keep falling short)
                 since = next((k for k, t in enumerate(reversed(tries)) if t[1] >= 0), 0)

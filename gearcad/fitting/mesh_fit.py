@@ -121,7 +121,7 @@ def chosen(given, design_of):
     bands = band_trains.mesh_bands(draft)
     first = (draft.params.backlash, _excess(bands), (draft, bands))
     if radial_room(params, module) >= 2 * tol:  # else no backlash frees it: the closed form's flanks
-        draft, bands = smallest_fit(first, cut, tol, limit=sliver(module))
+        draft, bands = smallest_fit(first, cut, tol, limit=sliver(module), slope=True)
     return _noted(band_trains.with_mesh_bands(draft, bands, chosen=True), original)
 
 
