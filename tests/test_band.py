@@ -105,14 +105,22 @@ def test_the_page_and_check_show_the_band(tmp_path, spur):
     "sets",
     [
         {"process.kind": "laser", "teeth.backlash": 0.1},  # flanks: too little backlash
-        {"process.kind": "fdm"},  # the tips reach the roots: backlash cannot help
+        # the tips reach the roots (every key that helps them fixed, else gearcad chooses it; the
+        # backlash too, which the flanks keep free once the tips have room: one cut a design)
+        {
+            "process.kind": "fdm",
+            "output.chamfer": 0.0,
+            "teeth.clearance": 0.0,
+            "teeth.addendum": 1.0,
+            "teeth.backlash": 0.7,
+        },
     ],
 )
 def test_each_remedy_a_jam_names_fits_as_printed(sets):
     """Every ``--set KEY=VALUE`` a jam message names, applied to the profile as printed (the way
     the command line applies it), gives a pair whose band fits: re-checked here by a design of
-    its own.  The FDM spur pair names the chamfer (the elephant foot) and the clearance, never
-    backlash; the laser one more backlash."""
+    its own.  The FDM spur pair with the tips' keys fixed names the chamfer (the elephant foot),
+    the clearance and a shorter addendum, never backlash; the laser one more backlash."""
     import re
 
     path = ROOT / "profiles" / "spur_pair.toml"
@@ -123,7 +131,7 @@ def test_each_remedy_a_jam_names_fits_as_printed(sets):
     assert cures, jam.message
     if sets["process.kind"] == "fdm":
         assert "tips reach the mate's roots" in jam.message
-        assert {k for k, _ in cures} <= {"output.chamfer", "teeth.clearance"}
+        assert {k for k, _ in cures} <= {"output.chamfer", "teeth.clearance", "teeth.addendum"}
     else:
         assert [k for k, _ in cures] == ["teeth.backlash"]
     for key, value in cures:

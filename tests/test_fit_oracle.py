@@ -137,7 +137,9 @@ def test_every_example_pair_printed_with_fdm_defaults_fits(tmp_path, name):
     gear1, gear2, driver, positions = PAIRS[name]
     folder = _build(tmp_path, name, {"process.kind": "fdm"})
     play, phi, reported = _least(folder, "pair", gear1, gear2, driver, positions)
-    tol = json.loads((folder / "report.json").read_text(encoding="utf-8"))["tolerance"]
+    report = json.loads((folder / "report.json").read_text(encoding="utf-8"))
+    tol, band = report["tolerance"], report["bands"][0]
+    assert band["verdict"] == "fits" and all(f"{k}_chosen" in band for k in ("backlash", "clearance", "chamfer"))
     assert play >= 2 * tol, (name, play, math.degrees(phi))
     assert abs(play - reported) <= MICRON, (play, math.degrees(phi), reported)
 
@@ -167,3 +169,26 @@ def test_headline_counts_match_the_report_and_the_page(built):
         assert f">{count} finding{'s' * (count != 1)}<" in page, path.stem
         row = index.split(f"<b>{path.stem}</b>", 1)[1].split("</tr>", 1)[0]
         assert f'<span class="count {"bad" if count else "good"}">{count}</span>' in row, path.stem
+
+
+TRAINS = {  # each mesh of the example trains: gear 1, gear 2 (a train's meshes, relative to the carrier)
+    "compound_ring": (("gear1", "ring"), ("ring", "gear3")),
+    "planetary_external": (("sun", "idler"), ("idler", "planet")),
+    "planetary_internal": (("sun", "planet"), ("planet", "ring")),
+}
+
+
+@pytest.mark.skipif(not ALL, reason="a build each: GEARCAD_ORACLE=all")
+@pytest.mark.parametrize("name", list(TRAINS))
+def test_every_example_train_printed_with_fdm_defaults_fits(tmp_path, name):
+    """Issue 33 item 2: under FDM's defaults every example train fits (gearcad gives the tips room:
+    the first-layer chamfer and a shorter train.addendum, then the backlash) — checked on its
+    written files: each mesh's worst case keeps twice the writing tolerance free."""
+    folder = _build(tmp_path, name, {"process.kind": "fdm"})
+    report = fo.report(folder)
+    tol = report["tolerance"]
+    for gear1, gear2 in TRAINS[name]:
+        mesh = fo.train_mesh(folder, gear1, gear2, 20.0, report["train"]["module"])
+        edge, cut, shift = fo.process_offsets(report, mesh.internal)
+        play, phi, _, _ = fo.least_play_fast(fo.Made(mesh, edge, cut, shift), 720, refine=6)
+        assert play >= 2 * tol, (name, gear1, gear2, play, math.degrees(phi))

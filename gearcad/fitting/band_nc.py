@@ -43,7 +43,8 @@ from .band import band_of
 from .band_mesh import MeshGeometry, _signed_play, clip, mesh_play
 from .band_trains import MeshBand, radial_room, with_mesh_bands
 from .certify import JAM_HALVINGS, REACH, SAFETY, Certificate
-from .fit import made, sliver, smallest_fit
+from .fit import smallest_fit
+from .made import made, sliver
 from .mesh_fit import closed_form, with_backlash
 
 __all__ = ["NcMesh", "certify", "nc_meshes", "nc_bands", "nc_fit", "nc_with_bands"]

@@ -19,9 +19,20 @@ import numpy as np
 
 from ..findings import Finding, finding
 from ..mechanisms.base import Design
-from ..mechanisms.registry import MECHANISMS
 from .band import Band, pair_band
+from .made import chose_backlash, made, needed_backlash, process_of, sliver, writing_play
 from .pair_geometry import pair_geometry
+from .tips import (
+    TIP_KEYS,
+    chosen_values,
+    foot_chamfer,
+    height_unit,
+    largest_chamfer,
+    radial_room,
+    tip_choices,
+    tips_reach_roots,
+    with_choices,
+)
 
 __all__ = [
     "process_block",
@@ -29,82 +40,25 @@ __all__ = [
     "smallest_fit",
     "chose_backlash",
     "chosen",
+    "chosen_values",
+    "largest_chamfer",
     "made",
     "needed_backlash",
     "pair_bands",
     "radial_room",
     "remedies",
+    "tip_choices",
     "tips_reach_roots",
     "with_bands",
     "writing_play",
 ]
 
 
-def _process(params):
-    return getattr(params, "process", None)
-
-
-def writing_play(params) -> float:
-    """What the writing tolerance can take from a pair's play (mm on the pitch curve): each written
-    outline strays up to ``output.tolerance`` towards its mate, on both flanks of a tooth space:
-    4·tol/cos α."""
-    return 4 * params.output.tolerance / math.cos(params.teeth.pressure_angle)
-
-
-def needed_backlash(params) -> float:
-    """The backlash the closed form asks for (mm): under a process 4·δ/cos α for the edges,
-    2·Δa·tan α for the centres, and the band's margin (2·tol) with a quarter of a tolerance to
-    spare; with none, what the writing can take (:func:`writing_play`) and the mesh proof's
-    allowed bite (its depth 2·tol, over cos α), less what ``teeth.clearance`` leaves."""
-    process, teeth = _process(params), getattr(params, "teeth", None)
-    if teeth is None:
-        return 0.0
-    alpha, tol = teeth.pressure_angle, params.output.tolerance
-    if process is None or process.kind == "none":
-        return max(0.0, 1.5 * writing_play(params) - 4 * teeth.clearance / math.cos(alpha))
-    edge = max(0.0, process.edge(params.output.chamfer)[2])
-    return 4 * edge / math.cos(alpha) + 2 * process.center_spread() * math.tan(alpha) + 9 * tol / 4
-
-
-def chose_backlash(params) -> bool:
-    """Whether gearcad chooses this profile's backlash: a gear pair with teeth that leaves
-    ``teeth.backlash`` out (with no process: the play the writing tolerance needs)."""
-    teeth = getattr(params, "teeth", None)
-    return (
-        MECHANISMS[params.mechanism].play == "pair" and teeth is not None and "backlash" not in teeth.model_fields_set
-    )
-
-
-def sliver(module: float | None) -> float:
-    """The backlash (mm) at which teeth of ``module`` keep under half their thickness (a quarter
-    pitch less 80 % of it): the band asking for more means the tips reach the mate's roots, and
-    no backlash frees them.  Infinite for teeth given by count (no module yet)."""
-    return 0.8 * math.pi * module / 2 if module else math.inf
-
-
-def made(params, backlash: float | None = None):
-    """The profile as it will be cut: ``output.kerf`` the process's cutter width, and (a gear
-    pair that leaves ``teeth.backlash`` out) the backlash ``backlash``, by default the closed
-    form's (:func:`needed_backlash`)."""
-    process = _process(params)
-    update = {}
-    if process is not None and process.kind != "none":
-        update["output"] = params.output.model_copy(update={"kerf": process.cutter(params.output.kerf)})
-        bore = getattr(params, "bore", None)
-        if process.kind == "cnc" and bore is not None and "pilot" not in bore.model_fields_set:
-            # a router cuts no hole narrower than its tool: the default pilot gives way to the cross
-            update["bore"] = bore.model_copy(update={"pilot": 0.0})
-    if chose_backlash(params):
-        chosen = needed_backlash(params) if backlash is None else backlash
-        update["teeth"] = params.teeth.model_copy(update={"backlash": chosen})
-    return params.model_copy(update=update) if update else params
-
-
 def kerf_finding(params) -> Finding | None:
     """``kerf-ignored`` when the profile sets ``output.kerf`` and the process cuts with another
     width.  The rule (docs/fit.md): a laser cuts ``process.kerf`` wide (else ``output.kerf``,
     else 0.2 mm), a router its ``process.tool_diameter``; any other profile ``output.kerf``."""
-    process = _process(params)
+    process = process_of(params)
     output = getattr(params, "output", None)
     if process is None or output is None or "kerf" not in output.model_fields_set:
         return None
@@ -126,26 +80,39 @@ def kerf_finding(params) -> Finding | None:
 def _excess(params, band: Band) -> float:
     """How much more play the band's worst case keeps than it must (mm; negative: short): the
     band's margin under a process, with none what the writing can take."""
-    exact = _process(params) is None or _process(params).kind == "none"
+    exact = process_of(params) is None or process_of(params).kind == "none"
     return band.least - (writing_play(params) if exact else band.margin)
 
 
 def chosen(given, design_of, *, designs: int = 6):
-    """(draft, bands) of ``given`` as made, with the backlash gearcad chooses: the smallest that
-    keeps the band's worst case free, found over at most ``designs`` cuts of the pair.
+    """(draft, bands) of ``given`` as made, with what gearcad chooses for the keys the profile
+    leaves out: first the room of the tips in the mate's roots (:func:`tip_choices`: the chamfer
+    against a printer's elephant foot, ``teeth.clearance``, a shorter ``teeth.addendum``), then
+    the smallest backlash that keeps the band's worst case free — all over at most ``designs``
+    cuts of the pair.
 
-    The first cut takes the closed form's backlash (:func:`needed_backlash`).  While it is short
+    The first backlash is the closed form's (:func:`needed_backlash`).  While it is short
     the next adds what the band says it lacks; a pair that fits by more than the resolution
     (a tolerance, or 1 % of the backlash) is cut again with the excess taken off, and between a
     backlash that jams and one that fits the next lies where the jam's shortfall runs out.  A
     noncircular pair's play is not linear in the backlash (the tips leave the roots at once), so
     this is a bracketing search, not one step.  With no process the closed form's play is cut
     once: more backlash must not hide an interference the mesh proof reports."""
-    params = made(given)
+    first = foot_chamfer(given)  # a printer's teeth drafted with the chamfer they will most likely get
+    params = made(with_choices(given, first))
     draft = design_of(params)
     bands = pair_bands(draft)
-    exact = _process(given) is None or _process(given).kind == "none"
-    if not bands or not chose_backlash(given) or exact:  # exact parts: the closed form, never a cure
+    exact = process_of(given) is None or process_of(given).kind == "none"
+    if not bands or exact:  # exact parts: the closed form, never a cure
+        return draft, bands
+    tips = tip_choices(given, draft)
+    given = with_choices(given, tips)
+    if tips != first:  # the tips reach the roots: give them room first (no backlash frees them)
+        params = made(given)
+        draft = design_of(params)
+        bands = pair_bands(draft)
+        designs -= 1
+    if not chose_backlash(given):
         return draft, bands
 
     def cut(backlash: float):
@@ -160,38 +127,18 @@ def chosen(given, design_of, *, designs: int = 6):
     ):  # no backlash frees it: the closed form's flanks, and the finding
         return draft, bands
     limit = sliver(params.teeth.module)  # a jam's shortfall: a shrink of the flanks, ~0.9 of the backlash
-    return smallest_fit(first, cut, given.output.tolerance, limit=limit, gain=1.1, designs=designs)
-
-
-CLEARANCE = 0.25
-"""Radial clearance of the standard rack the teeth are cut by (dedendum 1.25 less addendum 1), × module."""
-
-
-def radial_room(params, module: float) -> float:
-    """What is left of the radial clearance (mm) with both edges at their largest and the
-    centres' error taken from it (``teeth.clearance`` moves every flank in, the tips too: it adds
-    twice itself): below the band's margin, the tips reach the mate's roots."""
-    process = params.process
-    edge = max(0.0, process.edge(params.output.chamfer)[2])
-    teeth = getattr(params, "teeth", None)
-    extra = 2 * getattr(teeth, "clearance", 0.0) if teeth is not None else 0.0
-    return CLEARANCE * module - 2 * edge - process.center_spread() + extra
-
-
-def tips_reach_roots(params, band: Band, module: float) -> bool:
-    """Whether the contact that closes the play is a tip against the mate's root (the radial
-    room, :func:`radial_room`, under twice the margin): backlash cannot help, only the clearance,
-    smaller edges or the centres."""
-    return radial_room(params, module) < 2 * abs(band.margin)
+    return smallest_fit(first, cut, given.output.tolerance, limit=limit, gain=1.1, designs=designs, slope=True)
 
 
 def remedies(given, band: Band, design, module: float) -> tuple[tuple[str, ...], tuple[str, ...]]:
     """(remedies, refused): ``--set KEY=VALUE`` lines each of which, applied alone to ``given``,
     makes the pair fit — tried here by ``design`` (a full design of the profile so changed) — and
-    what was tried and did not (one line each, why).  Which keys are tried follows the contact
+    what was tried and did not (one line each, ``KEY = VALUE`` and why: no ``--set`` line the
+    message names fails when applied).  Which keys are tried follows the contact
     that closes the play: a tip in the mate's root (:func:`tips_reach_roots`) takes the first
-    layers' bulge off (``output.chamfer``, printers) or moves every flank in (``teeth.clearance``);
-    flanks take more backlash (``teeth.backlash``)."""
+    layers' bulge off (``output.chamfer``, printers), moves every flank in (``teeth.clearance``)
+    or shortens the tips (``teeth.addendum``); flanks take more backlash (``teeth.backlash``).
+    Each is tried on the profile as given: the keys it leaves out are still chosen."""
     from ..errors import GearcadError
 
     process, tol = given.process, given.output.tolerance
@@ -205,34 +152,42 @@ def remedies(given, band: Band, design, module: float) -> tuple[tuple[str, ...],
         lack = 2 * abs(band.margin) - radial_room(made(given), module)
         clearance = math.ceil((teeth.clearance + lack / 2 + tol) * 1000) / 1000
         tried.append(("teeth.clearance", clearance, {"teeth": teeth.model_copy(update={"clearance": clearance})}))
+        addendum = math.floor((teeth.addendum - (lack + tol) / height_unit(given, module)) * 1000) / 1000
+        if addendum > 0:
+            tried.append(("teeth.addendum", addendum, {"teeth": teeth.model_copy(update={"addendum": addendum})}))
     else:
         backlash = math.ceil((teeth.backlash + band.needed_backlash + tol / 4) * 1000) / 1000
         tried.append(("teeth.backlash", backlash, {"teeth": teeth.model_copy(update={"backlash": backlash})}))
     good, bad = [], []
     for key, value, update in tried:
-        line = f"--set {key}={value:g}"
         try:
             trial = design(given.model_copy(update=update))
         except GearcadError as error:
-            bad.append(f"{line} is refused ({error})")
+            bad.append(f"{key} = {value:g} is refused ({error})")
             continue
         if any(f.code == "jams" for f in trial.findings):
-            bad.append(f"{line} still jams")
+            bad.append(f"{key} = {value:g} still jams")
         else:
-            good.append(line)
+            good.append(f"--set {key}={value:g}")
     return tuple(good), tuple(bad)
 
 
-def smallest_fit(first, cut, tol: float, *, limit: float, gain: float = 1.0, designs: int = 4):
+def smallest_fit(first, cut, tol: float, *, limit: float, gain: float = 1.0, designs: int = 4, slope: bool = False):
     """What ``cut`` made of the smallest backlash that keeps the worst case free, by a
     bracketing search over at most ``designs`` cuts (``first`` is the first, already made).
 
     A cut is (backlash as cut, excess, what was made): ``excess`` the worst case's play above
     its margin (negative: short).  While the cuts are short the next adds ``gain`` × what the
-    shortest lacks; one that fits by more than the resolution (a tolerance, or 1 % of the
-    backlash) is cut again with the excess taken off; between a backlash that jams and one that
-    fits the next halves the bracket (a noncircular pair's play jumps as the tips leave the roots:
-    the secant crept).
+    shortest lacks (``slope``: over the slope of the last two where that is less than one — a
+    body's rollers, whose play grows about half as fast as the backlash, and a printed
+    noncircular pair's jammed plays: without it the FDM oval and centre ellipse still jammed after
+    six cuts; it may overshoot a little, the laser oval 0.2313 mm where 0.2261 fits); one that fits
+    by more than the resolution (a tolerance, or 1 % of the backlash) is cut again with the
+    excess taken off; between a backlash that jams and one that fits the next is where the line
+    between them crosses the margin, a tenth of the bracket off either end, the fit's excess
+    halved for each short cut since it (the Illinois rule: a jam's play, the shrink that frees
+    it, grows more slowly with the backlash than a free pair's, so the plain line falls short
+    again and again).
     No cut at ``limit`` mm or more (the teeth would be slivers).  Returns the smallest cut that
     fits, else the last."""
     tries = [first]
@@ -249,8 +204,17 @@ def smallest_fit(first, cut, tol: float, *, limit: float, gain: float = 1.0, des
             guess = best[0] - best[1]
         else:
             guess = short[0] - gain * short[1] + 0.25 * tol
-            if best is not None:  # bracketed: halve it (the play jumps as the tips leave the roots)
-                guess = 0.5 * (short[0] + best[0])
+            below = sorted(jams, key=lambda t: t[0])[-2:]
+            if slope and best is None and len(below) == 2 and below[1][0] > below[0][0]:  # two short: their slope
+                rate = (below[1][1] - below[0][1]) / (below[1][0] - below[0][0])
+                if rate > 0.1:  # the play grows more slowly than the backlash (a body's rollers: ~0.5)
+                    guess = max(guess, short[0] + gain * (0.25 * tol - short[1]) / rate)
+            if best is not None:  # bracketed: where the line between them crosses (Illinois: the fit's
+                # excess halved for each short cut since it, so the line cannot keep falling short)
+                since = next((k for k, t in enumerate(reversed(tries)) if t[1] >= 0), 0)
+                width, over = best[0] - short[0], best[1] * 0.5**since
+                cross = short[0] + width * (0.25 * tol - short[1]) / (over - short[1])
+                guess = min(max(cross, short[0] + 0.1 * width), best[0] - 0.1 * width)
         if guess >= limit:
             break
         tries.append(cut(max(guess, 0.0)))
@@ -326,16 +290,27 @@ def _jam_sentence(params, b: Band, where: str, cures, module: float) -> str:
     return text
 
 
-def with_bands(design: Design, bands: tuple[Band, ...], cures=None, fixed: bool | None = None) -> Design:
+def with_bands(
+    design: Design, bands: tuple[Band, ...], cures=None, fixed: bool | None = None, chosen: dict | None = None
+) -> Design:
     """The design with its bands in the report, the checks' lines and the findings (``cures``:
     the remedies tried for a jam, :func:`remedies`; ``fixed``: whether the profile gave the
-    backlash, default whether the design's parameters name it)."""
+    backlash, default whether the design's parameters name it; ``chosen``: the keys gearcad may
+    choose, :func:`chosen_values`, into each band's entry and a check line for those it chose)."""
     if not bands:
         return design
     process = design.params.process
     findings, lines = list(design.findings), list(design.details)
     fixed = "backlash" in design.params.teeth.model_fields_set if fixed is None else fixed
     module = design.detail.teeth.plan.module
+    chosen = chosen or {}
+    picked = [
+        f"{key} = {chosen[key.split('.')[1]]:g}{' × module' if key == 'teeth.addendum' else ' mm'}"
+        for key in TIP_KEYS
+        if chosen.get(f"{key.split('.')[1]}_chosen")
+    ]
+    if picked:
+        lines.append(", ".join(picked) + " (chosen: the tips' room in the mate's roots under the process's worst case)")
     for b in bands:
         lines.append(
             f"band {b.mesh} ({process.kind}): play {b.nominal[0]:.4f}…{b.nominal[1]:.4f} mm as drawn, "
@@ -366,7 +341,7 @@ def with_bands(design: Design, bands: tuple[Band, ...], cures=None, fixed: bool 
             findings.append(
                 finding("loose", f"{b.mesh}: the play may reach {b.band[1]:.3f} mm (process.max_play = {limit:g})")
             )
-    data = {**design.data, "bands": [b.as_dict() for b in bands], "process": process_block(process)}
+    data = {**design.data, "bands": [{**b.as_dict(), **chosen} for b in bands], "process": process_block(process)}
     return replace(design, findings=tuple(findings), details=tuple(lines), data=data)
 
 

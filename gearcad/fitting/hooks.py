@@ -22,7 +22,8 @@ def gear_pair_fit(params, design_of):
         cures = _tried(lambda: fit.remedies(params, bands[0], design, module))
     teeth = getattr(params, "teeth", None)
     fixed = teeth is not None and "backlash" in teeth.model_fields_set
-    return band_trains.with_mesh_bands(fit.with_bands(draft, bands, cures, fixed))
+    chosen = fit.chosen_values(params, draft.params)
+    return band_trains.with_mesh_bands(fit.with_bands(draft, bands, cures, fixed, chosen=chosen))
 
 
 _TRYING: list = []

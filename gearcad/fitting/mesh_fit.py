@@ -16,13 +16,15 @@ cannot, the flanks are cut with the closed form and the ``jams`` finding says wh
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 from ..mechanisms.registry import MECHANISMS
 from . import band_trains
-from .band_trains import radial_room
-from .fit import made, sliver, smallest_fit
+from .fit import smallest_fit
+from .made import made, sliver
+from .tips import LEAST_ADDENDUM, largest_chamfer, tip_target, with_choices
 
-__all__ = ["chooses", "closed_form", "chosen", "with_backlash"]
+__all__ = ["chooses", "closed_form", "chosen", "radial_room", "with_backlash"]
 
 
 def _table(params):
@@ -60,6 +62,43 @@ def closed_form(params) -> float:
     return 4 * edge / math.cos(alpha) + 2 * process.center_spread() * math.tan(alpha) + 2 * tol + tol / 4
 
 
+def radial_room(params, module: float) -> float:
+    """:func:`.band_trains.radial_room` with the train's own tips: the roots 1.25·m deep, the tips
+    ``train.addendum``·m high (1 unless set or chosen), so (1.25 − addendum)·m of clearance."""
+    addendum = getattr(_table(params), "addendum", 1.0)
+    return band_trains.radial_room(params, module) + (1.0 - addendum) * module
+
+
+def _tips(given, design_of):
+    """``given`` with the tips' room chosen, of the keys it leaves out, when the process's worst
+    case would bring the tips into the mates' roots (:func:`radial_room` under
+    :func:`.fit.tip_target`): ``output.chamfer`` the elephant foot when printed (as far as the parts take
+    it: the first layers' bulge is the one error a chamfer takes off), then a shorter
+    ``train.addendum`` (down to :data:`.fit.LEAST_ADDENDUM`).  No backlash frees the tips."""
+    process, out = given.process, given.output
+    if process.kind == "none":
+        return given
+    draft = None if hasattr(given, "modules") else design_of(made(given))  # a body's module: its draft's
+    module = _module(given, draft)
+    lack = tip_target(given, module) - radial_room(made(given), module)
+    if lack <= 0:
+        return given
+    draft = draft or design_of(made(given))
+    picks: dict[str, float] = {}
+    foot = process.value("elephant_foot") if process.kind == "fdm" else 0.0
+    if foot > out.chamfer and "chamfer" not in out.model_fields_set:
+        chamfer = largest_chamfer(draft, foot)
+        if chamfer > out.chamfer:
+            picks["output.chamfer"] = chamfer
+            lack -= 2 * (chamfer - out.chamfer)
+    table, section = _table(given), MECHANISMS[given.mechanism].backlash_table
+    if lack > 0 and hasattr(table, "addendum") and "addendum" not in table.model_fields_set:
+        addendum = max(math.floor((table.addendum - lack / module) * 1000 + 1e-6) / 1000, LEAST_ADDENDUM)
+        if addendum < table.addendum:
+            picks[f"{section}.addendum"] = addendum
+    return with_choices(given, picks) if picks else given
+
+
 def _excess(bands) -> float:
     """How far the tightest mesh's worst case is above its margin (mm; negative: short)."""
     return min(mb.band.least - mb.band.margin for mb in bands)
@@ -68,9 +107,10 @@ def _excess(bands) -> float:
 def chosen(given, design_of):
     """The draft of ``given`` as made (:func:`.fit.made`) with its bands in it, its backlash
     chosen when the profile leaves it to gearcad (:func:`chooses`), else as given."""
+    original, given = given, _tips(given, design_of)
     params = made(given)
     if not chooses(given):
-        return band_trains.with_mesh_bands(design_of(params))
+        return _noted(band_trains.with_mesh_bands(design_of(params)), original)
     tol = params.output.tolerance
     draft = design_of(with_backlash(params, closed_form(params)))
     module = _module(params, draft)
@@ -83,5 +123,26 @@ def chosen(given, design_of):
     bands = band_trains.mesh_bands(draft)
     first = (draft.params.backlash, _excess(bands), (draft, bands))
     if radial_room(params, module) >= 2 * tol:  # else no backlash frees it: the closed form's flanks
-        draft, bands = smallest_fit(first, cut, tol, limit=sliver(module))
-    return band_trains.with_mesh_bands(draft, bands, chosen=True)
+        draft, bands = smallest_fit(first, cut, tol, limit=sliver(module), slope=True)
+    return _noted(band_trains.with_mesh_bands(draft, bands, chosen=True), original)
+
+
+def _noted(design, given):
+    """The design with each mesh band's entry saying the tips' keys as cut and whether gearcad
+    chose them (``chamfer``/``chamfer_chosen``, ``addendum``/``addendum_chosen``, a train's), and
+    a check line for those it chose."""
+    used, section = design.params, MECHANISMS[given.mechanism].backlash_table
+    keys = [("output", "chamfer")] + ([(section, "addendum")] if hasattr(_table(given), "addendum") else [])
+    notes: dict = {}
+    for table, key in keys:
+        value = getattr(getattr(used, table), key)
+        notes[key] = value
+        notes[f"{key}_chosen"] = key not in getattr(given, table).model_fields_set and value != getattr(
+            getattr(given, table), key
+        )
+    picked = [f"{t}.{k} = {notes[k]:g}" for t, k in keys if notes[f"{k}_chosen"]]
+    if not picked or "bands" not in design.data:
+        return design
+    bands = [b | notes if "backlash" in b else b for b in design.data["bands"]]
+    line = ", ".join(picked) + " (chosen: the tips' room in the mates' roots under the process's worst case)"
+    return replace(design, data={**design.data, "bands": bands}, details=(*design.details, line))

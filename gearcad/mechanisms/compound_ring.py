@@ -38,7 +38,8 @@ def toothing(p: CarrierTrainParams, teeth: int, module: float, *, internal: bool
     are half ``train.backlash`` thinner; a ring's hole, whose teeth are its spaces, half thicker
     (its rack so much narrower: the ring teeth's tip rounding no larger than the rack's tip takes)."""
     fine = budget(p.output.tolerance).fine
-    addendum, dedendum = (1.25, 1.0) if internal else (1.0, 1.25)
+    tips = p.train.addendum  # the gears' tips (a ring's: the hole's roots), over or inside the pitch circle
+    addendum, dedendum = (1.25, tips) if internal else (tips, 1.25)
     thinning = (-0.5 if internal else 0.5) * p.backlash
     tip = RackParams.tip_radius
     if thinning < 0:  # a narrower rack: its tip rounding (the ring teeth's tip) as large as its tip takes

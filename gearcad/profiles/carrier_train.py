@@ -31,6 +31,7 @@ _DEDENDUM = 1.25  # modules: the standard rack's dedendum, which sets every root
 _WALL = 2.0  # modules (the larger of the two): material a compound ring keeps between its root circles
 
 TrainModule = number("a module in mm", ge=SMALLEST_LENGTH, le=50)
+TrainAddendum = number("a coefficient (× module)", ge=0.5, le=1.25)
 _MOST_TEETH = 2000
 _MOST_GEARS = 24  # each gear is cut, placed and proved against its mate: ~0.1 s each, a train in seconds
 ToothCount = integer(ge=8, le=_MOST_TEETH)
@@ -98,6 +99,11 @@ class TrainParams(ParamsModel):
     """Backlash of every mesh on the pitch circles, mm: each gear's teeth are cut half of it
     thinner (a ring's spaces half of it wider). Default 0; left out with a [process] named,
     gearcad chooses the smallest that keeps every mesh's worst case free."""
+    addendum: TrainAddendum = 1.0
+    """Every gear's tip height over its pitch circle (a ring's teeth inside it), × module; the roots
+    stay 1.25 deep, so the tips keep (1.25 − addendum)·m of radial clearance.  Left out with a
+    [process] whose worst case brings the tips into the mates' roots, gearcad chooses it shorter
+    (tip relief, down to 0.8)."""
     compound: CompoundParams | None = None
     """One gear with external and internal teeth (seed 001's second scheme)."""
 
