@@ -10,7 +10,7 @@ from .goals import goals_table
 
 __all__ = ["write_csv", "markdown", "peers_table", "peer_ratios"]
 
-_OWN_TABLES = ("peers", "goals", "stages", "front", "overhead")
+_OWN_TABLES = ("peers", "goals", "stages", "front", "overhead", "throughput")
 
 
 def write_csv(rows: list[dict], path: Path) -> None:
@@ -103,6 +103,15 @@ def markdown(rows: list[dict], stability: list[dict]) -> str:
         from .overhead import overhead_lines
 
         out += ["", "## A sweep's overhead per pitch-stage design (CPU)", "", *overhead_lines(rows)]
+    if any(r["study"] == "throughput" for r in rows):
+        from .cluster import throughput_lines
+
+        out += [
+            "",
+            "## A sweep's throughput (wall, start-up included)",
+            "",
+            *throughput_lines(rows_of(rows, "throughput")),
+        ]
     if any(r["study"] == "front" for r in rows):
         from .front import front_lines
 
