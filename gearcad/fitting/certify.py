@@ -218,29 +218,31 @@ def _tube(s: _Site, h: float, e: float, bounds) -> float:
         m_ppt = (dk + w * w) * big + w * sigma
         m_ptt = w * big
         m_ttt = rb
-        pair = np.full(len(vi), np.inf)
-        for sp in (1.0, -1.0):  # each quadrant of the box (the signs of φ − c and t − t0) apart
-            for st in (1.0, -1.0):
-                safe = np.full(len(vi), -np.inf)
-                for d, f0 in ((n_line, np.abs(side)), (n_end, past)):
-                    dot = lambda a: (d * a).sum(-1)  # noqa: E731, B023
-                    f_p, f_t = sign * omega * dot(jxi), sign * dot(jxc)
-                    f_pp, f_pt, f_tt = dot(accel), dot(-omega * (xc if moving else xi)), dot(-xc)
-                    # over the quadrant: lead − b·y − c·y² − d·y³ for a turn y ≤ Δ (each term
-                    # a bound: the turn's own curvature counted only where it closes the gap)
-                    lead = f0 + _one_sided_min(sp * f_p, f_pp, h) - m_ppp * h**3 / 6
-                    b1 = np.maximum(0.0, -st * f_t) + np.maximum(0.0, -sp * st * f_pt) * h + m_ppt * h * h / 2
-                    c1 = np.maximum(0.0, -f_tt) / 2 + m_ptt * h / 2
-                    d1 = m_ttt / 6
-                    lo, hi = np.zeros_like(f0), np.full_like(f0, best)
-                    ok0 = lead >= 0
-                    okhi = lead - hi * (b1 + hi * (c1 + hi * d1)) >= 0
-                    for _ in range(12):
-                        mid = 0.5 * (lo + hi)
-                        good = lead - mid * (b1 + mid * (c1 + mid * d1)) >= 0
-                        lo, hi = np.where(good, mid, lo), np.where(good, hi, mid)
-                    safe = np.maximum(safe, np.where(okhi, best, np.where(ok0, lo, -np.inf)))
-                pair = np.minimum(pair, safe)
+        # the two functionals (axis 0) over the four quadrants (axis 1: the signs of φ − c and
+        # t − t0), all at once
+        d = np.stack([n_line, n_end])[:, None]  # (2, 1, pairs, 2)
+        f0 = np.stack([np.abs(side), past])[:, None]
+        sp = np.array([1.0, 1.0, -1.0, -1.0])[None, :, None]
+        st = np.array([1.0, -1.0, 1.0, -1.0])[None, :, None]
+        f_p, f_t = sign * omega * (d * jxi).sum(-1), sign * (d * jxc).sum(-1)
+        f_pp, f_tt = (d * accel).sum(-1), (d * -xc).sum(-1)
+        f_pt = (d * (-omega * (xc if moving else xi))).sum(-1)
+        # over a quadrant: lead − b·y − c·y² − d·y³ for a turn y ≤ Δ (each term a bound: the
+        # turn's own curvature counted only where it closes the gap)
+        f_p, f_pp = np.broadcast_arrays(sp * f_p, f_pp)
+        lead = f0 + _one_sided_min(f_p, f_pp, h) - m_ppp * h**3 / 6
+        b1 = np.maximum(0.0, -st * f_t) + np.maximum(0.0, -sp * st * f_pt) * h + m_ppt * h * h / 2
+        c1 = np.maximum(0.0, -f_tt) / 2 + m_ptt * h / 2
+        d1 = m_ttt / 6
+        lo, hi = np.zeros_like(lead), np.full_like(lead, best)
+        ok0 = lead >= 0
+        okhi = lead - hi * (b1 + hi * (c1 + hi * d1)) >= 0
+        for _ in range(12):
+            mid = 0.5 * (lo + hi)
+            good = lead - mid * (b1 + mid * (c1 + mid * d1)) >= 0
+            lo, hi = np.where(good, mid, lo), np.where(good, hi, mid)
+        safe = np.where(okhi, best, np.where(ok0, lo, -np.inf))  # (2, 4, pairs)
+        pair = np.min(np.max(safe, axis=0), axis=0)
         pair = np.maximum(pair, lip_pair[vi, ei])
         best = min(best, float(np.min(lip_pair[lip_pair >= best], initial=best)))
         best = min(best, float(np.min(pair)))
