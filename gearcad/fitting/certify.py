@@ -307,7 +307,7 @@ def certify_play(g: PairGeometry, offsets, spread: float, tol: float, *, reach: 
             finite = np.where(joined, bound, np.nan)
             reached = float(np.nanmin(finite)) if np.isfinite(finite).any() else -math.inf
             certified = min(margin - max(tol, 1e-4 * g.module), max(reached, least - g.module))
-        if not split.any() or len(sites) + int(split.sum()) > budget:
+        if not split.any() or len(sites) + int(split.sum()) > budget:  # (at least one more each)
             worst = int(np.argmin(np.where(joined, bound, -math.inf)))
             cert = Certificate(
                 lower=certified,
@@ -318,7 +318,28 @@ def certify_play(g: PairGeometry, offsets, spread: float, tol: float, *, reach: 
             )
             geo = _joined(geos)
             return geo, np.concatenate(plays), cert
-        mids = (phi[split] + gap[split] / 2) % g.cycle
+        # how many new positions each gap takes: where a weak position's bound would keep the
+        # margin over a narrower interval (looked at without measuring), enough to reach it
+        pieces = np.where(split, 2, 1)
+        if least >= margin:
+            for j in np.flatnonzero(bound < margin):
+                i, h = order[j], float(half[j])
+                arm = g.center_distance / (1 + float(table[0][j]))
+                for _ in range(6):
+                    h /= 2
+                    near = tuple(float(t[0]) for t in g.ratio(np.array([phi[j] - h]), np.array([phi[j] + h])))
+                    if 2 * _tube(sites[i], h, e, near) * min(sites[i].arm, arm) >= margin:
+                        break
+                need = int(min(16, math.ceil(float(half[j]) / h)))
+                for gj in (j, (j - 1) % len(order)):
+                    pieces[gj] = max(pieces[gj], need if split[gj] else 1)
+        steps = [phi[j] + gap[j] * np.arange(1, pieces[j]) / pieces[j] for j in np.flatnonzero(pieces > 1)]
+        mids = np.concatenate(steps) % g.cycle
+        if len(sites) + len(mids) > budget:  # the budget: say what is left open
+            mids = (phi[split] + gap[split] / 2) % g.cycle
+            if len(sites) + len(mids) > budget:
+                budget = len(sites)  # the next look ends it
+                continue
         sub = g.at(mids)
         more, signed = _sites(sub, offsets, spread, tol, reach)
         sites += more
