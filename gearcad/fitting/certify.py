@@ -260,7 +260,8 @@ def certify_play(g: PairGeometry, offsets, spread: float, tol: float, *, reach: 
     the next).  A position whose bound falls under the margin (or whose free turn does not reach
     its neighbour's) has the intervals either side halved, until every one keeps the margin, one
     is narrower than a millionth of the cycle, or the budget (:data:`BUDGET` times the first
-    positions) runs out: then the certificate is not ``proven`` and names the interval.  A
+    positions) runs out: then the certificate is not ``proven``, names the interval and says the
+    play short of the margin by the resolution, max(tol, 1e-4·m) (what a fit search then adds).  A
     measured position under the margin proves the pair jams; the intervals about the least play
     are then halved :data:`JAM_HALVINGS` times to say how far short it falls."""
     if g.first is not None:  # the certificate's own even start along the pitch curve
@@ -303,10 +304,8 @@ def certify_play(g: PairGeometry, offsets, spread: float, tol: float, *, reach: 
         split &= gap > narrowest
         certified = float(np.min(np.where(joined, bound, -math.inf))) if least >= margin else least
         proven = least < margin or certified >= margin
-        if not proven:  # what the bound reached where it is finite; never above the margin
-            finite = np.where(joined, bound, np.nan)
-            reached = float(np.nanmin(finite)) if np.isfinite(finite).any() else -math.inf
-            certified = min(margin - max(tol, 1e-4 * g.module), max(reached, least - g.module))
+        if not proven:  # not settled: short of the margin by the resolution (what a fit adds)
+            certified = min(margin - max(tol, 1e-4 * g.module), least)
         if not split.any() or len(sites) + int(split.sum()) > budget:  # (at least one more each)
             worst = int(np.argmin(np.where(joined, bound, -math.inf)))
             cert = Certificate(
