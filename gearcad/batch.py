@@ -21,13 +21,13 @@ from contextlib import contextmanager, nullcontext, suppress
 from dataclasses import dataclass
 from pathlib import Path
 
-from .errors import GearcadError, OutputError, ProfileError
+from .errors import GearcadError, OutputError, ProfileError, shown
 from .findings import Finding
 from .fitting import design
 from .interrupts import Interrupted, end_with_parent, held_signals, interrupt_guard
 from .mechanisms import Design
 from .profiles import ProfileParams
-from .publish import Publisher, _shown, check_out, out_lock
+from .publish import Publisher, check_out, out_lock
 from .threads import cores, set_threads
 
 __all__ = ["BuildResult", "build", "design_all", "worker_pool", "submit_all", "finished"]
@@ -90,7 +90,7 @@ def _write(d: Design, folder: Path, beside: bool) -> dict[str, dict]:
     except OSError as exc:  # a full disk (ENOSPC, EDQUOT), a read-only or failing filesystem
         if isinstance(exc, BrokenPipeError):  # the reader of our output has gone: the CLI's to handle
             raise
-        where = _shown(Path(exc.filename).name) if exc.filename else "its files"
+        where = shown(Path(exc.filename).name) if exc.filename else "its files"
         raise OutputError(f"{where}: cannot write ({exc.strerror or exc}); nothing was published") from None
 
 
@@ -218,7 +218,7 @@ def build(
     with interrupt_guard(out), Publisher(out) as publisher:
         # a core left over (one profile on two cores): each build draws its pictures beside its files
         beside = _workers(len(profiles) + 1) > count
-        with _writing(f"--out {_shown(out)}: cannot make a folder to build in"):
+        with _writing(f"--out {shown(out)}: cannot make a folder to build in"):
             jobs = [(p, publisher.folder(p.name), beside) for p in profiles]
         with worker_pool(count, busy=count >= cores()) if count > 1 else nullcontext() as pool:
             if pool is None:
@@ -230,7 +230,7 @@ def build(
                 if progress:
                     progress(n, len(jobs), result)
         publisher.commit()
-    with _writing(f"--out {_shown(out)}: the profiles were published, but not index.html over them"):
+    with _writing(f"--out {shown(out)}: the profiles were published, but not index.html over them"):
         _write_index(publisher.path)
     return results
 

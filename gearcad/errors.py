@@ -1,6 +1,6 @@
 """Exception hierarchy: every failure a user can cause is a :class:`GearcadError`."""
 
-__all__ = ["GearcadError", "ProfileError", "DesignError", "OutputError", "ChecksFailed"]
+__all__ = ["GearcadError", "ProfileError", "DesignError", "OutputError", "ChecksFailed", "shown"]
 
 
 class GearcadError(Exception):
@@ -33,3 +33,9 @@ class ChecksFailed(GearcadError):
     def __init__(self, message: str, findings: tuple = ()):
         super().__init__(message)
         self.findings = findings
+
+
+def shown(text) -> str:
+    """A path for a one-line message: control characters escaped, at most 200 characters."""
+    escaped = str(text).encode("unicode_escape", "backslashreplace").decode("ascii")
+    return escaped if len(escaped) <= 200 else escaped[:100] + "…" + escaped[-99:]

@@ -8,23 +8,26 @@ module plus one entry below.
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass
 
-__all__ = ["Format", "TABLE", "FORMATS", "DEFAULT_FORMATS", "DXF_FLAVOURS", "by_name"]
+__all__ = ["Format", "TABLE", "WHOLES", "FORMATS", "DEFAULT_FORMATS", "DXF_FLAVOURS", "by_name"]
 
 
 @dataclass(frozen=True)
 class Format:
     """One output format.
 
-    ``takes`` is what its writer is handed: ``"drawing"`` (the cut and mark paths of the parts as
-    placed, ``export.drawing.Drawing``) or ``"solid"`` (the parts as solids, a list of
-    ``export.mesh.SolidItem``); the writer is called ``writer(path, what, design=, whole=)`` and
-    returns the file's entry in the report (counts: vertices, triangles, …).  ``"design"``: the
-    writer makes its solids itself from the design (STEP: exact B-rep from the arc-fitted rings)
-    and is called once, ``writer(design, folder)``, returning the report's entries by file name.  Every part is written
-    to ``<part>.<extension>``; ``wholes`` are the files over all parts it also writes
-    ("assembly": as assembled, "sheet": laid flat on output.sheet, "plate": on output.bed).
+    Every writer has one signature, ``writer(design, folder, made) -> {file name: entry}``: it
+    writes all the format's files of the design into ``folder`` and returns their entries in the
+    report (counts: vertices, triangles, …).  ``takes`` is what it reads from ``made``
+    (``export.pieces.Made``, made once for every format): ``"drawing"`` (the cut and mark paths
+    of the parts as placed, ``export.drawing.Drawing``), ``"solid"`` (the parts as solids,
+    ``export.mesh.SolidItem``), or ``"design"`` (nothing: it makes its solids itself from the
+    design — STEP: exact B-rep from the arc-fitted rings).  Every part is written to
+    ``<part>.<extension>``; ``wholes`` are the files over all parts it also writes ("assembly":
+    as assembled, "sheet": laid flat on output.sheet, "plate": on output.bed, one file per bed:
+    ``plate``, ``plate-2``, …).
     """
 
     name: str
@@ -38,6 +41,19 @@ class Format:
     """Written when a profile names no formats."""
     exact: bool = False
     """Its writer needs each part's rings as cut without the kerf (``Design.made``: an exact solid)."""
+
+    def whole_of(self, stem: str) -> str | None:
+        """The whole a file of this format named ``stem`` holds (a plate's files: ``plate``,
+        ``plate-2``, …), or None for a part's own file."""
+        return next((w for w in self.wholes if stem == w or re.fullmatch(rf"{w}-[0-9]+", stem)), None)
+
+
+WHOLES: dict[str, str] = {
+    "assembly": "assembly: parts in place (checks the fit; not for cutting or printing)",
+    "sheet": "cutting sheet: every part laid out",
+    "plate": "print plate: parts laid out on the bed",
+}
+"""What each whole a format may write is, in the page's words."""
 
 
 TABLE: tuple[Format, ...] = (

@@ -53,7 +53,7 @@ import tempfile
 from contextlib import contextmanager, suppress
 from pathlib import Path
 
-from .errors import GearcadError, OutputError, ProfileError
+from .errors import GearcadError, OutputError, ProfileError, shown
 from .interrupts import Interrupted, held_signals, interrupt_guard
 
 __all__ = ["Publisher", "Interrupted", "interrupt_guard", "check_out", "resolve_out", "out_lock", "write_files"]
@@ -90,24 +90,18 @@ def resolve_out(out: Path | str) -> Path:
         os.lstat(text)
     except OSError as exc:
         if exc.errno in (errno.ELOOP, errno.ENAMETOOLONG):
-            raise GearcadError(f"--out {_shown(text)}: {exc.strerror.lower()}") from None
+            raise GearcadError(f"--out {shown(text)}: {exc.strerror.lower()}") from None
     if os.path.islink(text) and not os.path.exists(text):
         try:
             os.stat(text)
         except OSError as exc:
             loop = exc.errno == errno.ELOOP
-            what = "a symbolic link loop" if loop else f"a symbolic link to missing {_shown(os.readlink(text))}"
-            raise GearcadError(f"--out {_shown(text)}: {what}; give a folder or a new path") from None
+            what = "a symbolic link loop" if loop else f"a symbolic link to missing {shown(os.readlink(text))}"
+            raise GearcadError(f"--out {shown(text)}: {what}; give a folder or a new path") from None
     path = Path(os.path.realpath(text))
     if len(os.fsencode(path)) >= 4096 - 64 or any(len(os.fsencode(c)) > 255 - 32 for c in path.parts):
-        raise GearcadError(f"--out {_shown(text)}: the path or one of its names is too long for this system")
+        raise GearcadError(f"--out {shown(text)}: the path or one of its names is too long for this system")
     return path
-
-
-def _shown(text) -> str:
-    """A path for a one-line message: control characters escaped, at most 200 characters."""
-    shown = str(text).encode("unicode_escape", "backslashreplace").decode("ascii")
-    return shown if len(shown) <= 200 else shown[:100] + "…" + shown[-99:]
 
 
 def check_out(out: Path | str) -> None:
@@ -116,14 +110,14 @@ def check_out(out: Path | str) -> None:
     ``out`` must be a folder or a path that does not exist yet, inside a folder one can write in.
     """
     path = resolve_out(out)
-    shown = _shown(out)
+    named = shown(out)
     ancestor = _nearest(path)
     if ancestor == path and not path.is_dir():
-        raise GearcadError(f"--out {shown}: exists and is not a folder; give a folder or a new path")
+        raise GearcadError(f"--out {named}: exists and is not a folder; give a folder or a new path")
     if not ancestor.is_dir():
-        raise GearcadError(f"--out {shown}: {ancestor} is a file, so no folder can be made inside it")
+        raise GearcadError(f"--out {named}: {ancestor} is a file, so no folder can be made inside it")
     if not os.access(ancestor, os.W_OK | os.X_OK):
-        raise GearcadError(f"--out {shown}: {ancestor} is not writable")
+        raise GearcadError(f"--out {named}: {ancestor} is not writable")
 
 
 def write_files(out: Path | str, contents: dict[str, bytes], *, what: str = "--out") -> dict[str, Path]:
@@ -143,7 +137,7 @@ def write_files(out: Path | str, contents: dict[str, bytes], *, what: str = "--o
     try:
         path.mkdir(parents=True, exist_ok=True)
     except OSError as exc:
-        raise OutputError(f"{what} {_shown(out)}: cannot make the folder ({exc.strerror or exc})") from None
+        raise OutputError(f"{what} {shown(out)}: cannot make the folder ({exc.strerror or exc})") from None
     umask = os.umask(0)
     os.umask(umask)
     written: dict[str, Path] = {}
@@ -160,9 +154,7 @@ def write_files(out: Path | str, contents: dict[str, bytes], *, what: str = "--o
                 temporary.remove(tmp)
                 written[name] = path / name
     except OSError as exc:
-        raise OutputError(
-            f"{what} {_shown(out)}: cannot write {exc.filename or path} ({exc.strerror or exc})"
-        ) from None
+        raise OutputError(f"{what} {shown(out)}: cannot write {exc.filename or path} ({exc.strerror or exc})") from None
     finally:
         for tmp in temporary:
             with suppress(OSError):

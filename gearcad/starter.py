@@ -16,6 +16,7 @@ from contextlib import suppress
 from pathlib import Path
 
 from .errors import OutputError, ProfileError
+from .errors import shown as _shown
 from .profiles import parse_profile, profile_schema, read_profile_text
 from .publish import write_files
 
@@ -93,12 +94,6 @@ def _folder(folder: Path) -> tuple[Path, list[Path]]:
     if len(os.fsencode(resolved)) >= 4096 - 64 or any(len(os.fsencode(c)) > 255 - 32 for c in resolved.parts):
         raise ProfileError(f"{label}: the path or one of its names is too long for this system")
     return resolved, [Path(os.path.realpath(m)) for m in missing]
-
-
-def _shown(text) -> str:
-    """A path for a one-line message: control characters escaped, at most 200 characters."""
-    shown = str(text).encode("unicode_escape", "backslashreplace").decode("ascii")
-    return shown if len(shown) <= 200 else shown[:100] + "…" + shown[-99:]
 
 
 def _schema_needed(path: Path, text: bytes) -> bool:

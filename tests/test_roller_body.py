@@ -49,6 +49,34 @@ def test_velocity_field_is_drawn_at_the_radius_the_rollers_are_cut_at(toothed):
     assert [f["degrees"] for f in chart["field"]] == list(roller_charts.FIELD_ANGLES)
 
 
+def test_velocity_field_arrows_have_a_scale_with_units(toothed, monkeypatch, tmp_path):
+    """Issue 37 item 14: each row of velocity_field.png draws its arrows to one scale in drawing
+    units (an arrow's length in R is its value over the scale), and every panel keys it with an
+    arrow of a round length and its unit; the longest arrow is a readable fraction of R."""
+    from matplotlib.quiver import Quiver, QuiverKey
+
+    from gearcad.export.charts import mechanisms as charts
+
+    figures = []
+    monkeypatch.setattr(charts, "save_png", lambda fig, path: figures.append(fig))
+    chart = toothed[1].charts["velocity_field.png"]
+    charts.field_chart(chart, tmp_path / "field.png")
+    axes = np.array(figures[0].axes).reshape(2, 4)
+    for row, (key, unit) in enumerate((("velocity", "R/s"), ("acceleration", "R/s²"))):
+        longest = max(float(np.max(np.linalg.norm(at[key], axis=1))) for at in chart["field"])
+        scales = set()
+        for ax in axes[row]:
+            (arrows,) = [c for c in ax.collections if isinstance(c, Quiver)]
+            (keyed,) = [a for a in ax.artists if isinstance(a, QuiverKey)]
+            assert arrows.scale_units == "xy" and arrows.angles == "xy" and keyed.Q is arrows
+            assert keyed.text.get_text() == f"{keyed.U:g} {unit}"
+            mantissa = keyed.U / 10 ** math.floor(math.log10(keyed.U))
+            assert round(mantissa, 9) in (1, 2, 5) and longest / 2.5 <= keyed.U <= longest
+            scales.add(arrows.scale)
+        (scale,) = scales  # one scale a row
+        assert 0.2 <= longest / scale <= 0.5  # the longest arrow, in R
+
+
 def test_no_chart_data_when_no_charts_are_asked_for():
     params = load_profile(ROOT / "profiles" / "roller_body_m3.toml", {"output.charts": False}, unset=["teeth"])
     assert roller_body.design(params).charts == {}

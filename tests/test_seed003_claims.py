@@ -285,12 +285,14 @@ def _png_size(path):
 def test_charts_of_the_limits_against_r_and_the_shape_families(built):
     """The charts the roller body's build draws (profiles/roller_body_m3.toml, read back from the
     session's build), at the sizes their layouts give at 110 dpi: the limits against r one
-    6.5 × 5 in panel per direction written (here one) and 2.4 in of legend; the paper's Figs. 1–2
-    one 2.4 in square per roller radius (columns) and amplitude (rows)."""
+    6.5 × 5 in panel per direction (both, as docs/papers.md promises) and 2.4 in of legend; the
+    paper's Figs. 1–2 one 2.4 in square per roller radius (columns) and amplitude (rows)."""
     folder = built / "roller_body_m3"
     table = json.loads((folder / "report.json").read_text(encoding="utf-8"))["limits_vs_r"]
-    assert list(table["convex"]) == ["vertical"]  # the profile's direction: one panel
-    assert _png_size(folder / "limits_vs_r.png") == (979, 550)  # (6.5 + 2.4) × 5 in
+    assert list(table["convex"]) == ["horizontal", "vertical"]  # both directions: two panels
+    assert _png_size(folder / "limits_vs_r.png") == (1694, 550)  # (2 × 6.5 + 2.4) × 5 in
+    # horizontal, m = 3, r = 0: the bare path's convex limit in closed form, 1/9 (docs/papers.md)
+    assert table["convex"]["horizontal"][0][table["r"].index(0.0)] == pytest.approx(1 / 9, rel=1e-9)
     # Figs. 1 (m = 3) and 2 (m = 6): three amplitudes each, the paper's five radii 0, 0.1, … 0.4
     for m in (3, 6):
         assert _png_size(folder / f"shape_family_m{m}.png") == (1320, 792), m  # 5 × 2.4 by 3 × 2.4 in

@@ -237,17 +237,24 @@ def test_nice_ticks():
 )
 def test_page_in_a_headless_browser(swept, tmp_path):
     """Chromium lays the page out at 800 px: nothing wider than the window (the build
-    commands wrap), and every link's target is an element of the page as the browser parsed it.
-    A probe script is added to a copy (the page itself has none) and its findings read from
-    the DOM chromium dumps."""
+    commands wrap), every link's target is an element of the page as the browser parsed it, and
+    the designs are in view (issue 37): the chart starts within the first screen and every
+    design's marker lies inside its frame and the window.  A probe script is added to a copy
+    (the page itself has none) and its findings read from the DOM chromium dumps."""
     _, page = swept
     probe = """<script>
 const w = document.documentElement.clientWidth;
 const wide = [...document.querySelectorAll('body *')].filter(e => e.getBoundingClientRect().right > w + 0.5);
 const links = [...document.querySelectorAll('a[href^="#"]')];
 const missing = links.filter(a => !document.getElementById(a.getAttribute('href').slice(1)));
+const frame = document.querySelector('svg.chart rect.frame').getBoundingClientRect();
+const marks = [...document.querySelectorAll('svg.chart .front, svg.chart .ok, svg.chart .out')]
+  .filter(e => !e.classList.contains('key')).map(e => e.getBoundingClientRect());
+const inside = marks.filter(r => r.left >= frame.left - 6 && r.right <= frame.right + 6 && r.top >= frame.top - 6
+  && r.bottom <= frame.bottom + 6 && r.left >= 0 && r.right <= w && r.width > 0);
 document.body.setAttribute('data-probe', JSON.stringify({width: w, scroll: document.documentElement.scrollWidth,
-  wide: wide.map(e => e.tagName + ':' + e.textContent.slice(0, 40)), links: links.length, missing: missing.length}));
+  wide: wide.map(e => e.tagName + ':' + e.textContent.slice(0, 40)), links: links.length, missing: missing.length,
+  screen: window.innerHeight, chart: frame.top, marks: marks.length, inside: inside.length}));
 </script></body>"""
     copy = tmp_path / "sweep.html"
     copy.write_text(page.read_text(encoding="utf-8").replace("</body>", probe), encoding="utf-8")
@@ -277,6 +284,9 @@ document.body.setAttribute('data-probe', JSON.stringify({width: w, scroll: docum
     found = json.loads(unescape(re.search(r'data-probe="([^"]*)"', dom.stdout).group(1)))
     assert found["width"] >= 700 and found["scroll"] <= found["width"], found
     assert found["wide"] == [] and found["links"] >= 10 and found["missing"] == 0, found
+    # the 50 designs (every one has both values): each drawn, in the frame, the frame on the first screen
+    assert found["marks"] == len(swept[0]) == 50 and found["inside"] == 50, found
+    assert 0 <= found["chart"] < found["screen"], found
 
 
 def test_running_front_from_chunk_rows_is_the_tables(swept):

@@ -59,6 +59,35 @@ def _spans():
     return [parse_vary(v) for v in FOCUS_RANGES]
 
 
+def _confirm_row() -> dict:
+    """Row of study ``confirm``: the quick-return pair screened at the teeth stage, then proven
+    at the full stage (minutes)."""
+    from ..fitting import design
+    from ..profiles.reading import parse_profile
+
+    profile = parse_profile(quick_return(), default_name="quick_return")
+    start = time.process_time()
+    teeth = design(profile, "teeth")
+    screened = time.process_time() - start
+    start = time.process_time()
+    full = design(profile, "full")
+    proven = time.process_time() - start
+    blind = [b["code"] for b in teeth.report().get("stage_blind", [])]
+    return {
+        "study": "confirm",
+        "method": "quick-return motion pair (0.5 for 240°, 2 for 120°, E = 150 mm)",
+        "n": 1,
+        "seconds": screened + proven,
+        "error": float(teeth.report()["motion"]["error_deg"]),
+        "teeth_ok": teeth.ok,
+        "stage_blind": " ".join(blind),
+        "full_ok": full.ok,
+        "failures": " ".join(f.code for f in full.failures()),
+        "teeth_seconds": screened,
+        "full_seconds": proven,
+    }
+
+
 def bench_optimise(quick: bool = False) -> list[dict]:
     """Rows of study ``optimise``: the search and the grid (evaluations, front points,
     hypervolume, CPU seconds); and ``confirm``: the quick-return pair screened and proven."""
@@ -105,32 +134,7 @@ def bench_optimise(quick: bool = False) -> list[dict]:
             },
         ]
     if not quick:
-        from ..fitting import design
-        from ..profiles.reading import parse_profile
-
-        profile = parse_profile(quick_return(), default_name="quick_return")
-        start = time.process_time()
-        teeth = design(profile, "teeth")
-        screened = time.process_time() - start
-        start = time.process_time()
-        full = design(profile, "full")
-        proven = time.process_time() - start
-        blind = [b["code"] for b in teeth.report().get("stage_blind", [])]
-        rows.append(
-            {
-                "study": "confirm",
-                "method": "quick-return motion pair (0.5 for 240°, 2 for 120°, E = 150 mm)",
-                "n": 1,
-                "seconds": screened + proven,
-                "error": float(teeth.report()["motion"]["error_deg"]),
-                "teeth_ok": teeth.ok,
-                "stage_blind": " ".join(blind),
-                "full_ok": full.ok,
-                "failures": " ".join(f.code for f in full.failures()),
-                "teeth_seconds": screened,
-                "full_seconds": proven,
-            }
-        )
+        rows.append(_confirm_row())
     return rows
 
 

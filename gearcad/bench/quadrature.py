@@ -20,7 +20,6 @@ def bench_quadrature(quick: bool) -> list[dict]:
     from scipy.integrate import quad
 
     from ..pitch import shapes
-    from ..pitch import walker as W
     from ..pitch.pair import angle_map
 
     curve = shapes.ellipse_centre(25.0, 15.0)
@@ -72,6 +71,14 @@ def bench_quadrature(quick: bool) -> list[dict]:
                 "error": abs(value - reference),
             }
         )
+    return rows + _walker_rows(quick, rounds)
+
+
+def _walker_rows(quick: bool, rounds: int) -> list[dict]:
+    """The walker's i by the paper's method and by gearcad's closed form, against the exact one."""
+    from ..pitch import walker as W
+
+    rows = []
     g = W.WalkerGeometry(75.0, 100.0, 50.0, 322.0)
     t = time_once(lambda: W.paper_ratio_constant(g), 1 if quick else 3)
     i_paper, _ = t.result

@@ -176,16 +176,9 @@ def paper_check(code: str, claim: str, paper, computed, holds: bool, message: st
     }
 
 
-def kinematics_checks(*, a: float, m: int, w: float, radius: float = 1.0, samples: int = 2001) -> list[dict]:
-    """Eqs. 9, 10 and the instants of extreme centre speed and acceleration, for the horizontal
-    oscillation a·sin mτ at w, checked against the motion of body points (eqs. 5–7 differentiated
-    in :func:`rollers.point_motion`) over one turn.
-
-    The body points checked are the centre and four points on the roller circle, whose radius
-    ``radius`` is R in the length unit of ``a`` (1 for units of R, the profile's scale for mm).
-    Returns report-ready checks (see :func:`_check`).
-    """
-    osc = RB.harmonic("horizontal", a, m)
+def _printed_gaps(osc, *, a: float, m: int, w: float, radius: float, samples: int):
+    """How far printed eqs. 9 and 10 stray from the differentiated motion of the centre and four
+    points on the roller circle over one turn, and the largest speed and acceleration."""
     points = [(radius * x, radius * y) for x, y in ((0.0, 0.0), (1.0, 0.0), (0.0, 1.0), (-0.6, 0.8), (0.8, -0.6))]
     t = np.linspace(0.0, TWO_PI / w, samples)
     gap_v = gap_a = 0.0
@@ -197,6 +190,20 @@ def kinematics_checks(*, a: float, m: int, w: float, radius: float = 1.0, sample
         gap_v = max(gap_v, float(np.max(np.abs(paper_speed_modulus(x1, y1, a=a, m=m, w=w, t=t) - v))))
         printed = paper_acceleration_modulus(x1, y1, a=a, m=m, w=w, t=t)
         gap_a = max(gap_a, float(np.nanmax(np.abs(np.where(np.isnan(printed), 0.0, printed) - acc_true))))
+    return gap_v, gap_a, v_scale, a_scale
+
+
+def kinematics_checks(*, a: float, m: int, w: float, radius: float = 1.0, samples: int = 2001) -> list[dict]:
+    """Eqs. 9, 10 and the instants of extreme centre speed and acceleration, for the horizontal
+    oscillation a·sin mτ at w, checked against the motion of body points (eqs. 5–7 differentiated
+    in :func:`rollers.point_motion`) over one turn.
+
+    The body points checked are the centre and four points on the roller circle, whose radius
+    ``radius`` is R in the length unit of ``a`` (1 for units of R, the profile's scale for mm).
+    Returns report-ready checks (see :func:`_check`).
+    """
+    osc = RB.harmonic("horizontal", a, m)
+    gap_v, gap_a, v_scale, a_scale = _printed_gaps(osc, a=a, m=m, w=w, radius=radius, samples=samples)
     k = np.arange(0, 2 * m + 1)
     _, vel_paper, _ = RB.point_motion(osc, 0.0, 0.0, w=w, t=paper_vmax_instants(m, w, k))
     v_at_paper = np.hypot(*vel_paper.T)

@@ -272,6 +272,25 @@ def _arcs(a: np.ndarray, b: np.ndarray, bulges: np.ndarray) -> tuple[list, list,
     return centre.tolist(), radius.tolist(), start, end
 
 
+def _set_extents(doc, msp, bounds) -> None:
+    """The drawing's extents, the view a reader opens with and how it prints with no options."""
+    xmin, ymin, xmax, ymax = bounds
+    msp.dxf.extmin = (xmin, ymin, 0.0)
+    msp.dxf.extmax = (xmax, ymax, 0.0)
+    doc.header["$EXTMIN"] = (xmin, ymin, 0.0)
+    doc.header["$EXTMAX"] = (xmax, ymax, 0.0)
+    # the view a reader opens with (LibreCAD, its dxf2pdf): the extents with a margin; as
+    # high as the drawing is wide too, so any window of aspect >= 1 shows all of it
+    view = 1.1 * max(xmax - xmin, ymax - ymin)
+    doc.set_modelspace_vport(view, ((xmin + xmax) / 2, (ymin + ymax) / 2))
+    # printing with no options (LibreCAD's dxf2pdf): at 1:1, the drawing's lower-left corner
+    # PAPER_MARGIN_MM in from the paper's (without these the page came out blank)
+    doc.header["$PSVPSCALE"] = 1.0
+    doc.header["$PINSBASE"] = (PAPER_MARGIN_MM - xmin, PAPER_MARGIN_MM - ymin, 0.0)
+    doc.header["$PLIMMIN"] = (0.0, 0.0)
+    doc.header["$PLIMMAX"] = (xmax - xmin + 2 * PAPER_MARGIN_MM, ymax - ymin + 2 * PAPER_MARGIN_MM)
+
+
 def write_dxf(path: Path, drawing: Drawing, *, flavour: str = "polyline", cut_layer: str | None = None) -> int:
     """Write the drawing; return the number of vertices (segment end points) written.
 
@@ -317,21 +336,7 @@ def write_dxf(path: Path, drawing: Drawing, *, flavour: str = "polyline", cut_la
                 msp.add_polyline2d(np.asarray(stroke, dtype=float).tolist(), format="xy", dxfattribs={"layer": layer})
                 count += len(stroke)
         if any(drawing.closed.values()) or any(drawing.strokes.values()):
-            xmin, ymin, xmax, ymax = drawing_bounds(drawing)
-            msp.dxf.extmin = (xmin, ymin, 0.0)
-            msp.dxf.extmax = (xmax, ymax, 0.0)
-            doc.header["$EXTMIN"] = (xmin, ymin, 0.0)
-            doc.header["$EXTMAX"] = (xmax, ymax, 0.0)
-            # the view a reader opens with (LibreCAD, its dxf2pdf): the extents with a margin; as
-            # high as the drawing is wide too, so any window of aspect >= 1 shows all of it
-            view = 1.1 * max(xmax - xmin, ymax - ymin)
-            doc.set_modelspace_vport(view, ((xmin + xmax) / 2, (ymin + ymax) / 2))
-            # printing with no options (LibreCAD's dxf2pdf): at 1:1, the drawing's lower-left corner
-            # PAPER_MARGIN_MM in from the paper's (without these the page came out blank)
-            doc.header["$PSVPSCALE"] = 1.0
-            doc.header["$PINSBASE"] = (PAPER_MARGIN_MM - xmin, PAPER_MARGIN_MM - ymin, 0.0)
-            doc.header["$PLIMMIN"] = (0.0, 0.0)
-            doc.header["$PLIMMAX"] = (xmax - xmin + 2 * PAPER_MARGIN_MM, ymax - ymin + 2 * PAPER_MARGIN_MM)
+            _set_extents(doc, msp, drawing_bounds(drawing))
         for name in sorted(doc.entitydb.dxf_types_in_use()):  # before ezdxf adds them in set order
             doc.classes.add_class(name)
         doc.saveas(path)

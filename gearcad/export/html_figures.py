@@ -17,7 +17,7 @@ import numpy as np
 from ..mechanisms import Design, Placement
 from .drawing import cross
 from .html_style import FILLS
-from .svg import _num, _ring_path, _stroke_path
+from .svg import num, ring_path, stroke_path
 
 __all__ = ["Figures"]
 
@@ -35,11 +35,11 @@ class Figures:
         lines = ['<svg width="0" height="0" style="position:absolute" aria-hidden="true" focusable="false"><defs>']
         for name, part in self.parts.items():
             k = self.index[name]
-            cut = " ".join(_ring_path(r)[0] for r in part.cut)
+            cut = " ".join(ring_path(r)[0] for r in part.cut)
             lines.append(f'<path id="cut{k}" fill-rule="evenodd" vector-effect="non-scaling-stroke" d="{cut}"/>')
-            marks = [_ring_path(r)[0] for r in part.mark]
+            marks = [ring_path(r)[0] for r in part.mark]
             if part.pivot_mark > 0:
-                marks += [_stroke_path(s)[0] for s in cross((0.0, 0.0), part.pivot_mark)]
+                marks += [stroke_path(s)[0] for s in cross((0.0, 0.0), part.pivot_mark)]
             if marks:
                 d = " ".join(marks)
                 lines.append(f'<path id="mark{k}" fill="none" vector-effect="non-scaling-stroke" d="{d}"/>')
@@ -65,26 +65,26 @@ class Figures:
         body = []
         if frame is not None:
             body.append(
-                f'<rect class="frame" x="0" y="{_num(-frame[1])}" width="{_num(frame[0])}" '
-                f'height="{_num(frame[1])}" vector-effect="non-scaling-stroke"/>'
+                f'<rect class="frame" x="0" y="{num(-frame[1])}" width="{num(frame[0])}" '
+                f'height="{num(frame[1])}" vector-effect="non-scaling-stroke"/>'
             )
         pivots = []
         for pl in placements:
             r = min(0.02 * size, 0.15 * self.reach[pl.part])  # stays inside small parts
             k = self.index[pl.part]
-            move = f"translate({_num(pl.offset[0])} {_num(-pl.offset[1])}) rotate({_num(-math.degrees(pl.angle))})"
+            move = f"translate({num(pl.offset[0])} {num(-pl.offset[1])}) rotate({num(-math.degrees(pl.angle))})"
             body.append(f'<use href="#cut{k}" class="part f{k % FILLS}" transform="{move}"/>')
             part = self.parts[pl.part]
             if part.mark or part.pivot_mark > 0:
                 body.append(f'<use href="#mark{k}" class="mark" transform="{move}"/>')
-            px, py = _num(pl.offset[0]), _num(-pl.offset[1])
-            a, b = _num(r), _num(2.4 * r)  # four ticks pointing at the pivot, leaving its bore and cross in view
+            px, py = num(pl.offset[0]), num(-pl.offset[1])
+            a, b = num(r), num(2.4 * r)  # four ticks pointing at the pivot, leaving its bore and cross in view
             pivots.append(
                 f'<path class="pv" transform="translate({px} {py})" vector-effect="non-scaling-stroke" '
                 f'd="M -{b} 0 H -{a} M {a} 0 H {b} M 0 -{b} V -{a} M 0 {a} V {b}"/>'
             )
         return (
-            f'<svg viewBox="{_num(x0)} {_num(y0)} {_num(w)} {_num(h)}" preserveAspectRatio="xMidYMid meet" '
+            f'<svg viewBox="{num(x0)} {num(y0)} {num(w)} {num(h)}" preserveAspectRatio="xMidYMid meet" '
             f'role="img" aria-label="{escape(label)}"><title>{escape(label)}</title>'
             + "".join(body + pivots)
             + "</svg>"

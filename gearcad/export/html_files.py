@@ -2,28 +2,31 @@
 
 from __future__ import annotations
 
-import re
 from collections.abc import Mapping
 from html import escape
 from urllib.parse import quote
 
+from ..formats import FORMATS, WHOLES, by_name
 from .html_text import link as _link
 
 __all__ = ["section_charts", "section_files"]
 
 
+_OWN = {
+    "report.json": "the report: every number of this page and more",
+    "papers.html": "the paper's tables and claims beside gearcad's numbers",
+}
+"""The writing loop's own files (not of a format), by name."""
+
+
 def _what(name: str, entry: Mapping) -> str:
+    """What a file is: a whole or a part by its format's entry (``kind`` names the format), a
+    chart, a table, the animation or one of the loop's own files; then its counts."""
     kind = entry.get("kind", "")
     part = entry.get("part")
-    bits = []
-    if name.startswith("sheet."):
-        bits.append("cutting sheet: every part laid out")
-    elif re.fullmatch(r"plate(-[0-9]+)?\.3mf", name):
-        bits.append("print plate: parts laid out on the bed")
-    elif part == "assembly":
-        bits.append("assembly: parts in place (checks the fit; not for cutting or printing)")
-    elif part:
-        bits.append(f"part {part}")
+    fmt = by_name(kind) if kind in FORMATS else None
+    whole = fmt.whole_of(part) if fmt is not None and part else None
+    bits = [WHOLES[whole]] if whole else [f"part {part}"] if part else []
     for key, unit in (("vertices", "vertices"), ("segments", "segments"), ("triangles", "triangles")):
         if key in entry:
             bits.append(f"{entry[key]} {unit}")
@@ -38,10 +41,8 @@ def _what(name: str, entry: Mapping) -> str:
         bits.append(f"animation, {entry['frames']} frames")
     if kind == "png":
         bits.append("chart")
-    if name == "papers.html":
-        bits.append("the paper's tables and claims beside gearcad's numbers")
-    if kind == "json":
-        bits.append("the report: every number of this page and more")
+    if fmt is None and name in _OWN:
+        bits.append(_OWN[name])
     return escape(", ".join(bits))
 
 
@@ -58,7 +59,7 @@ def section_charts(files: Mapping) -> str:
         return ""
     figures = "".join(
         f'<figure><a href="{escape(quote(n))}"><img src="{escape(quote(n))}" alt="{escape(n)}"></a>'
-        f"<figcaption>{escape(n)}</figcaption></figure>"
+        f'<figcaption>{escape(n)} (<a href="{escape(quote(n))}">full size</a>)</figcaption></figure>'
         for n in charts
     )
     return f'<h2 id="charts">Charts</h2><div class="charts">{figures}</div>'

@@ -42,8 +42,8 @@ nav { font-size: 14px; margin: 10px 0 0; } nav a { margin-right: 14px; }
   border-radius: 4px; }
 .pair img { width: 100%; border: 1px solid var(--line); border-radius: 4px; }
 figure { margin: 0; } figcaption { font-size: 13px; color: var(--muted); margin-top: 4px; }
-.charts { display: grid; grid-template-columns: repeat(auto-fill, minmax(480px, 1fr)); gap: 16px; }
-.charts img { width: 100%; border: 1px solid var(--line); border-radius: 4px; }
+.charts { display: grid; grid-template-columns: 1fr; gap: 18px; }
+.charts img { display: block; width: auto; max-width: 100%; border: 1px solid var(--line); border-radius: 4px; }
 table { border-collapse: collapse; font-size: 13.5px; margin: 4px 0 10px; }
 th, td { text-align: left; padding: 4px 10px 4px 0; border-bottom: 1px solid var(--line); vertical-align: top; }
 th { color: var(--muted); font-weight: 600; }

@@ -36,6 +36,29 @@ def _strip(lo: np.ndarray, hi: np.ndarray, lo_xy: np.ndarray, hi_xy: np.ndarray)
     return np.vstack([first, second])
 
 
+def _chamfered(rings: np.ndarray, z: np.ndarray, holes: list, chamfer: float, name: str):
+    """The sections inset by the chamfer at each height, and the heights and insets of the holes'
+    rings (their ends chamfered too); a chamfer too large for the thickness or the teeth refuses."""
+    levels = len(z)
+    bottom, top = float(z[0]), float(z[-1])
+    if chamfer > 0:
+        if 2 * chamfer >= top - bottom:
+            raise DesignError(f"output.chamfer = {chamfer:g}: must be under half the thickness {top - bottom:g}")
+        depth = np.maximum(0.0, np.maximum(chamfer - (z - bottom), chamfer - (top - z)))
+        rings = np.stack([inset_ring(r, d) if d > 0 else r for r, d in zip(rings, depth)])
+        hole_z = np.array([bottom, bottom + chamfer, top - chamfer, top])
+        hole_depth = np.array([chamfer, 0.0, 0.0, chamfer])
+        for k in (0, levels - 1):
+            cap = shapely.Polygon(rings[k], [inset_ring(h, chamfer) for h in holes])
+            if not cap.is_valid:
+                raise DesignError(
+                    f"output.chamfer = {chamfer:g}: too large for the teeth of {name} (the inset crosses itself)"
+                )
+    else:
+        hole_z, hole_depth = np.array([bottom, top]), np.zeros(2)
+    return rings, hole_z, hole_depth
+
+
 def loft(
     heights: Sequence[float] | np.ndarray,
     rings: np.ndarray,
@@ -56,23 +79,8 @@ def loft(
     levels, m = rings.shape[:2]
     if levels != len(z) or levels < 2 or np.any(np.diff(z) <= 0):
         raise DesignError(f"{name}: a loft needs two or more sections at increasing heights")
-    bottom, top = float(z[0]), float(z[-1])
     holes = [np.asarray(h, dtype=float) for h in holes]
-    if chamfer > 0:
-        if 2 * chamfer >= top - bottom:
-            raise DesignError(f"output.chamfer = {chamfer:g}: must be under half the thickness {top - bottom:g}")
-        depth = np.maximum(0.0, np.maximum(chamfer - (z - bottom), chamfer - (top - z)))
-        rings = np.stack([inset_ring(r, d) if d > 0 else r for r, d in zip(rings, depth)])
-        hole_z = np.array([bottom, bottom + chamfer, top - chamfer, top])
-        hole_depth = np.array([chamfer, 0.0, 0.0, chamfer])
-        for k in (0, levels - 1):
-            cap = shapely.Polygon(rings[k], [inset_ring(h, chamfer) for h in holes])
-            if not cap.is_valid:
-                raise DesignError(
-                    f"output.chamfer = {chamfer:g}: too large for the teeth of {name} (the inset crosses itself)"
-                )
-    else:
-        hole_z, hole_depth = np.array([bottom, top]), np.zeros(2)
+    rings, hole_z, hole_depth = _chamfered(rings, z, holes, chamfer, name)
     verts = [np.column_stack([rings.reshape(-1, 2), np.repeat(z, m)])]
     tris = []
     index = np.arange(levels * m).reshape(levels, m)

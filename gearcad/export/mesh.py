@@ -21,7 +21,18 @@ from ..errors import DesignError
 from ..geometry.inset import check_chamfer, inset_ring
 from ..geometry.outline import Outline
 
-__all__ = ["Solid", "extrude", "cap_triangles", "checked_solid", "write_stl", "write_3mf", "SolidItem"]
+__all__ = [
+    "CONTENT_TYPES",
+    "RELS",
+    "xml_name",
+    "Solid",
+    "extrude",
+    "cap_triangles",
+    "checked_solid",
+    "write_stl",
+    "write_3mf",
+    "SolidItem",
+]
 
 
 @dataclass(frozen=True)
@@ -157,14 +168,14 @@ class SolidItem:
     offset: tuple[float, float, float] = (0.0, 0.0, 0.0)
 
 
-_CONTENT_TYPES = (
+CONTENT_TYPES = (
     '<?xml version="1.0" encoding="UTF-8"?>\n'
     '<Types xmlns="http://schemas.openxmlformats.org/package/2006/content-types">'
     '<Default Extension="rels" ContentType="application/vnd.openxmlformats-package.relationships+xml"/>'
     '<Default Extension="model" ContentType="application/vnd.ms-package.3dmanufacturing-3dmodel+xml"/>'
     "</Types>\n"
 )
-_RELS = (
+RELS = (
     '<?xml version="1.0" encoding="UTF-8"?>\n'
     '<Relationships xmlns="http://schemas.openxmlformats.org/package/2006/relationships">'
     '<Relationship Target="/3D/3dmodel.model" Id="rel0" '
@@ -173,7 +184,7 @@ _RELS = (
 )
 
 
-def _xml_name(name: str) -> str:
+def xml_name(name: str) -> str:
     return name.replace("&", "&amp;").replace('"', "&quot;").replace("<", "&lt;").replace(">", "&gt;")
 
 
@@ -186,7 +197,7 @@ def _model(items: list[SolidItem]) -> str:
     out.write('<metadata name="Application">gearcad</metadata>\n<resources>\n')
     for k, item in enumerate(items, 1):
         s = item.solid
-        out.write(f'<object id="{k}" type="model" name="{_xml_name(s.name)}"><mesh><vertices>\n')
+        out.write(f'<object id="{k}" type="model" name="{xml_name(s.name)}"><mesh><vertices>\n')
         out.write(s.xml)
         out.write("</triangles></mesh></object>\n")
     out.write("</resources>\n<build>\n")
@@ -204,8 +215,8 @@ def write_3mf(path: Path, items: list[SolidItem]) -> int:
     # deflate level 1: a third of the default's time for a few percent more bytes
     with zipfile.ZipFile(path, "w", compression=zipfile.ZIP_DEFLATED, compresslevel=1) as z:
         for name, text in (
-            ("[Content_Types].xml", _CONTENT_TYPES),
-            ("_rels/.rels", _RELS),
+            ("[Content_Types].xml", CONTENT_TYPES),
+            ("_rels/.rels", RELS),
             ("3D/3dmodel.model", _model(items)),
         ):
             info = zipfile.ZipInfo(name, date_time=(1980, 1, 1, 0, 0, 0))

@@ -22,7 +22,7 @@ import numpy as np
 from ..errors import DesignError
 from ..geometry.outline import place
 from ..mechanisms import Design, Placement
-from .mesh import _CONTENT_TYPES, _RELS, SolidItem, _xml_name
+from .mesh import CONTENT_TYPES, RELS, SolidItem, xml_name
 
 __all__ = ["write_plate"]
 
@@ -37,7 +37,78 @@ def _matrix(angle: float, offset: tuple[float, float, float]) -> str:
 
 
 def _metadata(name: str, value: str) -> str:
-    return f'<metadata name="{name}">{_xml_name(value)}</metadata>\n'
+    return f'<metadata name="{name}">{xml_name(value)}</metadata>\n'
+
+
+def _build_items(layout, solids: dict, ids: dict, counts: Counter, bed) -> list[str]:
+    """The build's items: each placed solid turned, moved onto the bed and standing on it,
+    numbered where a part is placed more than once; a solid reaching off the bed refuses."""
+    bed_w, bed_h = bed
+    items = []
+    seen: Counter[str] = Counter()
+    for pl in layout:
+        solid = solids[pl.part]
+        xy = place(solid.vertices[:, :2], pl.angle, pl.offset)
+        lo, hi = xy.min(axis=0), xy.max(axis=0)
+        if lo.min() < -_ON_BED or hi[0] > bed_w + _ON_BED or hi[1] > bed_h + _ON_BED:
+            # the footprint was measured on the part's outline; a solid reaching past it is not that part's
+            raise DesignError(f"{pl.part}: its solid reaches outside its outline's footprint, off the bed")
+        z = -float(solid.vertices[:, 2].min())
+        seen[pl.part] += 1
+        number = f" {seen[pl.part]}/{counts[pl.part]}" if counts[pl.part] > 1 else ""
+        items.append(
+            f'<item objectid="{ids[pl.part]}" transform="{_matrix(pl.angle, (*pl.offset, z))}" '
+            f'partnumber="{xml_name(pl.part + number)}"/>\n'
+        )
+    return items
+
+
+def _write_zip(path: Path, model: str) -> None:
+    """The 3MF package: its content types, relationships and model, with fixed dates."""
+    with zipfile.ZipFile(path, "w", compression=zipfile.ZIP_DEFLATED, compresslevel=1) as z:
+        for name, content in (
+            ("[Content_Types].xml", CONTENT_TYPES),
+            ("_rels/.rels", RELS),
+            ("3D/3dmodel.model", model),
+        ):
+            info = zipfile.ZipInfo(name, date_time=(1980, 1, 1, 0, 0, 0))
+            info.compress_type = zipfile.ZIP_DEFLATED
+            info.external_attr = 0o644 << 16
+            z.writestr(info, content.encode("utf-8"), compresslevel=1)
+
+
+def _model(design: Design, stem: str, names: list, solids: dict, ids: dict, counts: Counter, items: list) -> str:
+    """The plate's 3D model: its title and description, each part's mesh once, the build's items."""
+    out = design.params.output
+    bed_w, bed_h = out.bed
+    text = io.StringIO()
+    text.write('<?xml version="1.0" encoding="UTF-8"?>\n')
+    text.write(
+        '<model unit="millimeter" xml:lang="en-US" xmlns="http://schemas.microsoft.com/3dmanufacturing/core/2015/02">\n'
+    )
+    plates = len(design.plates)
+    which = f" {1 if stem == 'plate' else stem.rpartition('-')[2]} of {plates}" if plates > 1 else ""
+    text.write(_metadata("Title", f"{design.name}: print plate{which}"))
+    text.write(_metadata("Application", "gearcad"))
+    listed = ", ".join(f"{n} ×{counts[n]}" if counts[n] > 1 else n for n in names)
+    text.write(
+        _metadata(
+            "Description",
+            f"{listed} laid out on a {bed_w:g} × {bed_h:g} mm bed (origin at its front-left corner), "
+            f"{out.gap:g} mm apart, {out.thickness:g} mm thick; keep the arrangement "
+            "(PrusaSlicer command line: --dont-arrange)",
+        )
+    )
+    text.write("<resources>\n")
+    for name in names:
+        solid = solids[name]
+        text.write(f'<object id="{ids[name]}" type="model" name="{xml_name(name)}"><mesh><vertices>\n')
+        text.write(solid.xml)
+        text.write("</triangles></mesh></object>\n")
+    text.write("</resources>\n<build>\n")
+    text.writelines(items)
+    text.write("</build>\n</model>\n")
+    return text.getvalue()
 
 
 def write_plate(path: Path, design: Design, items: Sequence[SolidItem]) -> int:
@@ -68,60 +139,7 @@ def write_plate(path: Path, design: Design, items: Sequence[SolidItem]) -> int:
     layout = [Placement(i.solid.name, i.angle, tuple(i.offset[:2])) for i in items]
     names = list(dict.fromkeys(pl.part for pl in layout))
     ids = {name: k for k, name in enumerate(names, 1)}
-    bed_w, bed_h = out.bed
-    items = []
-    seen: Counter[str] = Counter()
     counts = Counter(pl.part for pl in layout)
-    for pl in layout:
-        solid = solids[pl.part]
-        xy = place(solid.vertices[:, :2], pl.angle, pl.offset)
-        lo, hi = xy.min(axis=0), xy.max(axis=0)
-        if lo.min() < -_ON_BED or hi[0] > bed_w + _ON_BED or hi[1] > bed_h + _ON_BED:
-            # the footprint was measured on the part's outline; a solid reaching past it is not that part's
-            raise DesignError(f"{pl.part}: its solid reaches outside its outline's footprint, off the bed")
-        z = -float(solid.vertices[:, 2].min())
-        seen[pl.part] += 1
-        number = f" {seen[pl.part]}/{counts[pl.part]}" if counts[pl.part] > 1 else ""
-        items.append(
-            f'<item objectid="{ids[pl.part]}" transform="{_matrix(pl.angle, (*pl.offset, z))}" '
-            f'partnumber="{_xml_name(pl.part + number)}"/>\n'
-        )
-    text = io.StringIO()
-    text.write('<?xml version="1.0" encoding="UTF-8"?>\n')
-    text.write(
-        '<model unit="millimeter" xml:lang="en-US" xmlns="http://schemas.microsoft.com/3dmanufacturing/core/2015/02">\n'
-    )
-    stem = Path(path).stem
-    plates = len(design.plates)
-    which = f" {1 if stem == 'plate' else stem.rpartition('-')[2]} of {plates}" if plates > 1 else ""
-    text.write(_metadata("Title", f"{design.name}: print plate{which}"))
-    text.write(_metadata("Application", "gearcad"))
-    listed = ", ".join(f"{n} ×{counts[n]}" if counts[n] > 1 else n for n in names)
-    text.write(
-        _metadata(
-            "Description",
-            f"{listed} laid out on a {bed_w:g} × {bed_h:g} mm bed (origin at its front-left corner), "
-            f"{out.gap:g} mm apart, {out.thickness:g} mm thick; keep the arrangement "
-            "(PrusaSlicer command line: --dont-arrange)",
-        )
-    )
-    text.write("<resources>\n")
-    for name in names:
-        solid = solids[name]
-        text.write(f'<object id="{ids[name]}" type="model" name="{_xml_name(name)}"><mesh><vertices>\n')
-        text.write(solid.xml)
-        text.write("</triangles></mesh></object>\n")
-    text.write("</resources>\n<build>\n")
-    text.writelines(items)
-    text.write("</build>\n</model>\n")
-    with zipfile.ZipFile(path, "w", compression=zipfile.ZIP_DEFLATED, compresslevel=1) as z:
-        for name, content in (
-            ("[Content_Types].xml", _CONTENT_TYPES),
-            ("_rels/.rels", _RELS),
-            ("3D/3dmodel.model", text.getvalue()),
-        ):
-            info = zipfile.ZipInfo(name, date_time=(1980, 1, 1, 0, 0, 0))
-            info.compress_type = zipfile.ZIP_DEFLATED
-            info.external_attr = 0o644 << 16
-            z.writestr(info, content.encode("utf-8"), compresslevel=1)
+    items = _build_items(layout, solids, ids, counts, out.bed)
+    _write_zip(path, _model(design, Path(path).stem, names, solids, ids, counts, items))
     return sum(solids[pl.part].triangle_count for pl in layout)

@@ -15,6 +15,7 @@ import shapely
 
 from ..mechanisms import Design
 from .step_brep import StepSolid, flank_section, straight_solid, twisted_solid, volume
+from .step_text import compact
 
 __all__ = [
     "write_step_files",
@@ -90,6 +91,7 @@ def _write(path: Path, doc) -> None:
     _fixed_header(writer.ChangeWriter().Model(), path.stem)
     if writer.Write(str(path)) != IFSelect_RetDone:
         raise RuntimeError(f"STEP: OpenCASCADE could not write {path.name}")
+    path.write_text(compact(path.read_text(encoding="latin-1")), encoding="latin-1", newline="\n")
 
 
 def _fixed_header(model, name: str) -> None:
@@ -204,7 +206,15 @@ def _same(design: Design, part) -> bytes | None:
     return b"|".join([*data, np.array([out.thickness, out.chamfer]).tobytes()])
 
 
-def write_step_files(design: Design, folder: Path) -> dict[str, dict]:
+def _copy(solid: StepSolid, name: str) -> StepSolid:
+    """A solid alike ``solid`` as a B-rep of its own (the assembly names each part's product; a
+    shared B-rep would be one product): copied, not built again from the rings."""
+    from OCP.BRepBuilderAPI import BRepBuilderAPI_Copy
+
+    return StepSolid(name, BRepBuilderAPI_Copy(solid.shape).Shape(), solid.volume)
+
+
+def write_step_files(design: Design, folder: Path, made: object = None) -> dict[str, dict]:
     """Every part's ``<name>.step`` and ``assembly.step`` (parts placed as in assembly.3mf) into
     ``folder``; returns their files entries (faces by type, volume in mm³).  A part alike an
     earlier one (the same solid) is that one's file with its own name: the bytes OpenCASCADE
@@ -219,7 +229,7 @@ def write_step_files(design: Design, folder: Path) -> dict[str, dict]:
             text = (folder / f"{first}.step").read_bytes()
             old, new = f"'{first}'".encode(), f"'{part.name}'".encode()
             if text.count(old) == 3 and new not in text:  # FILE_NAME's and PRODUCT's names only
-                solids[part.name] = _solid(design, part, design.made_rings(part.name))[0]  # the assembly's own
+                solids[part.name] = _copy(solids[first], part.name)  # the assembly's own
                 path.write_bytes(text.replace(old, new))
                 entry = files[f"{first}.step"]
                 files[path.name] = {**entry, "part": part.name, "bytes": path.stat().st_size}

@@ -19,7 +19,17 @@ from ..geometry.arcfit import ArcRing
 from .bounds import drawing_bounds
 from .drawing import Drawing
 
-__all__ = ["MARGIN_MM", "CUT_COLOUR", "MARK_COLOUR", "STROKE_WIDTH_MM", "PREVIEW_STYLE", "write_svg"]
+__all__ = [
+    "num",
+    "ring_path",
+    "stroke_path",
+    "MARGIN_MM",
+    "CUT_COLOUR",
+    "MARK_COLOUR",
+    "STROKE_WIDTH_MM",
+    "PREVIEW_STYLE",
+    "write_svg",
+]
 
 MARGIN_MM = 1.0
 """Empty border around the drawing, so no path lies on the page edge."""
@@ -48,14 +58,14 @@ meet near 1e-5 rad, both about 1.2e-6 of the chord (0.12 µm on a 100 mm chord).
 _INKSCAPE = "http://www.inkscape.org/namespaces/inkscape"
 
 
-def _num(value: float) -> str:
+def num(value: float) -> str:
     """Fixed-point, at most six decimals, trailing zeros dropped, never ``-0``."""
     text = f"{value:.{_DECIMALS}f}".rstrip("0").rstrip(".")
     return "0" if text in ("-0", "") else text
 
 
 def _xy(point) -> str:
-    return f"{_num(point[0])} {_num(-point[1])}"  # SVG's y axis points down
+    return f"{num(point[0])} {num(-point[1])}"  # SVG's y axis points down
 
 
 def _arcs(a: np.ndarray, b: np.ndarray, bulge: float) -> list[str]:
@@ -78,7 +88,7 @@ def _arc_pieces(
     a: np.ndarray, b: np.ndarray, bulge: float, theta: float, centre: np.ndarray, radius: float
 ) -> list[str]:
     """:func:`_arcs` with the arc's sweep ``theta``, centre and radius already worked out."""
-    radius = _num(radius)
+    radius = num(radius)
     pieces = max(1, math.ceil(abs(theta) / (math.pi / 2) * (1 - 1e-12)))
     ends = [b]
     if pieces > 1:  # here |bulge| > tan(π/8): the centre is well defined
@@ -89,7 +99,7 @@ def _arc_pieces(
     return [f"A {radius} {radius} 0 0 {int(bulge < 0)} {_xy(p)}" for p in ends]
 
 
-def _ring_path(ring) -> tuple[str, int]:
+def ring_path(ring) -> tuple[str, int]:
     """Path data of one closed ring and its segment count (lines, arc pieces, closing line)."""
     v, bulges = B.segments(ring)
     n = len(v)
@@ -113,7 +123,7 @@ def _ring_path(ring) -> tuple[str, int]:
     return " ".join([*commands, "Z"]), len(commands) - 1 + closing_line
 
 
-def _stroke_path(stroke) -> tuple[str, int]:
+def stroke_path(stroke) -> tuple[str, int]:
     """Path data of one open polyline (or an ArcRing left open: dashes with arcs) and its segment count."""
     if isinstance(stroke, ArcRing):
         v, bulges = np.asarray(stroke.vertices, dtype=float), np.asarray(stroke.bulges, dtype=float)
@@ -129,13 +139,13 @@ def _stroke_path(stroke) -> tuple[str, int]:
 def _group(drawing: Drawing, layer: str, group_id: str, colour: str) -> tuple[list[str], int]:
     # the style sits on every path as well as on the group: some laser importers do not
     # inherit presentation attributes from groups
-    style = f'fill="none" stroke="{colour}" stroke-width="{_num(STROKE_WIDTH_MM)}"'
+    style = f'fill="none" stroke="{colour}" stroke-width="{num(STROKE_WIDTH_MM)}"'
     lines = [f'  <g id="{group_id}" inkscape:groupmode="layer" inkscape:label={quoteattr(layer)} {style}>']
     if layer in drawing.descriptions:
         lines.append(f"    <desc>{escape(drawing.descriptions[layer])}</desc>")
     count = 0
-    encoded = [_ring_path(r) for r in drawing.closed.get(layer, [])]
-    encoded += [_stroke_path(s) for s in drawing.strokes.get(layer, [])]
+    encoded = [ring_path(r) for r in drawing.closed.get(layer, [])]
+    encoded += [stroke_path(s) for s in drawing.strokes.get(layer, [])]
     for data, segments in encoded:
         lines.append(f'    <path {style} d="{data}"/>')
         count += segments
@@ -184,9 +194,9 @@ def write_svg(
         raise ValueError(f"layers {extra} are neither cut_layer {cut_layer!r} nor mark_layer {mark_layer!r}")
     margin = MARGIN_MM if page is None else 0.0
     xmin, ymin, xmax, ymax = drawing_bounds(drawing) if page is None else page
-    x0, y0 = _num(xmin - margin), _num(-ymax - margin)  # the top-left corner after the y flip
+    x0, y0 = num(xmin - margin), num(-ymax - margin)  # the top-left corner after the y flip
     # sizes from the corner as written, so each edge is off by one rounding at most
-    width, height = _num(xmax + margin - float(x0)), _num(-ymin + margin - float(y0))
+    width, height = num(xmax + margin - float(x0)), num(-ymin + margin - float(y0))
     lines = [
         '<?xml version="1.0" encoding="UTF-8" standalone="no"?>',
         f'<svg xmlns="http://www.w3.org/2000/svg" xmlns:inkscape="{_INKSCAPE}" version="1.1"',

@@ -12,6 +12,7 @@ from ..errors import GearcadError
 from ..formats import TABLE, Format
 from ..mechanisms import Design
 from .beside import Beside, can_fork
+from .pieces import Made
 
 __all__ = ["write_design"]
 
@@ -85,64 +86,12 @@ def _charts(design: Design, folder: Path) -> dict[str, dict]:
     return files
 
 
-def _drawings(design: Design, wholes) -> dict[str, object]:
-    """Each part's drawing (by its name) and the ``wholes`` asked for ("assembly", "sheet"; by
-    ``(whole,)``), made once for every drawing format (the sheet places and letters every part's
-    name)."""
-    from .drawing import assembly_drawing, part_drawing
-    from .sheet import sheet_drawing
-
-    made = {"assembly": assembly_drawing, "sheet": sheet_drawing}
-    return {**{p.name: part_drawing(design, p) for p in design.parts()}, **{(w,): made[w](design) for w in wholes}}
-
-
-def _pieces(fmt: Format, design: Design, solids: dict, drawings: dict) -> list[tuple[str, str | None, object]]:
-    """What a format's writer is handed, file by file: (file stem, whole or None, drawing or
-    solids) for every part, then for each of the format's wholes."""
-    if fmt.takes == "drawing":
-        pieces = [(p.name, None, drawings[p.name]) for p in design.parts()]
-        return pieces + [(w, w, drawings[(w,)]) for w in fmt.wholes]
-    from .mesh import SolidItem
-
-    scenes = {"assembly": [("assembly", design.placements)], "plate": list(zip(design.plate_files(), design.plates))}
-    pieces = [(name, None, [SolidItem(solid)]) for name, solid in solids.items()]
-    return pieces + [
-        (stem, w, [SolidItem(solids[pl.part], pl.angle, (*pl.offset, 0.0)) for pl in layout])
-        for w in fmt.wholes
-        for stem, layout in scenes[w]
-    ]
-
-
-def _solids(design: Design) -> dict:
-    """Each part's solid, made once for every solid format: extruded, or lofted through its
-    twisted sections."""
-    from .loft import loft
-    from .mesh import extrude
-
-    out = design.params.output
-
-    def solid(part):
-        twisted = design.sections.get(part.name)
-        if twisted is None:
-            return extrude(part.outline, out.thickness, name=part.name, chamfer=out.chamfer)
-        holes = part.outline.rings[1:]
-        return loft(twisted.heights, twisted.rings, name=part.name, holes=holes, chamfer=out.chamfer)
-
-    return {p.name: solid(p) for p in design.parts()}
-
-
-def _write_format(fmt: Format, design: Design, folder: Path, solids: dict, drawings: dict) -> dict[str, dict]:
-    """Every file of one format, through the writer the format table names."""
+def _write_format(fmt: Format, design: Design, folder: Path, made: Made) -> dict[str, dict]:
+    """Every file of one format, through the writer the format table names (one signature for
+    every writer: the design, the folder, and the drawings and solids made once for all)."""
     module, function = fmt.writer.split(":")
     writer = getattr(import_module(f".{module}", __package__), function)
-    if fmt.takes == "design":  # the writer makes its own solids from the design
-        return writer(design, folder)
-    files = {}
-    for stem, whole, what in _pieces(fmt, design, solids, drawings):
-        path = folder / f"{stem}.{fmt.extension}"
-        entry = writer(path, what, design=design, whole=whole)
-        files[path.name] = _entry(path, kind=fmt.name, part=stem, **entry)
-    return files
+    return writer(design, folder, made)
 
 
 def write_design(design: Design, folder: Path, *, beside: bool = False) -> dict[str, dict]:
@@ -171,12 +120,9 @@ def write_design(design: Design, folder: Path, *, beside: bool = False) -> dict[
 def _write(design: Design, folder: Path, drawing: dict) -> dict[str, dict]:
     formats = set(design.params.output.formats)
     files: dict[str, dict] = {}
-    chosen = [f for f in TABLE if f.name in formats]
-    solids = _solids(design) if any(f.takes == "solid" for f in chosen) else {}
-    drawn = [f for f in chosen if f.takes == "drawing"]
-    drawings = _drawings(design, {w for f in drawn for w in f.wholes}) if drawn else {}
-    for fmt in chosen:
-        files.update(_write_format(fmt, design, folder, solids, drawings))
+    made = Made(design)
+    for fmt in (f for f in TABLE if f.name in formats):
+        files.update(_write_format(fmt, design, folder, made))
     for table in design.tables:
         path = folder / table.file
         _write_table(path, table)

@@ -28,7 +28,7 @@ from ..mechanisms.registry import MECHANISMS
 from ..teeth.contact import ContactData, contact_ratio
 from .band import Band
 from .band_mesh import MeshGeometry, mesh_band
-from .fit import _process_block
+from .fit import process_block
 
 __all__ = ["MeshBand", "mesh_bands", "radial_room", "with_mesh_bands", "train_meshes", "roller_meshes"]
 
@@ -266,5 +266,5 @@ def with_mesh_bands(draft, bands: tuple[MeshBand, ...] | None = None, *, chosen:
             )
     cut = {"backlash": params.backlash, "backlash_chosen": chosen}
     bands_out = [*draft.data.get("bands", []), *(mb.as_dict() | cut for mb in bands)]
-    data = {**draft.data, "bands": bands_out, "process": _process_block(process)}
+    data = {**draft.data, "bands": bands_out, "process": process_block(process)}
     return replace(draft, findings=tuple(findings), details=tuple(lines), data=data)

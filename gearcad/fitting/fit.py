@@ -24,6 +24,7 @@ from .band import Band, pair_band
 from .pair_geometry import pair_geometry
 
 __all__ = [
+    "process_block",
     "sliver",
     "smallest_fit",
     "chose_backlash",
@@ -365,11 +366,11 @@ def with_bands(design: Design, bands: tuple[Band, ...], cures=None, fixed: bool 
             findings.append(
                 finding("loose", f"{b.mesh}: the play may reach {b.band[1]:.3f} mm (process.max_play = {limit:g})")
             )
-    data = {**design.data, "bands": [b.as_dict() for b in bands], "process": _process_block(process)}
+    data = {**design.data, "bands": [b.as_dict() for b in bands], "process": process_block(process)}
     return replace(design, findings=tuple(findings), details=tuple(lines), data=data)
 
 
-def _process_block(process) -> dict:
+def process_block(process) -> dict:
     keys = ("kerf_variation", "xy_compensation", "xy_variation", "elephant_foot", "tool_diameter")
     return {
         "kind": process.kind,

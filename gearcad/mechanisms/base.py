@@ -8,13 +8,17 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING, Any, Generic, TypeVar
 
 import numpy as np
 
 from ..errors import ChecksFailed
 from ..findings import Finding, check_codes, failing
+from .chart_data import Blocks, Charts
 from .parts import Part, Placement
+
+if TYPE_CHECKING:
+    from ..teeth.helical import GearSections
 
 __all__ = [
     "SCHEMA_VERSION",
@@ -122,12 +126,16 @@ def finite(value):
     return value
 
 
+D = TypeVar("D")
+
+
 @dataclass(frozen=True)
-class Design:
+class Design(Generic[D]):
     """A checked mechanism: its parts and assembly, findings, report data and what to draw.
 
     ``data`` holds the mechanism's own report blocks (JSON-ready); ``detail`` the mechanism's
-    own computed objects (for charts, and for users who want more than the report).
+    own computed objects (for charts, and for users who want more than the report; ``Design[D]``:
+    ``D`` its type, ``GearPairDetail``, ``RollerBodyDetail``, …).
     """
 
     params: Any
@@ -137,9 +145,9 @@ class Design:
     part_list: tuple[Part, ...]
     placements: tuple[Placement, ...]
     assembly: Assembly
-    data: dict
-    units: dict
-    detail: Any = None
+    data: Blocks
+    units: dict[str, str]
+    detail: D | None = None
     details: tuple[str, ...] = ()
     """More lines for ``gearcad check``, after the summary."""
     motion: Motion | None = None
@@ -150,13 +158,13 @@ class Design:
     """The placed parts laid out on as many printer beds (``output.bed``) as they need, when a
     chosen format writes plates (3MF): ``plate.3mf``, ``plate-2.3mf``, …  A part too large for
     the bed is on none (a ``bed`` finding names it)."""
-    sections: dict = field(default_factory=dict)
+    sections: dict[str, GearSections] = field(default_factory=dict)
     """Part name → its twisted sections (``teeth.helical.GearSections``): such a part's solid
     is lofted through them instead of extruded."""
     made: dict = field(default_factory=dict, compare=False)
     """Part name → its cut rings fitted without the kerf (the part itself, for its exact solid),
     made when STEP is written with ``output.kerf`` > 0; see :meth:`made_rings`."""
-    charts: dict = field(default_factory=dict)
+    charts: Charts = field(default_factory=dict)
     """Chart name → the data it is drawn from, computed with the design (exporters only draw)."""
     placed: str = "meshing parts touch"
     """What the assembly drawing shows, in the page's words (how the parts are placed)."""

@@ -17,6 +17,7 @@ from ..tolerances import budget
 from ..trains import carrier as CT
 from . import compound_ring as CR
 from .budget import check_backlash, check_teeth_work
+from .chart_data import Blocks
 from .finish import Contact, Draft, PartSpec
 from .parts import Placement
 
@@ -123,20 +124,10 @@ def _speeds(p: CarrierTrainParams, lay: TrainLayout):
     return train, direct, (meshes, block), [claim]
 
 
-def design(p: CarrierTrainParams) -> Draft:
-    """Speeds, accelerations, parts and assembly of a train on a carrier."""
-    lay = layout(p)
+def _gear_blocks(p: CarrierTrainParams, lay, train) -> list[Blocks]:
+    """The report's entry of each gear: its teeth, where it sits and how it turns."""
     radii, centres, ring = lay.radii, lay.centres, lay.ring
-    toothings = list(zip(p.teeth, p.modules))
-    keys = "train.module / train.teeth"
-    if p.compound is not None:
-        toothings.append((p.inner_teeth, p.inner_module))
-        keys += " / train.compound"
-    check_teeth_work(toothings, p.output.tolerance, keys=keys)
-    check_backlash(p.backlash, min(m for _, m in toothings), "train.backlash")
-    train, direct, compound, findings = _speeds(p, lay)
-    difference = float(np.max(np.abs(direct - train.omega)))
-    gears = [
+    return [
         {
             "name": n,
             "teeth": z,
@@ -153,6 +144,22 @@ def design(p: CarrierTrainParams) -> Draft:
             p.names, p.teeth, p.modules, radii, centres, ring, train.omega, train.epsilon, train.relative
         )
     ]
+
+
+def design(p: CarrierTrainParams) -> Draft[None]:
+    """Speeds, accelerations, parts and assembly of a train on a carrier."""
+    lay = layout(p)
+    radii, centres, ring = lay.radii, lay.centres, lay.ring
+    toothings = list(zip(p.teeth, p.modules))
+    keys = "train.module / train.teeth"
+    if p.compound is not None:
+        toothings.append((p.inner_teeth, p.inner_module))
+        keys += " / train.compound"
+    check_teeth_work(toothings, p.output.tolerance, keys=keys)
+    check_backlash(p.backlash, min(m for _, m in toothings), "train.backlash")
+    train, direct, compound, findings = _speeds(p, lay)
+    difference = float(np.max(np.abs(direct - train.omega)))
+    gears = _gear_blocks(p, lay, train)
     if compound is not None:
         gears[p.compound].update(internal_teeth=True, **CR.gear_entry(p, compound[0]))
     parts = tuple(_gear_part(p, k, ring[k]) for k in range(len(radii)))
@@ -161,7 +168,7 @@ def design(p: CarrierTrainParams) -> Draft:
     contacts = tuple(
         Contact(k, k + 1, module=p.modules[k + 1], radius=r_to, touch="mesh") for k, (_, r_to) in enumerate(lay.sides)
     )
-    data = {
+    data: Blocks = {
         "train": {
             "module": p.module,
             "gear1_rpm": p.gear1_rpm,

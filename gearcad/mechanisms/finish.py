@@ -12,7 +12,7 @@ from __future__ import annotations
 import re
 import time
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING, Any, Generic, TypeVar
 
 import numpy as np
 
@@ -21,8 +21,12 @@ from ..formats import TABLE
 from ..tolerances import budget
 from . import layouts
 from .base import Assembly, Design, Motion, Table, assembly_depth, assembly_gap, assembly_overlap
+from .chart_data import Blocks, Charts
 from .parts import BoreSpec, Part, Placement, cut_paths, make_part
 from .registry import MECHANISMS
+
+if TYPE_CHECKING:
+    from ..teeth.helical import GearSections
 
 __all__ = ["Contact", "Draft", "PartSpec", "Proof", "TOUCHES", "finish", "prove"]
 
@@ -90,9 +94,14 @@ class Proof:
     max_depth: float
 
 
+D = TypeVar("D")
+"""A mechanism's own computed objects (``Draft.detail``): ``GearPairDetail``, ``RollerBodyDetail``, …"""
+
+
 @dataclass(frozen=True)
-class Draft:
-    """What a mechanism's ``design(params)`` returns: only what is its own."""
+class Draft(Generic[D]):
+    """What a mechanism's ``design(params)`` returns: only what is its own (``Draft[D]``: ``D``
+    the type of its ``detail``, read by its own hooks and charts)."""
 
     params: Any
     mechanism: str
@@ -101,15 +110,17 @@ class Draft:
     parts: tuple[PartSpec, ...]
     placements: tuple[Placement, ...]
     contacts: tuple[Contact, ...]
-    data: dict
-    units: dict
-    detail: Any = None
+    data: Blocks
+    """The mechanism's report blocks (JSON-ready)."""
+    units: dict[str, str]
+    detail: D | None = None
     details: tuple[str, ...] = ()
     motion: Motion | None = None
     tables: tuple[Table, ...] = ()
-    sections: dict = field(default_factory=dict)
-    charts: dict = field(default_factory=dict)
-    """Chart name → the data it is drawn from (the exporters compute nothing of the model)."""
+    sections: dict[str, GearSections] = field(default_factory=dict)
+    """Part name → its twisted sections: such a part's solid is lofted through them."""
+    charts: Charts = field(default_factory=dict)
+    """Chart name → the data it is drawn from (``chart_data``: the exporters compute nothing of the model)."""
     proofs: tuple = ()
     """The mechanism's own mesh proofs over a cycle (:class:`Proof` each), joined to the assembly's."""
     where: str = "assembly"
@@ -164,7 +175,7 @@ def _hook(draft: Draft, name: str):
     return None if entry is None else entry.hook(name)
 
 
-def _with_papers(draft: Draft) -> dict:
+def _with_papers(draft: Draft) -> Blocks:
     """The draft's report blocks and, for a profile that reproduces a seed, the papers' numbers
     beside gearcad's (``papers``)."""
     papers = _hook(draft, "papers")
@@ -172,7 +183,7 @@ def _with_papers(draft: Draft) -> dict:
     return draft.data if block is None else {**draft.data, "papers": block}
 
 
-def finish(draft: Draft, *, start: float | None = None) -> Design:
+def finish(draft: Draft[D], *, start: float | None = None) -> Design[D]:
     """The complete design of a draft: parts with their cut paths, the assembly proven, the
     sheet and plate laid out (``start``: when the design began, for its ``seconds``)."""
     start = time.perf_counter() if start is None else start

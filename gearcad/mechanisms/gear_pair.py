@@ -13,20 +13,20 @@ import numpy as np
 from ..bodies import shoe as S
 from ..geometry.arcfit import decimate
 from ..pitch.discretize import polyline
-from ..pitch.gear import GearData
 from ..profiles import GearPairParams
 from ..teeth.pair import ToothedPairData, cut_pair
 from ..tolerances import DEFAULT, budget, designed_play
 from .base import Motion, Table
 from .budget import check_section_work, check_teeth_work
+from .chart_data import Charts, MeshChart, PitchCurvesChart
 from .finish import Contact, Draft, PartSpec
-from .pair_motion import motion_block, motion_phrase
 from .pair_papers import PaperExtras, paper_extras
 from .pair_pitch import PairDesign, pitch_design
+from .pair_report import details, report_data, summary
 from .parts import Placement, check_bore
 
 if TYPE_CHECKING:
-    from ..teeth.helical import HelicalSections
+    pass
 
 __all__ = ["GearPairDetail", "design", "frames_for"]
 
@@ -45,12 +45,12 @@ class GearPairDetail:
     """What the papers add: seed 004's statements, seed 002's shoe and vehicle speed."""
 
 
-def _charts(pitch, teeth, rings, papers) -> dict:
+def _charts(pitch, teeth, rings, papers) -> Charts:
     """Chart file name → what it is drawn from: the pitch curves in mesh, the kinematics, the teeth
     in mesh, and what the papers add (seed 004's type-2 pair, seed 002's vehicle and shoe)."""
-    charts = {"pitch_curves.png": (pitch, rings), "kinematics.png": pitch}
+    charts: Charts = {"pitch_curves.png": PitchCurvesChart(pitch, rings), "kinematics.png": pitch}
     if teeth is not None:
-        charts["mesh.png"] = (pitch, teeth)
+        charts["mesh.png"] = MeshChart(pitch, teeth)
     extra = papers.charts if papers is not None and papers.charts else {}
     if "elliptic_type2" in extra:
         charts["elliptic_type2.png"] = extra["elliptic_type2"]
@@ -66,167 +66,6 @@ def frames_for(cycle: float, teeth: int | None) -> int:
     """Enough frames that the driver turns at most ~1/3 of a tooth (or 5°) per frame, ≤ 180."""
     step = (2 * math.pi / teeth / 3) if teeth else math.radians(5)
     return int(min(180, max(24, math.ceil(cycle / step))))
-
-
-def _gear_block(g: GearData, lobes: int) -> dict:
-    s = g.shape
-    return {
-        "name": g.name,
-        "curve": g.curve.name,
-        "pivot": list(g.pivot),
-        "lobes": lobes,
-        "r_min": g.r_min,
-        "r_max": g.r_max,
-        "perimeter": g.perimeter,
-        "convex": s.convex,
-        "convexity_margin_min": s.min_margin,
-        "min_curvature_radius": s.min_curvature_radius,
-        "min_concave_radius": s.min_concave_radius,
-        "concave_intervals": [list(i) for i in s.concave_intervals],
-        "corners": [{"phi": c.phi, "turn": c.turn, "convex": c.convex} for c in s.corners],
-    }
-
-
-def _teeth_block(t: ToothedPairData, i: int) -> dict:
-    gear, plan = t.gears[i], t.plan
-    folded = gear.undercut_depth > 0
-    return {
-        "count": gear.teeth,
-        "module": plan.module,
-        "requested_module": plan.requested_module,
-        "pressure_angle": gear.rack.params.pressure_angle,
-        "profile_shift": gear.rack.params.profile_shift,
-        "undercut": gear.undercut,
-        "undercut_flanks": int(np.count_nonzero(folded)),
-        "undercut_depth": float(max(np.max(gear.undercut_depth), 0.0)),
-        "undercut_phi": [float(a) for a in gear.flank_phi[folded]],
-        "trimmed_spaces": int(np.count_nonzero(gear.space_loops)),
-        "min_tip_thickness": float(np.min(gear.tip_thickness)),
-        "pointed_teeth": int(len(gear.pointed)),
-        "module_limit_undercut": t.module_limits[i],
-        "vertices": gear.outline.vertex_count,
-        "area": gear.outline.area,
-    }
-
-
-def _helix_block(params: GearPairParams, teeth: ToothedPairData, helical: HelicalSections, proofs) -> dict:
-    from ..teeth.helix import helix_data
-
-    out, s = params.output, helical.spacing
-    h = helix_data(
-        teeth.plan.module,
-        params.teeth.helix_angle,
-        face_width=out.thickness,
-        herringbone=params.teeth.herringbone,
-        normal_pressure_angle=params.teeth.pressure_angle,
-    )
-    first = helical.gears[0]
-    return {
-        "helix_angle": h.helix_angle,
-        "herringbone": h.herringbone,
-        "hands": [g.hand for g in helical.gears],
-        "normal_module": h.normal_module,
-        "transverse_module": h.transverse_module,
-        "normal_pressure_angle": h.normal_pressure_angle,
-        "transverse_pressure_angle": h.transverse_pressure_angle,
-        "axial_pitch": h.axial_pitch,
-        "overlap_ratio": h.overlap_ratio,
-        "total_shift": h.total_shift,
-        "mirror_parts": teeth.plan.identical,
-        "sections": len(first.heights),
-        "section_vertices": [int(g.rings.shape[1]) for g in helical.gears],
-        "section_spacing": s.spacing,
-        "spacing_bound": s.bound,
-        "spacing_floor": s.floor,
-        "loft_deviation": None if math.isnan(s.measured) else s.measured,
-        "section_deviation": max(g.deviation for g in helical.gears),
-        "mesh_levels": [
-            {
-                "z": z,
-                "meshes": m.meshes,
-                "max_overlap": m.max_overlap,
-                "max_depth": m.max_depth,
-                "nudged_min_overlap": m.nudged_min_overlap,
-            }
-            for z, m in proofs
-        ],
-    }
-
-
-def _report_data(
-    params: GearPairParams, pitch: PairDesign, teeth: ToothedPairData | None, helical=None, proofs=None
-) -> dict:
-    pair, kin = pitch.pair, pitch.kinematics
-    n1, n2 = pair.lobes
-    data = {
-        "gears": [_gear_block(pitch.gears[0], n1), _gear_block(pitch.gears[1], n2)],
-        "pair": {
-            "center_distance": pair.center_distance,
-            "lobes": [n1, n2],
-            "closure_error": pair.closure_error,
-            "rolling_residual": pair.rolling_residual,
-            "contact_residual": pair.contact_residual,
-            "slip_residual": pair.slip_residual,
-            "ratio_min": pitch.ratio_range[0],
-            "ratio_max": pitch.ratio_range[1],
-            "mate_shape_difference": pitch.mate_shape_difference,
-        },
-        "kinematics": {
-            "driver": (params.gear1_name, params.gear2_name)[kin.driver - 1],
-            "driver_rpm": params.driver_rpm,
-            "driver_speed": kin.driver_speed,
-            "follower_speed_min": float(np.min(kin.speed)),
-            "follower_speed_max": float(np.max(kin.speed)),
-            "follower_acceleration_min": float(np.min(kin.acceleration)),
-            "follower_acceleration_max": float(np.max(kin.acceleration)),
-        },
-    }
-    if teeth is not None:
-        for i, overcut in enumerate(teeth.overcut):
-            data["gears"][i]["teeth"] = _teeth_block(teeth, i)
-            data["gears"][i]["rack_overcut"] = None if overcut is None else overcut.as_dict()
-        mesh = teeth.mesh
-        data["pair"]["teeth"] = {
-            "identical_parts": teeth.plan.identical and helical is None,
-            "identical_deviation": teeth.identical_deviation,
-            "backlash_design": params.teeth.backlash,
-            "clearance": params.teeth.clearance,
-            "backlash_min": teeth.backlash_range[0],
-            "backlash_max": teeth.backlash_range[1],
-            "contact": teeth.contact.as_dict(),
-            "mesh": {
-                "meshes": mesh.meshes,
-                "positions": mesh.positions,
-                "max_overlap": mesh.max_overlap,
-                "allowed_overlap": mesh.allowed_overlap,
-                "worst_phi": mesh.worst_phi,
-                "nudge": mesh.nudge,
-                "nudged_min_overlap": mesh.nudged_min_overlap,
-                "max_depth": mesh.max_depth,
-                "allowed_depth": mesh.allowed_depth,
-                "depth_at": dict(zip(("gear1_angle", "tooth", "height"), mesh.depth_at)),
-            },
-            "relief": None if teeth.relief is None else {"gear": pitch.gears[0].name, **vars(teeth.relief)},
-        }
-    if helical is not None:
-        data["pair"]["teeth"]["helix"] = _helix_block(params, teeth, helical, proofs)
-    if pitch.claim is not None:
-        c = pitch.claim
-        data["claim"] = {
-            "source": params.claim.source,
-            "center_distance": c.center_distance,
-            "holds": c.holds,
-            "mate_turn": c.turn,
-            "shortfall": c.shortfall,
-            "shape_difference": c.shape_difference,
-        }
-    if pitch.walker is not None:
-        data["walker"] = dict(vars(pitch.walker))
-    if pitch.motion is not None or getattr(params.gear1, "smoothing", 0) > 0:
-        from .pair_motion import fitted_blocks
-
-        fitted_blocks(data, params, pitch.gears[0].curve, pitch.motion)
-    return data
 
 
 def _normal_module_note(params: GearPairParams, pitch: PairDesign, teeth: ToothedPairData):
@@ -275,91 +114,62 @@ def _pressure_angle(params: GearPairParams, pitch: PairDesign, alpha: float) -> 
     )
 
 
-def _summary(pitch: PairDesign, teeth: ToothedPairData | None, findings: int, params: GearPairParams) -> str:
-    pair = pitch.pair
-    text = (
-        f"E = {pair.center_distance:.6f} mm, closure {pair.closure_error:.1e} rad, "
-        f"rolling {pair.rolling_residual:.1e} mm"
+def _teeth(params: GearPairParams, pitch: PairDesign, tol, b):
+    """The pair's teeth (None without), its twisted sections and their mesh proofs (None unless
+    helical): cut, checked for work and bore, and proven."""
+    if params.teeth is None:
+        return None, None, None
+    out = params.output
+    helical = proofs = None
+    beta = params.teeth.helix_angle
+    if beta > 0:  # only helical pairs pay for the sections' module
+        from ..teeth.helical import pair_sections, section_mesh
+        from ..teeth.helix import transverse_teeth
+    spec = transverse_teeth(params.teeth, beta) if beta > 0 else params.teeth
+    module = spec.module or pitch.gears[0].perimeter / (math.pi * spec.count)
+    check_teeth_work([(g.perimeter / (math.pi * module), module) for g in pitch.gears], out.tolerance)
+    alike = pitch.mate_shape_difference is not None and pitch.mate_shape_difference < 1e-6
+    turn, fillet = pitch.mate_rotation if alike else None, params.process.tool_radius()
+    teeth = cut_pair(pitch.pair, pitch.gears, spec, mate_rotation=turn, tol=tol, budget=b, min_fillet=fillet)
+    if beta > 0:
+        for i, g in enumerate(pitch.gears):  # the bore first: cheap, where the sections are not
+            check_bore(g.name, teeth.fine[i], params.bore, out.tolerance, teeth.plan.module)
+        helical = pair_sections(
+            teeth,
+            helix_angle=beta,
+            herringbone=params.teeth.herringbone,
+            face_width=out.thickness,
+            tolerance=out.tolerance,
+            clearance=params.teeth.clearance,
+            chamfer=out.chamfer,
+            names=(pitch.gears[0].name, pitch.gears[1].name),
+            check_work=partial(check_section_work, thickness=out.thickness, helix_angle=beta),
+        )
+        play = designed_play(backlash=spec.backlash, clearance=spec.clearance, pressure_angle=spec.pressure_angle)
+        proofs = section_mesh(pitch.pair, helical, teeth.frames, tolerance=out.tolerance, play=play)
+        if params.teeth.module is not None:  # say why the count is not what module alone suggests
+            teeth = replace(teeth, findings=(*teeth.findings, _normal_module_note(params, pitch, teeth)))
+    return teeth, helical, proofs
+
+
+def _kinematics_table(pitch: PairDesign) -> Table:
+    """``kinematics.csv``: the follower's angle, ratio, speed and acceleration against the driver's."""
+    kin = pitch.kinematics
+    return Table(
+        "kinematics.csv",
+        ("driver_angle_rad", "follower_angle_rad", "ratio", "follower_speed_rad_s", "follower_acceleration_rad_s2"),
+        np.column_stack([kin.driver_angle, kin.follower_angle, kin.ratio, kin.speed, kin.acceleration]),
     )
-    if pitch.motion is not None:
-        text += ", " + motion_phrase(motion_block(pitch.motion, params))
-    if teeth is not None:
-        z1, z2 = teeth.plan.teeth
-        text += f", {z1}/{z2} teeth m = {teeth.plan.module:.4f}, {'meshes' if teeth.mesh.meshes else 'INTERFERES'}"
-    return f"{text}, {findings} warning(s)"
 
 
-def _details(pitch: PairDesign, teeth: ToothedPairData | None) -> list[str]:
-    lines = [
-        f"{g.name}: r {g.r_min:.4f}…{g.r_max:.4f} mm, perimeter {g.perimeter:.6f} mm, "
-        f"{'convex' if g.shape.convex else 'not convex'}, min radius of curvature {g.shape.min_curvature_radius:.4g} mm"
-        + (f" (concave {g.shape.min_concave_radius:.4g} mm)" if math.isfinite(g.shape.min_concave_radius) else "")
-        for g in pitch.gears
-    ]
-    lo, hi = pitch.ratio_range
-    one, two = (g.name for g in pitch.gears)
-    line = f"ratio ω2/ω1 = ω({two})/ω({one}) {lo:.6g}…{hi:.6g} against {one}'s angle"
-    if pitch.kinematics.driver == 2:  # the kinematics are per driver turn: say the inverse too
-        line += f"; ω({one})/ω({two}) {1 / hi:.6g}…{1 / lo:.6g} per driver ({two}) turn, as charted"
-    lines.append(line)
-    if pitch.walker is not None:
-        w = pitch.walker
-        lines.append(
-            f"walker: i (paper's method) = {w.i_paper:.6f}, i (rolls and closes) = {w.i:.6f}"
-            + (f", i (blended) = {w.i_blended:.6f}" if w.blend_width else "")
-        )
-    if teeth is not None:
-        for g, t in zip(pitch.gears, teeth.gears):
-            lines.append(
-                f"{g.name}: {t.teeth} teeth, thinnest tip land {t.tip_thickness.min():.3f} mm, "
-                f"{'undercut' if t.undercut else 'no undercut'}, {t.outline.vertex_count} vertices"
-            )
-        lines += [o.sentence(g.name) for g, o in zip(pitch.gears, teeth.overcut) if o is not None]
-        lo, hi = teeth.backlash_range
-        lines.append(
-            f"mesh: max overlap {teeth.mesh.max_overlap:.3g} mm² (allowed {teeth.mesh.allowed_overlap:.3g}), "
-            f"depth {teeth.mesh.max_depth * 1e3:.3g} µm (allowed {teeth.mesh.allowed_depth * 1e3:.3g}), "
-            f"backlash {lo:.4f}…{hi:.4f} mm; {teeth.contact.sentence()}"
-        )
-    return lines
-
-
-def design(params: GearPairParams) -> Draft:
+def design(params: GearPairParams) -> Draft[GearPairDetail]:
     """Design, tooth, make and prove the pair a profile describes."""
     out = params.output
     tol = replace(DEFAULT, outline_mm=out.tolerance)
-    fine_tol = budget(out.tolerance).fine
+    b = budget(out.tolerance)  # made once for the design and passed down
+    fine_tol = b.fine
     pitch = pitch_design(params, tol=tol)
-    teeth = helical = proofs = None
-    if params.teeth is not None:
-        beta = params.teeth.helix_angle
-        if beta > 0:  # only helical pairs pay for the sections' module
-            from ..teeth.helical import pair_sections, section_mesh
-            from ..teeth.helix import transverse_teeth
-        spec = transverse_teeth(params.teeth, beta) if beta > 0 else params.teeth
-        module = spec.module or pitch.gears[0].perimeter / (math.pi * spec.count)
-        check_teeth_work([(g.perimeter / (math.pi * module), module) for g in pitch.gears], out.tolerance)
-        alike = pitch.mate_shape_difference is not None and pitch.mate_shape_difference < 1e-6
-        turn, fillet = pitch.mate_rotation if alike else None, params.process.tool_radius()
-        teeth = cut_pair(pitch.pair, pitch.gears, spec, mate_rotation=turn, tol=tol, min_fillet=fillet)
-        if beta > 0:
-            for i, g in enumerate(pitch.gears):  # the bore first: cheap, where the sections are not
-                check_bore(g.name, teeth.fine[i], params.bore, out.tolerance, teeth.plan.module)
-            helical = pair_sections(
-                teeth,
-                helix_angle=beta,
-                herringbone=params.teeth.herringbone,
-                face_width=out.thickness,
-                tolerance=out.tolerance,
-                clearance=params.teeth.clearance,
-                chamfer=out.chamfer,
-                names=(pitch.gears[0].name, pitch.gears[1].name),
-                check_work=partial(check_section_work, thickness=out.thickness, helix_angle=beta),
-            )
-            play = designed_play(backlash=spec.backlash, clearance=spec.clearance, pressure_angle=spec.pressure_angle)
-            proofs = section_mesh(pitch.pair, helical, teeth.frames, tolerance=out.tolerance, play=play)
-            if params.teeth.module is not None:  # say why the count is not what module alone suggests
-                teeth = replace(teeth, findings=(*teeth.findings, _normal_module_note(params, pitch, teeth)))
+    teeth, helical, proofs = _teeth(params, pitch, tol, b)
     pitch_fine = [polyline(g.curve, fine_tol) for g in pitch.gears]
     wall = teeth.plan.module if teeth is not None else 0.0
     # a twisted solid's caps are its end sections: the chamfer must fit them too (as the loft checks)
@@ -385,29 +195,23 @@ def design(params: GearPairParams) -> Draft:
         findings += _pressure_angle(params, pitch, teeth.gears[0].rack.params.pressure_angle)
     cycle = pitch.pair.cycle
     phi1 = np.linspace(0.0, cycle, frames_for(cycle, teeth.plan.teeth[0] if teeth else None), endpoint=False)
-    kin = pitch.kinematics
-    table = Table(
-        "kinematics.csv",
-        ("driver_angle_rad", "follower_angle_rad", "ratio", "follower_speed_rad_s", "follower_acceleration_rad_s2"),
-        np.column_stack([kin.driver_angle, kin.follower_angle, kin.ratio, kin.speed, kin.acceleration]),
-    )
-    rings = tuple(decimate(r, budget(out.tolerance).fit) for r in pitch_fine)
+    rings = tuple(decimate(r, b.fit) for r in pitch_fine)
     return Draft(
         params=params,
         mechanism="gear-pair",
-        summary=_summary(pitch, teeth, len(findings), params),
+        summary=summary(pitch, teeth, len(findings), params),
         findings=findings,
         parts=tuple(parts),
         placements=placements,
         contacts=(contact,),
         proofs=meshes,
-        data={**_report_data(params, pitch, teeth, helical, proofs), **papers.data},
+        data={**report_data(params, pitch, teeth, helical, proofs), **papers.data},
         sections={} if helical is None else {p.name: g for p, g in zip(parts, helical.gears)},
         units=UNITS,
         detail=GearPairDetail(pitch, teeth, rings, papers),
-        details=tuple(_details(pitch, teeth)),
+        details=tuple(details(pitch, teeth)),
         motion=Motion((parts[0].name, parts[1].name), np.column_stack([-phi1, pitch.pair.angle_map(phi1)])),
-        tables=(table,),
+        tables=(_kinematics_table(pitch),),
         where="pair",
         placed="meshing parts touch"
         if papers.shoe is None

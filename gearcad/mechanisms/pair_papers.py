@@ -16,6 +16,7 @@ from ..pitch import walker as W
 from ..pitch import walker_polar as WP
 from ..profiles import EllipseParams, GearPairParams, WalkerParams
 from ..tolerances import budget
+from .chart_data import Blocks, ChartData, ShoeChart, WalkerPitchChart
 from .pair_pitch import PairDesign
 
 __all__ = ["PaperExtras", "paper_extras", "SHOE_POSES"]
@@ -29,9 +30,10 @@ class PaperExtras:
     """Report blocks, findings and chart data the papers add to a pair; the shoe's ring (mm,
     counter-clockwise, crank pin B1 at the origin) for the walker."""
 
-    data: dict
+    data: Blocks
     findings: tuple[Finding, ...]
-    charts: dict
+    charts: dict[str, ChartData]
+    """What the papers' charts are drawn from, by what they show (``gear_pair`` names the files)."""
     shoe: np.ndarray | None = None
     geometry: W.WalkerGeometry | None = None
 
@@ -69,9 +71,9 @@ def paper_extras(params: GearPairParams, pitch: PairDesign) -> PaperExtras:
             )
         charts = {
             "walker_speed": speed,
-            "walker_pitch": (WP.paper_polar(geometry, pitch.walker.i_paper), WP.pair_polar(pitch.pair)),
+            "walker_pitch": WalkerPitchChart(WP.paper_polar(geometry, pitch.walker.i_paper), WP.pair_polar(pitch.pair)),
             # the shoe standing: (hub angle, turn, crank pin B1 from the hub) at each of SHOE_POSES
-            "shoe": (ring, [(phi, phi, S.crank_pin(geometry, phi)[0]) for phi in SHOE_POSES], geometry.K),
+            "shoe": ShoeChart(ring, [(phi, phi, S.crank_pin(geometry, phi)[0]) for phi in SHOE_POSES], geometry.K),
         }
         summary = {k: {f: v[f] for f in v if f != "v"} for k, v in speed.items() if isinstance(v, dict)}
         return PaperExtras({"shoe": shoe, "vehicle_speed": summary}, tuple(found), charts, ring, geometry)

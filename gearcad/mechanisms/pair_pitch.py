@@ -256,6 +256,40 @@ def synthesise(params: GearPairParams, tol: Tolerances = DEFAULT):
     return curve, law, pair
 
 
+def _claim(params: GearPairParams, curve, pair, gears, tol: Tolerances):
+    """The profile's claim of an identical mate at its centre distance, checked (None without a
+    claim), and a finding for each way it fails."""
+    if params.claim is None:
+        return None, []
+    findings: list[Finding] = []
+    if params.claim.center_distance <= gears[0].r_max:
+        raise DesignError(
+            f"claim.center_distance = {params.claim.center_distance:g}: must exceed {params.gear1_name}'s "
+            f"largest radius {gears[0].r_max:.6g} mm (the mate's pivot would lie on or inside the driver)"
+        )
+    claim = identical_mate_claim(curve, params.claim.center_distance, tol=tol)
+    if not claim.holds:
+        src = f" ({params.claim.source})" if params.claim.source else ""
+        findings.append(
+            finding(
+                "not-closed",
+                f"claim{src}: at E = {claim.center_distance:g} mm the mate falls short by "
+                f"{math.degrees(claim.shortfall):.4f}° per turn ({claim.shortfall:.6g} rad); the pair "
+                f"built closes at E = {pair.center_distance:.9g} mm",
+                "claim",
+            )
+        )
+        findings.append(
+            finding(
+                "not-identical",
+                f"claim{src}: an identical mate at E = {claim.center_distance:g} mm misses the "
+                f"contact by up to {claim.shape_difference:.4f} mm; the built mate is computed",
+                "claim",
+            )
+        )
+    return claim, findings
+
+
 def pitch_design(params: GearPairParams, *, tol: Tolerances = DEFAULT) -> PairDesign:
     """Build and check the pitch curves of the pair a profile describes."""
     curve, law, pair = synthesise(params, tol)
@@ -281,33 +315,8 @@ def pitch_design(params: GearPairParams, *, tol: Tolerances = DEFAULT) -> PairDe
     k = pair.angle_map.slope(phi)
     omega = params.driver_rpm * TWO_PI / 60
     kin = kinematics(pair, driver=params.driver, speed=omega)
-    claim = None
-    if params.claim is not None:
-        if params.claim.center_distance <= gears[0].r_max:
-            raise DesignError(
-                f"claim.center_distance = {params.claim.center_distance:g}: must exceed {params.gear1_name}'s "
-                f"largest radius {gears[0].r_max:.6g} mm (the mate's pivot would lie on or inside the driver)"
-            )
-        claim = identical_mate_claim(curve, params.claim.center_distance, tol=tol)
-        if not claim.holds:
-            src = f" ({params.claim.source})" if params.claim.source else ""
-            findings.append(
-                finding(
-                    "not-closed",
-                    f"claim{src}: at E = {claim.center_distance:g} mm the mate falls short by "
-                    f"{math.degrees(claim.shortfall):.4f}° per turn ({claim.shortfall:.6g} rad); the pair "
-                    f"built closes at E = {pair.center_distance:.9g} mm",
-                    "claim",
-                )
-            )
-            findings.append(
-                finding(
-                    "not-identical",
-                    f"claim{src}: an identical mate at E = {claim.center_distance:g} mm misses the "
-                    f"contact by up to {claim.shape_difference:.4f} mm; the built mate is computed",
-                    "claim",
-                )
-            )
+    claim, found = _claim(params, curve, pair, gears, tol)
+    findings += found
     walker = None
     if isinstance(law, W.RatioLaw):
         walker, extra = _walker(params, law, pair, kin, tol)

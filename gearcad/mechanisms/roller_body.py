@@ -21,11 +21,12 @@ from ..teeth.gear import cut_teeth
 from ..teeth.rack import Rack, RackParams
 from ..tolerances import budget
 from .budget import COARSEST_TOLERANCE, POINT_BUDGET, check_backlash, check_teeth_work
+from .chart_data import Blocks
 from .finish import Contact, Draft, PartSpec
 from .parts import Placement
 from .roller_charts import charts as _charts
 
-__all__ = ["RollerBodyDetail", "design", "PAPER_M"]
+__all__ = ["RollerBodyDetail", "ToothedBody", "design", "PAPER_M"]
 
 TWO_PI = 2 * math.pi
 PAPER_M = (3, 6, 9, 12, 15)
@@ -60,7 +61,43 @@ def _limits(p: RollerBodyParams) -> dict[int, tuple[float, float]]:
     }
 
 
-def _toothed_body(osc: RB.Oscillation, p: RollerBodyParams) -> dict:
+@dataclass(frozen=True)
+class ToothedBody:
+    """The body's teeth with the rollers as pinions: the report's numbers (:meth:`block`) and the
+    rings and turns the parts are drawn from."""
+
+    body_teeth: int
+    roller_teeth: int
+    module: float
+    backlash: float
+    roller_radius: float
+    """Units of R, adjusted so that the body carries a whole number of teeth."""
+    requested_roller_radius: float
+    body_undercut: bool
+    roller_undercut: bool
+    body_ring: np.ndarray
+    roller_ring: np.ndarray
+    roller_turns: tuple[float, float, float]
+    """Each roller's turn (rad) that meshes it with the body where it stands."""
+    pitch: ParametricFrame
+    """The body's pitch curve (mm, counter-clockwise arc)."""
+
+    def block(self) -> dict:
+        """The report's ``teeth`` block."""
+        names = (
+            "body_teeth",
+            "roller_teeth",
+            "module",
+            "backlash",
+            "roller_radius",
+            "requested_roller_radius",
+            "body_undercut",
+            "roller_undercut",
+        )
+        return {name: getattr(self, name) for name in names}
+
+
+def _toothed_body(osc: RB.Oscillation, p: RollerBodyParams) -> ToothedBody:
     """Teeth on the body, the rollers as pinions of pitch radius r (one generating rack).
 
     The rollers' count fixes the module (m = 2r/z_r); the body's contour is the roller path P
@@ -99,20 +136,20 @@ def _toothed_body(osc: RB.Oscillation, p: RollerBodyParams) -> dict:
         # body space centre `space` pitches behind the contact needs a roller tooth centre as far
         # ahead; the roller's spaces sit at arc r·(angle − turn) = pitch/2 + j·pitch
         turns.append(theta - (rack.pitch / 2 + ((0.5 - space) % 1.0) * rack.pitch) / (r * p.scale))
-    return {
-        "body_teeth": z_b,
-        "roller_teeth": z_r,
-        "module": module,
-        "backlash": p.backlash,
-        "roller_radius": r,
-        "requested_roller_radius": p.roller_radius,
-        "body_undercut": body.undercut,
-        "roller_undercut": roller.undercut,
-        "_body_ring": body.outline.outer,
-        "_roller_ring": roller.outline.outer,
-        "_roller_turns": turns,
-        "_pitch": frame,
-    }
+    return ToothedBody(
+        body_teeth=z_b,
+        roller_teeth=z_r,
+        module=module,
+        backlash=p.backlash,
+        roller_radius=r,
+        requested_roller_radius=p.roller_radius,
+        body_undercut=body.undercut,
+        roller_undercut=roller.undercut,
+        body_ring=body.outline.outer,
+        roller_ring=roller.outline.outer,
+        roller_turns=tuple(turns),
+        pitch=frame,
+    )
 
 
 def _body_ring(osc: RB.Oscillation, p: RollerBodyParams, r: float) -> tuple[np.ndarray, np.ndarray]:
@@ -144,12 +181,9 @@ def _body_ring(osc: RB.Oscillation, p: RollerBodyParams, r: float) -> tuple[np.n
     return body, RB.roller_path(osc, tau)[::-1] * p.scale
 
 
-def design(p: RollerBodyParams) -> Draft:
-    """The body, its three rollers and their proof, from a roller-body profile."""
-    osc = _oscillation(p)
+def _checked(p: RollerBodyParams, osc: RB.Oscillation, limits: dict) -> tuple[bool, bool, list[Finding]]:
+    """The contour simple (or a one-line refusal) and whether it is convex."""
     r = p.roller_radius
-    findings: list[Finding] = []
-    limits = _limits(p)
     simple, convex = RB.is_simple(osc, r=r), RB.is_convex(osc, r=r)
     if not simple:
         if p.direction == "series":
@@ -159,69 +193,55 @@ def design(p: RollerBodyParams) -> Draft:
             )
         limit = f" (largest simple amplitude for m = {p.m}: {limits[p.m][1]:.6f})" if limits else ""
         raise DesignError(f"body.amplitude = {p.amplitude:g}: the body contour crosses itself or has cusps{limit}")
-    if not convex:
-        findings.append(finding("concave", "the body contour has concave stretches (it is not an 'oval')", "body"))
-    # kinematics of the centre at uniform rotation, numerically over one turn, against eq. 11
+    concave = "the body contour has concave stretches (it is not an 'oval')"
+    return simple, convex, [] if convex else [finding("concave", concave, "body")]
+
+
+def _body_block(p: RollerBodyParams, limits: dict, simple: bool, convex: bool) -> Blocks:
+    """The report's ``body`` block: the profile's body and its contour's limits at its m."""
+    return {
+        "scale": p.scale,
+        "roller_radius": p.roller_radius,
+        "direction": p.direction,
+        "amplitude": p.amplitude,
+        "m": p.m,
+        "convex": convex,
+        "simple": simple,
+        "amplitude_limit_convex": limits[p.m][0] if limits else None,
+        "amplitude_limit_simple": limits[p.m][1] if limits else None,
+    }
+
+
+def _centre(p: RollerBodyParams, osc: RB.Oscillation) -> Blocks:
+    """The kinematics of the centre at uniform rotation, numerically over one turn, against eq. 11."""
     w = p.rpm * TWO_PI / 60
     t = np.linspace(0.0, TWO_PI / w, 20001)
     _, vel, acc = RB.point_motion(osc, 0.0, 0.0, w=w, t=t)
     vmax, amax = float(np.max(np.hypot(*vel.T))) * p.scale, float(np.max(np.hypot(*acc.T))) * p.scale
-    data = {
-        "body": {
-            "scale": p.scale,
-            "roller_radius": r,
-            "direction": p.direction,
-            "amplitude": p.amplitude,
-            "m": p.m,
-            "convex": convex,
-            "simple": simple,
-            "amplitude_limit_convex": limits[p.m][0] if limits else None,
-            "amplitude_limit_simple": limits[p.m][1] if limits else None,
-        },
-        "centre": {"rpm": p.rpm, "w": w, "v_max": vmax, "a_max": amax},
-    }
+    centre: Blocks = {"rpm": p.rpm, "w": w, "v_max": vmax, "a_max": amax}
     if p.direction == "horizontal":
         v_closed, a_closed = RB.centre_extremes(p.amplitude * p.scale, p.m, w)
-        data["centre"].update(v_max_closed_form=v_closed, a_max_closed_form=a_closed)
-    if limits:
-        ms = np.array(PAPER_M)
-        conv = np.array([limits[m][0] for m in ms])
-        k, logc = np.polyfit(np.log(ms), np.log(conv), 1)
-        data["limits"] = {
-            "m": ms.tolist(),
-            "convex": conv.tolist(),
-            "simple": [limits[m][1] for m in ms],
-            "paper_by_eye": [0.15, 0.05, 0.025, 0.01, 0.005],
-            "paper_regression": [C.EQ4["coefficient"] * m ** C.EQ4["exponent"] for m in ms],
-            "power_law_convex": {"coefficient": float(math.exp(logc)), "exponent": float(k)},
-        }
-    # the paper's printed formulas and statements, each against an independent computation
-    checks = C.kinematics_checks(a=p.amplitude * p.scale, m=p.m, w=w, radius=p.scale) if p.direction != "series" else []
-    checks += C.amplitude_law_checks() + [LM.radius_claim_check(), LM.nodal_points_check()]
-    data["paper_checks"] = checks
-    findings += [finding(c["code"], c["message"], "body") for c in checks if not c["holds"]]
-    if p.direction != "series":
-        radii = sorted({*LM.PAPER_RADII, p.roller_radius})
-        data["limits_vs_r"] = LM.amplitude_limit_table((p.direction,), radii=radii).as_dict()
-    summary = (
-        f"{'convex' if convex else 'not convex'}, "
-        + (f"amplitude limits convex {limits[p.m][0]:.5f} / simple {limits[p.m][1]:.5f} R, " if limits else "")
-        + f"centre Vmax {vmax:.4g} mm/s"
-    )
-    teeth = _toothed_body(osc, p) if p.roller_teeth else None
-    if teeth is not None:
-        data["teeth"] = {k: v for k, v in teeth.items() if not k.startswith("_")}
-        summary += f", {teeth['body_teeth']}/{teeth['roller_teeth']} teeth m = {teeth['module']:.4f}"
-        if teeth["roller_radius"] != r:
-            findings.append(
-                finding(
-                    "teeth-fit",
-                    f"roller radius {r:g} R adjusted to {teeth['roller_radius']:.6f} R so that the body carries "
-                    f"a whole number of teeth ({teeth['body_teeth']}) of the rollers' module",
-                    "body",
-                )
-            )
-        r = teeth["roller_radius"]
+        centre.update(v_max_closed_form=v_closed, a_max_closed_form=a_closed)
+    return centre
+
+
+def _limits_block(limits: dict) -> Blocks:
+    """The exact amplitude limits at the paper's m, beside its by-eye ones and its regression."""
+    ms = np.array(PAPER_M)
+    conv = np.array([limits[m][0] for m in ms])
+    k, logc = np.polyfit(np.log(ms), np.log(conv), 1)
+    return {
+        "m": ms.tolist(),
+        "convex": conv.tolist(),
+        "simple": [limits[m][1] for m in ms],
+        "paper_by_eye": [0.15, 0.05, 0.025, 0.01, 0.005],
+        "paper_regression": [C.EQ4["coefficient"] * m ** C.EQ4["exponent"] for m in ms],
+        "power_law_convex": {"coefficient": float(math.exp(logc)), "exponent": float(k)},
+    }
+
+
+def _parts(p: RollerBodyParams, osc: RB.Oscillation, r: float, teeth: ToothedBody | None):
+    """The body and the roller (plain or toothed), the three rollers placed, and their contacts."""
     fine = budget(p.output.tolerance).fine
     body, path = _body_ring(osc, p, r)
     roller_circle = circle_ring(r * p.scale, fine)
@@ -234,13 +254,56 @@ def design(p: RollerBodyParams) -> Draft:
         contacts = tuple(Contact(0, k, length=TWO_PI * r * p.scale, touch="rolling") for k in (1, 2, 3))
     else:
         parts = (
-            PartSpec("body", teeth["_body_ring"], bore=p.bore, wall=teeth["module"], marks=(body,)),
-            PartSpec("roller", teeth["_roller_ring"], bore=axle, marks=(roller_circle,)),
+            PartSpec("body", teeth.body_ring, bore=p.bore, wall=teeth.module, marks=(body,)),
+            PartSpec("roller", teeth.roller_ring, bore=axle, marks=(roller_circle,)),
         )
-        turns = teeth["_roller_turns"]
-        contacts = tuple(Contact(0, k, module=teeth["module"], radius=r * p.scale, touch="mesh") for k in (1, 2, 3))
+        turns = list(teeth.roller_turns)
+        contacts = tuple(Contact(0, k, module=teeth.module, radius=r * p.scale, touch="mesh") for k in (1, 2, 3))
     centres = [(p.scale * math.sin(a), p.scale * math.cos(a)) for a in (0.0, TWO_PI / 3, 2 * TWO_PI / 3)]
     placements = (Placement("body"),) + tuple(Placement("roller", a, c) for a, c in zip(turns, centres))
+    return parts, placements, contacts
+
+
+def design(p: RollerBodyParams) -> Draft[RollerBodyDetail]:
+    """The body, its three rollers and their proof, from a roller-body profile."""
+    osc = _oscillation(p)
+    r = p.roller_radius
+    limits = _limits(p)
+    simple, convex, findings = _checked(p, osc, limits)
+    data: Blocks = {"body": _body_block(p, limits, simple, convex), "centre": _centre(p, osc)}
+    if limits:
+        data["limits"] = _limits_block(limits)
+    # the paper's printed formulas and statements, each against an independent computation
+    w = data["centre"]["w"]
+    checks = C.kinematics_checks(a=p.amplitude * p.scale, m=p.m, w=w, radius=p.scale) if p.direction != "series" else []
+    checks += C.amplitude_law_checks() + [LM.radius_claim_check(), LM.nodal_points_check()]
+    data["paper_checks"] = checks
+    findings += [finding(c["code"], c["message"], "body") for c in checks if not c["holds"]]
+    if p.direction != "series":
+        radii = sorted({*LM.PAPER_RADII, p.roller_radius})
+        # both directions for limits_vs_r.png (0.9 CPU-s more than the profile's own: only with charts)
+        directions = ("horizontal", "vertical") if p.output.charts else (p.direction,)
+        data["limits_vs_r"] = LM.amplitude_limit_table(directions, radii=radii).as_dict()
+    summary = (
+        f"{'convex' if convex else 'not convex'}, "
+        + (f"amplitude limits convex {limits[p.m][0]:.5f} / simple {limits[p.m][1]:.5f} R, " if limits else "")
+        + f"centre Vmax {data['centre']['v_max']:.4g} mm/s"
+    )
+    teeth = _toothed_body(osc, p) if p.roller_teeth else None
+    if teeth is not None:
+        data["teeth"] = teeth.block()
+        summary += f", {teeth.body_teeth}/{teeth.roller_teeth} teeth m = {teeth.module:.4f}"
+        if teeth.roller_radius != r:
+            findings.append(
+                finding(
+                    "teeth-fit",
+                    f"roller radius {r:g} R adjusted to {teeth.roller_radius:.6f} R so that the body carries "
+                    f"a whole number of teeth ({teeth.body_teeth}) of the rollers' module",
+                    "body",
+                )
+            )
+        r = teeth.roller_radius
+    parts, placements, contacts = _parts(p, osc, r, teeth)
     return Draft(
         params=p,
         mechanism="roller-body",
@@ -251,7 +314,7 @@ def design(p: RollerBodyParams) -> Draft:
         contacts=contacts,
         data=data,
         units=UNITS,
-        detail=RollerBodyDetail(osc, r, None if teeth is None else teeth["_pitch"]),
+        detail=RollerBodyDetail(osc, r, None if teeth is None else teeth.pitch),
         charts=_charts(osc, p, r, data),
         where="body",
     )

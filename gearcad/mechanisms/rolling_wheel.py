@@ -13,6 +13,7 @@ from ..geometry.rings import circle_ring
 from ..profiles import RollingWheelParams
 from ..tolerances import budget
 from ..trains import rack_drive as RD
+from .chart_data import Blocks
 from .finish import Contact, Draft, PartSpec
 from .parts import Placement
 
@@ -43,25 +44,19 @@ def _motion(d: RD.RackDrive, p: RollingWheelParams, w1: float) -> RollingWheelDe
         zero = np.zeros_like(phi1)
         return RollingWheelDetail(phi1, phi2, phi2.copy(), zero + w1 * p.r / (2 * p.R), zero, zero)
     beta_end = float(RD.inclination(d, p.L - p.travel))
-    phi1 = np.linspace(0.0, RD._contour_state(d, beta_end)[0], 401)
+    phi1 = np.linspace(0.0, RD.contour_state(d, beta_end)[0], 401)
     by_contour = RD.law_by_contour(d, phi1)
     by_rates = RD.law_by_rates(d, phi1)
     w2, w3, e2 = RD.rates(d, p.L - p.R * by_contour, omega1=w1)
     return RollingWheelDetail(phi1, by_contour, by_rates, w2, w3, e2)
 
 
-def design(p: RollingWheelParams) -> Draft:
-    """The drive's geometry and motion, checked two ways, and its two wheels as parts."""
-    d = RD.RackDrive(p.r, p.R, p.L, p.H)
-    beta0 = float(RD.inclination(d))
-    l0 = float(RD.rack_length(d))
-    beta_end = float(RD.inclination(d, p.L - p.travel))
-    w1 = p.driver_rpm * TWO_PI / 60
-    motion = _motion(d, p, w1)
-    difference = float(np.max(np.abs(motion.by_contour - motion.by_rates)))
-    w2, w3, e2 = motion.omega2, motion.omega3, motion.eps2
+def _printed_formulas(
+    d: RD.RackDrive, p: RollingWheelParams, motion: RollingWheelDetail, w1: float, l0: float, paper_l: float
+) -> list:
+    """A finding for each of the paper's printed formulas that differs from what it derives from."""
+    e2 = motion.eps2
     findings = []
-    paper_l = RD.paper_rack_length(d)
     if abs(paper_l - l0) > 1e-9 * l0:
         findings.append(
             finding(
@@ -83,23 +78,16 @@ def design(p: RollingWheelParams) -> Draft:
                 "drive",
             )
         )
-    if difference > 1e-9:
-        findings.append(finding("not-closed", f"the two motion laws differ by {difference:.3g} rad", "drive"))
-    along = p.L - p.R * motion.by_contour  # horizontal distances over the travel
-    checks = {"eq10": RD.eq10_check(d, along), "projections": RD.projection_check(d, along, omega1=w1)}
-    for check in checks.values():
-        if not check.get("holds", True) and check.get("code"):
-            findings.append(finding(check["code"], check["message"], "drive"))
-    paper_beta = RD.paper_inclination(d) if p.R != p.r else None
-    data = {
+    return findings
+
+
+def _data(d, p: RollingWheelParams, motion: RollingWheelDetail, w1: float, geometry: Blocks, checks: dict) -> Blocks:
+    """The report's blocks: the drive as given, its geometry, its motion over the travel, the checks."""
+    w2, w3, e2 = motion.omega2, motion.omega3, motion.eps2
+    difference = float(np.max(np.abs(motion.by_contour - motion.by_rates)))
+    return {
         "drive": {"r": p.r, "R": p.R, "L": p.L, "H": p.H, "travel": p.travel, "driver_rpm": p.driver_rpm},
-        "geometry": {
-            "beta_start": beta0,
-            "beta_end": beta_end,
-            "rack_length_start": l0,
-            "rack_length_paper_eq2": paper_l,
-            "beta_paper_eq10": paper_beta,
-        },
+        "geometry": geometry,
         "motion": {
             "phi1_end": float(motion.phi1[-1]),
             "phi2_end": float(motion.by_contour[-1]),
@@ -115,6 +103,36 @@ def design(p: RollingWheelParams) -> Draft:
         },
         "checks": checks,
     }
+
+
+def design(p: RollingWheelParams) -> Draft[RollingWheelDetail]:
+    """The drive's geometry and motion, checked two ways, and its two wheels as parts."""
+    d = RD.RackDrive(p.r, p.R, p.L, p.H)
+    beta0 = float(RD.inclination(d))
+    l0 = float(RD.rack_length(d))
+    beta_end = float(RD.inclination(d, p.L - p.travel))
+    w1 = p.driver_rpm * TWO_PI / 60
+    motion = _motion(d, p, w1)
+    difference = float(np.max(np.abs(motion.by_contour - motion.by_rates)))
+    w2 = motion.omega2
+    paper_l = RD.paper_rack_length(d)
+    findings = _printed_formulas(d, p, motion, w1, l0, paper_l)
+    if difference > 1e-9:
+        findings.append(finding("not-closed", f"the two motion laws differ by {difference:.3g} rad", "drive"))
+    along = p.L - p.R * motion.by_contour  # horizontal distances over the travel
+    checks = {"eq10": RD.eq10_check(d, along), "projections": RD.projection_check(d, along, omega1=w1)}
+    for check in checks.values():
+        if not check.get("holds", True) and check.get("code"):
+            findings.append(finding(check["code"], check["message"], "drive"))
+    paper_beta = RD.paper_inclination(d) if p.R != p.r else None
+    geometry = {
+        "beta_start": beta0,
+        "beta_end": beta_end,
+        "rack_length_start": l0,
+        "rack_length_paper_eq2": paper_l,
+        "beta_paper_eq10": paper_beta,
+    }
+    data = _data(d, p, motion, w1, geometry, checks)
     out = p.output
     fine = budget(out.tolerance).fine
     # a plain wheel has no pitch curve to engrave apart from its cut: only the pivot is marked

@@ -18,7 +18,7 @@ from numpy.polynomial import chebyshev as C
 
 from ..errors import DesignError
 
-__all__ = ["Piecewise", "fit", "lobatto_points", "solve_monotone"]
+__all__ = ["coefficients", "Piecewise", "fit", "lobatto_points", "solve_monotone"]
 
 _MIN_POINTS = 16
 _MAX_POINTS = 128
@@ -32,7 +32,7 @@ def lobatto_points(n: int) -> np.ndarray:
     return np.cos(np.pi * np.arange(n + 1) / n)
 
 
-def _coefficients(values: np.ndarray) -> np.ndarray:
+def coefficients(values: np.ndarray) -> np.ndarray:
     """Chebyshev coefficients of the interpolant through values at the Lobatto points."""
     n = len(values) - 1
     # DCT-I as the real FFT of the even extension (numpy's FFT: no scipy.fft import at start-up)
@@ -54,7 +54,7 @@ def _fit_piece(func, lo: float, hi: float, rel_tol: float, depth: int = 0) -> li
     while True:
         if not np.all(np.isfinite(values)):
             raise DesignError(f"function is not finite on [{lo:.6g}, {hi:.6g}]")
-        c = _coefficients(values)
+        c = coefficients(values)
         scale = np.max(np.abs(c))
         tail = np.max(np.abs(c[-4:]))
         if tail <= rel_tol * scale or scale == 0.0:

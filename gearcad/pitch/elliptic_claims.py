@@ -132,6 +132,24 @@ def _check(code: str, claim: str, paper, computed, holds: bool, message: str) ->
     return {"code": code, "claim": claim, "paper": paper, "computed": computed, "holds": holds, "message": message}
 
 
+def _middle_check(a: float, b: float, omega1: float) -> dict:
+    """ω2/ω1 of type 1 over 90°…270°: eq. 8 is monotone on each half, extremes at the ends and 180°."""
+    c = math.sqrt(a * a - b * b)
+    w90, w180 = b * b / (a * a + c * c), (a - c) / (a + c)
+    phi = np.linspace(math.pi / 2, 3 * math.pi / 2, 2001)
+    speed = type1_closed_form(phi, a, b, omega1)[0] / omega1
+    mean = float((speed.sum() - 0.5 * (speed[0] + speed[-1])) / (len(speed) - 1))  # trapezoid, angle mean
+    return _check(
+        "paper-claim",
+        "from 90° to 270° ω2 is practically constant, about a tenth of ω1 (type 1)",
+        {"omega2_over_omega1": 0.1, "constant": True},
+        {"min": w180, "min_at_deg": 180.0, "max": w90, "max_at_deg": [90.0, 270.0], "mean": mean},
+        False,
+        f"from 90° to 270° ω2/ω1 runs from {w90:.4f} (90°, 270°) down to {w180:.4f} = (a − c)/(a + c) (180°) "
+        f"and back, a factor {w90 / w180:.2f}, mean {mean:.4f} (1/{1 / mean:.1f}): neither constant nor a tenth",
+    )
+
+
 def comparative_checks(a: float = PAPER_A, b: float = PAPER_B, omega1: float = PAPER_OMEGA1) -> list[dict]:
     """The paper's comparative statements, each with the true numbers (report-ready)."""
     c = math.sqrt(a * a - b * b)
@@ -144,11 +162,6 @@ def comparative_checks(a: float = PAPER_A, b: float = PAPER_B, omega1: float = P
     eps_oval, phi_oval = peak_acceleration(lambda p: kinematics(oval, speed=omega1, angle=p).acceleration)
     printed = PAPER_EPS_TABLE_MAX[0] / PAPER_EPS_TABLE_MAX[1]
     ratio = eps1 / eps_paper
-    # ω2/ω1 of type 1 over 90°…270°: eq. 8 is monotone on each half, extremes at the ends and 180°
-    w90, w180 = b * b / (a * a + c * c), (a - c) / (a + c)
-    phi = np.linspace(math.pi / 2, 3 * math.pi / 2, 2001)
-    speed = type1_closed_form(phi, a, b, omega1)[0] / omega1
-    mean = float((speed.sum() - 0.5 * (speed[0] + speed[-1])) / (len(speed) - 1))  # trapezoid, angle mean
     roll_w = kinematics(rolling, speed=omega1, angle=np.linspace(0, 2 * math.pi, 4001)).speed
     checks = [
         _check(
@@ -173,15 +186,7 @@ def comparative_checks(a: float = PAPER_A, b: float = PAPER_B, omega1: float = P
             f"{ratio:.2f} times; {eps1 / eps_roll:.2f} against the ellipse pair that rolls "
             f"({eps_roll / pi2:.2f}π²), {eps1 / eps_oval:.2f} against the oval ({eps_oval / pi2:.2f}π²)",
         ),
-        _check(
-            "paper-claim",
-            "from 90° to 270° ω2 is practically constant, about a tenth of ω1 (type 1)",
-            {"omega2_over_omega1": 0.1, "constant": True},
-            {"min": w180, "min_at_deg": 180.0, "max": w90, "max_at_deg": [90.0, 270.0], "mean": mean},
-            False,
-            f"from 90° to 270° ω2/ω1 runs from {w90:.4f} (90°, 270°) down to {w180:.4f} = (a − c)/(a + c) (180°) "
-            f"and back, a factor {w90 / w180:.2f}, mean {mean:.4f} (1/{1 / mean:.1f}): neither constant nor a tenth",
-        ),
+        _middle_check(a, b, omega1),
         _check(
             "paper-claim",
             "max/min of ω2: 81 for type 1, 2.78 for type 2",

@@ -25,7 +25,7 @@ from ..roots import brentq
 from ..tolerances import DEFAULT, Tolerances
 from . import chebyshev
 from .curve import TWO_PI, PitchCurve, polar_curvature, radius_range, segments
-from .pair import AngleMap, _turn_on_nodes
+from .pair import AngleMap, turn_on_nodes
 
 __all__ = ["InternalPairData", "internal_angle_map", "solve_internal_distance", "ring_curve", "internal_pair"]
 
@@ -55,7 +55,7 @@ def solve_internal_distance(curve: PitchCurve, target_turn: float, *, tol: Toler
     r_max = radius_range(curve)[1]
     n = 64
     while True:
-        external = _turn_on_nodes(curve, n)  # ∫ r/(E − r) dφ
+        external = turn_on_nodes(curve, n)  # ∫ r/(E − r) dφ
 
         def turn(e: float, external=external) -> float:
             return -external(-e)  # ∫ r/(−E − r) dφ = −∫ r/(r + E) dφ

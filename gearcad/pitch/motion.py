@@ -110,6 +110,35 @@ def _law_measures(mean: float, spectrum: np.ndarray, e: float) -> tuple[float, f
     return float(k.min()), float(k.max()), float(convex.min()) if len(convex) else math.inf
 
 
+def _no_law(key: str, best, limits: MotionLimits, tolerance: float, given, *, capped: bool, max_order: int):
+    """The refusal when no law within the limits meets the tolerance: the best one's error, what
+    the teeth allow and the ratios the motion asks for."""
+    lo, hi = limits.ratio
+    achievable = (
+        f"the best law within them misses it by {math.degrees(best.error):.4g}° (order {best.order}"
+        + (f"; orders above {max_order} are not tried: no tooth follows a finer wiggle)" if capped else ")")
+        if best is not None
+        else "no law within them exists"
+    )
+    allowed = (
+        f"the smallest ratio the teeth allow is {lo:.4g} (the largest {hi:.4g}; {limits.why})"
+        if lo <= hi
+        else f"the teeth allow no ratio ({limits.why})"
+    )
+    return DesignError(
+        f"{key}: no closing ratio law meets the motion within {math.degrees(tolerance):g}° and the limits teeth "
+        f"need — {achievable}; {allowed}"
+        + (f", curvature radius ≥ {limits.curvature_radius:.4g} mm" if limits.curvature_radius > 0 else "")
+        + f"; the motion asks for ratios from about {given.min():.4g} to {given.max():.4g}"
+    )
+
+
+def _follower_sense(psi: np.ndarray) -> np.ndarray:
+    """ψ given in the driver's sense of rotation (the follower, turning the other way, goes
+    negative) is the same motion: the law wants ψ in the follower's own sense."""
+    return -psi if len(psi) > 1 and psi[-1] < psi[0] else psi
+
+
 def fit_motion(
     psi: np.ndarray,
     *,
@@ -132,11 +161,7 @@ def fit_motion(
     naming ``key`` with the best error the limits allow when no law within them meets
     ``tolerance`` (rad).
     """
-    psi = np.asarray(psi, dtype=float)
-    if len(psi) > 1 and psi[-1] < psi[0]:
-        # ψ given in the driver's sense of rotation: the follower, turning the other way, goes
-        # negative.  It is the same motion; the law wants ψ in the follower's own sense.
-        psi = -psi
+    psi = _follower_sense(np.asarray(psi, dtype=float))
     n = len(psi)
     mean = lobes / mate_lobes
     phi = TWO_PI * np.arange(n) / n
@@ -170,25 +195,8 @@ def fit_motion(
             return fit
     # else the best the limits allow: the smallest error among the orders within them
     best = next((f for f in map(within, sorted(candidates, key=lambda o: (error(o), o))) if f is not None), None)
-    lo, hi = limits.ratio
     given = np.gradient(np.unwrap(psi), phi) if n > 2 else np.array([mean])
-    achievable = (
-        f"the best law within them misses it by {math.degrees(best.error):.4g}° (order {best.order}"
-        + (f"; orders above {max_order} are not tried: no tooth follows a finer wiggle)" if top == max_order else ")")
-        if best is not None
-        else "no law within them exists"
-    )
-    allowed = (
-        f"the smallest ratio the teeth allow is {lo:.4g} (the largest {hi:.4g}; {limits.why})"
-        if lo <= hi
-        else f"the teeth allow no ratio ({limits.why})"
-    )
-    raise DesignError(
-        f"{key}: no closing ratio law meets the motion within {math.degrees(tolerance):g}° and the limits teeth "
-        f"need — {achievable}; {allowed}"
-        + (f", curvature radius ≥ {limits.curvature_radius:.4g} mm" if limits.curvature_radius > 0 else "")
-        + f"; the motion asks for ratios from about {given.min():.4g} to {given.max():.4g}"
-    )
+    raise _no_law(key, best, limits, tolerance, given, capped=top == max_order, max_order=max_order)
 
 
 def smoothest_law(

@@ -22,6 +22,7 @@ from . import chebyshev
 from .curve import TWO_PI, PitchCurve, radius_range, segments, zoom_min
 
 __all__ = [
+    "turn_on_nodes",
     "AngleMap",
     "PairData",
     "ClaimData",
@@ -104,7 +105,7 @@ def angle_map(curve: PitchCurve, center_distance: float, *, tol: Tolerances = DE
     return AngleMap(forward, fitted, rate, turn)
 
 
-def _turn_on_nodes(curve: PitchCurve, n: int):
+def turn_on_nodes(curve: PitchCurve, n: int):
     """Clenshaw–Curtis rule with n + 1 nodes per smooth piece for ∫ f(r(φ)) dφ over a turn."""
     edges = segments(curve)
     x = chebyshev.lobatto_points(n)
@@ -118,7 +119,7 @@ def _turn_on_nodes(curve: PitchCurve, n: int):
     def turn(e: float) -> float:
         total = 0.0
         for r, h in zip(radii, halves):
-            c = chebyshev._coefficients(r / (e - r))
+            c = chebyshev.coefficients(r / (e - r))
             total += h * float(moments @ c)
         return total
 
@@ -137,7 +138,7 @@ def solve_center_distance(curve: PitchCurve, target_turn: float, *, tol: Toleran
     r_max = radius_range(curve)[1]
     n = 64
     while True:
-        turn = _turn_on_nodes(curve, n)
+        turn = turn_on_nodes(curve, n)
         lo = r_max * (1 + 1e-12) + 1e-300
         if turn(lo) - target_turn <= 0:
             if n >= 1 << 14:

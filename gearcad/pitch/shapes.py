@@ -283,6 +283,23 @@ def _check_lobes(orders: np.ndarray, lobes: int, key: str) -> None:
         )
 
 
+def _cos_sin(spectrum: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray]:
+    """The real series' cosine and sine coefficients of an ``rfft`` of n samples over n."""
+    weight = np.ones(len(spectrum))
+    weight[1:] = 2.0
+    if n % 2 == 0:
+        weight[-1] = 1.0  # the Nyquist term appears once
+    return weight * spectrum.real, -weight * spectrum.imag
+
+
+def _too_fine(key: str, negligible: float, top: int, max_order: int) -> DesignError:
+    return DesignError(
+        f"{key}: the radii vary on a finer scale than any tooth can follow — beyond {negligible:.2g} mm of "
+        f"noise they hold waves up to order {top} per turn (at most order {max_order}); smooth them or give "
+        "fewer samples"
+    )
+
+
 def from_samples(
     name: str,
     radii,
@@ -316,12 +333,7 @@ def from_samples(
         raise DesignError(f"{spike} Correct that sample (one spike rings through the whole curve)")
     spectrum = np.fft.rfft(radii) / n
     orders = np.arange(len(spectrum))
-    weight = np.ones(len(spectrum))
-    weight[1:] = 2.0
-    if n % 2 == 0:
-        weight[-1] = 1.0  # the Nyquist term appears once
-    cos_c = weight * spectrum.real
-    sin_c = -weight * spectrum.imag
+    cos_c, sin_c = _cos_sin(spectrum, n)
     # orders at the FFT's rounding level (all but a few for smooth data) only cost time: together
     # they move the curve by under 1e-10 of its size
     amplitude = np.hypot(cos_c, sin_c)
@@ -334,16 +346,11 @@ def from_samples(
         small |= orders > _smooth_order(np.where(noise, 0.0, spectrum), radii, smoothing)
     top = int(np.flatnonzero(~small)[-1])
     if max_order is not None and top > max_order:
-        raise DesignError(
-            f"{key}: the radii vary on a finer scale than any tooth can follow — beyond {negligible:.2g} mm of "
-            f"noise they hold waves up to order {top} per turn (at most order {max_order}); smooth them or give "
-            "fewer samples"
-        )
+        raise _too_fine(key, negligible, top, max_order)
     if max_work is not None and _work(small) > max_work:
         _refuse_work(spectrum, radii, noise, max_work, smoothing, key)
     _check_lobes(np.flatnonzero(~small[1:]) + 1, lobes, key)
     series = harmonic_series(np.where(small, 0.0, cos_c - 1j * sin_c)[: top + 1])
-
     return PitchCurve(
         name=name,
         r=lambda p: series(p, 0),

@@ -29,6 +29,7 @@ from .roller_body import RollerBodyParams
 from .rolling_wheel import RollingWheelParams
 
 __all__ = [
+    "MOST_BYTES",
     "MECHANISMS",
     "MODELS",
     "MODEL_OF",
@@ -197,7 +198,7 @@ def toml_value(raw: str, label: str = "value") -> Any:
     return parsed["v"] if parsed.keys() == {"v"} else raw
 
 
-_MOST_BYTES = 16 << 20
+MOST_BYTES = 16 << 20
 """The largest profile file read, bytes (100 000 sampled radii take about 2 MB)."""
 _MOST_NESTING = 32
 """Tables and lists inside one another a profile may hold (a profile needs 4; Python's own
@@ -240,11 +241,11 @@ def read_profile_text(path: str | Path) -> str:
     where = _where(Path(path))
     try:
         with open(path, "rb") as fh:  # at most the limit and a byte: /dev/zero has no end
-            raw = fh.read(_MOST_BYTES + 1)
+            raw = fh.read(MOST_BYTES + 1)
     except OSError as exc:
         raise ProfileError(f"{where}: cannot read the profile ({exc.strerror or exc})") from None
-    if len(raw) > _MOST_BYTES:
-        raise ProfileError(f"{where}: more than {_MOST_BYTES >> 20} MiB, too large for a profile")
+    if len(raw) > MOST_BYTES:
+        raise ProfileError(f"{where}: more than {MOST_BYTES >> 20} MiB, too large for a profile")
     skip = len(codecs.BOM_UTF8) if raw.startswith(codecs.BOM_UTF8) else 0
     try:
         return raw[skip:].decode("utf-8")

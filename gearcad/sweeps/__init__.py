@@ -245,39 +245,15 @@ def sweep(
     >>> [round(x, 3) for x in t["pair.ratio_max"]]
     [1.5, 2.333, 4.0]
     """
-    from .front import check_keys, feasible, pareto, parse_constraint
-    from .space import SweepSpec, check_key, check_values, points
+    from .space import SweepSpec
 
-    constraints, minimise, maximise = (
-        _keys(constraints, "constraints"),
-        _keys(minimise, "minimise"),
-        _keys(maximise, "maximise"),
-    )
+    constraints, minimise, maximise = (_keys(constraints, "constraints"), _keys(minimise, "minimise"),
+                                       _keys(maximise, "maximise"))  # fmt: skip
     _check_arguments(stage, samples, sampling, seed, workers, client, scheduler_timeout, (minimise, maximise))
-    conditions = [parse_constraint(c) for c in constraints]
-    for condition in conditions:
-        _check_constraint(condition)
-    data, name, path = _profile_data(profile)
-    varies = _varies(vary)
-    for v in varies:
-        check_key(data, v.key)
-        check_values(v)
-    _check_bounds(conditions)
-    from .confirm import check_confirm
-    from .optimise import check_method, first_point
-
-    check_method(method, varies, minimise, maximise, population, generations, evaluations, against_grid, samples)
-    check_confirm(confirm, stage)
-    if method == "grid":
-        spec = SweepSpec(vary=varies, stage=stage, samples=samples, sampling=sampling, seed=seed)
-        overrides = points(spec)
-    else:
-        overrides = [first_point(data, varies)]
-    if overrides:
-        _check_keys_exist(data, name, overrides[0])
-        report = _probe(data, name, stage, overrides[0]) if conditions or minimise or maximise else None
-        if report is not None:
-            _check_goals(report, stage, conditions, [*minimise, *maximise], [f"set.{k}" for k in overrides[0]])
+    conditions, (data, name, path), varies = _checked_inputs(profile, vary, constraints)
+    searched = (method, population, generations, evaluations, against_grid)
+    spec = SweepSpec(vary=varies, stage=stage, samples=samples, sampling=sampling, seed=seed)
+    overrides = _first_points(data, name, stage, varies, conditions, (minimise, maximise), searched, confirm, spec)
     running = dict(workers=workers, client=client, scheduler_timeout=scheduler_timeout, progress=progress)
     if method != "grid":
         from .optimise import search
@@ -287,8 +263,70 @@ def sweep(
                                         evaluations=evaluations, against_grid=against_grid)  # fmt: skip
     else:
         rows, extra = _run(data, name, stage, overrides, **running), {}
+    table, inputs = _table(rows, overrides, conditions, minimise, maximise, extra)
+    table.attrs.update(
+        profile=path,
+        name=name,
+        stage=stage,
+        minimise=list(minimise),
+        maximise=list(maximise),
+        constraints=[str(c) for c in conditions],
+        inputs=list(inputs.columns),
+        method=method,
+        **extra,
+    )
+    if confirm is not None:
+        from .confirm import confirm_front
+
+        table = confirm_front(table, data, name, conditions, _run, **running)
+    return table
+
+
+def _checked_inputs(profile, vary, constraints):
+    """The constraints parsed, the profile read and the varied keys and values checked against
+    it: (conditions, (data, name, path), varies), or a one-line refusal."""
+    from .front import parse_constraint
+    from .space import check_key, check_values
+
+    conditions = [parse_constraint(c) for c in constraints]
+    for condition in conditions:
+        _check_constraint(condition)
+    data, name, path = _profile_data(profile)
+    varies = _varies(vary)
+    for v in varies:
+        check_key(data, v.key)
+        check_values(v)
+    _check_bounds(conditions)
+    return conditions, (data, name, path), varies
+
+
+def _first_points(data, name, stage, varies, conditions, goals, searched, confirm, spec) -> list[dict]:
+    """The grid's points (or a search's first), checked before the first design: the method and
+    its budget, the confirmation, the keys, and the goals on a probe design."""
+    from .confirm import check_confirm
+    from .optimise import check_method, first_point
+    from .space import points
+
+    minimise, maximise = goals
+    method, population, generations, evaluations, against_grid = searched
+    check_method(method, varies, minimise, maximise, population, generations, evaluations, against_grid, spec.samples)
+    check_confirm(confirm, stage)
+    overrides = points(spec) if method == "grid" else [first_point(data, varies)]
+    if overrides:
+        _check_keys_exist(data, name, overrides[0])
+        report = _probe(data, name, stage, overrides[0]) if conditions or minimise or maximise else None
+        if report is not None:
+            _check_goals(report, stage, conditions, [*minimise, *maximise], [f"set.{k}" for k in overrides[0]])
+    return overrides
+
+
+def _table(rows, overrides, conditions, minimise, maximise, extra: dict):
+    """The sweep's table: each row's inputs after its index, then whether it is feasible and on
+    the front and by how much it violates each constraint (a search's generation second)."""
     import numpy as np
     import pandas as pd  # once the designs are made: a sweep stopped early never needs it
+
+    from .front import check_keys, feasible, pareto
 
     table = pd.DataFrame(rows)
     inputs = pd.DataFrame([{f"set.{k}": v for k, v in o.items()} for o in overrides], index=table.index)
@@ -307,22 +345,7 @@ def sweep(
         table.insert(len(inputs.columns) + 3 + n, column, amounts)
     if "generation" in extra:  # an optimiser's: which generation designed the row
         table.insert(1, "generation", extra.pop("generation"))
-    table.attrs.update(
-        profile=path,
-        name=name,
-        stage=stage,
-        minimise=list(minimise),
-        maximise=list(maximise),
-        constraints=[str(c) for c in conditions],
-        inputs=list(inputs.columns),
-        method=method,
-        **extra,
-    )
-    if confirm is not None:
-        from .confirm import confirm_front
-
-        table = confirm_front(table, data, name, conditions, _run, **running)
-    return table
+    return table, inputs
 
 
 def _run(data, name, stage, overrides, *, client, scheduler_timeout, **kwargs) -> list[dict]:

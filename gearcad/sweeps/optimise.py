@@ -143,6 +143,33 @@ def _targets(rows: list[dict], conditions, minimise, maximise) -> tuple[np.ndarr
     return np.where(np.isfinite(F), F, 0.0), G
 
 
+def _nsga2(varies, columns, objectives: int, constraints: int, *, population: int, generations: int, seed: int):
+    """pymoo's problem over the varied keys' spans and its NSGA-II, set up (whole-number keys,
+    at ``columns``, rounded before they are designed)."""
+    from pymoo.algorithms.moo.nsga2 import NSGA2
+    from pymoo.core.problem import Problem
+    from pymoo.core.repair import Repair
+
+    keys = [v.key for v in varies]
+
+    class _Whole(Repair):  # whole-number keys rounded before they are designed
+        def _do(self, problem, X, **kwargs):
+            X = np.array(X, dtype=float)
+            X[:, columns] = np.round(X[:, columns])
+            return X
+
+    problem = Problem(
+        n_var=len(keys),
+        n_obj=objectives,
+        n_ieq_constr=constraints + 1,
+        xl=np.array([v.span[0] for v in varies], float),
+        xu=np.array([v.span[1] for v in varies], float),
+    )
+    algorithm = NSGA2(pop_size=population, repair=_Whole(), eliminate_duplicates=True)
+    algorithm.setup(problem, termination=("n_gen", generations), seed=seed, verbose=False)
+    return problem, algorithm
+
+
 def optimise(
     data: dict,
     name: str,
@@ -166,31 +193,13 @@ def optimise(
     if not minimise and not maximise:
         raise ProfileError(f"--method {method}: give at least one objective (--minimise or --maximise)")
     require_pymoo(method)
-    from pymoo.algorithms.moo.nsga2 import NSGA2
     from pymoo.core.evaluator import Evaluator
-    from pymoo.core.problem import Problem
-    from pymoo.core.repair import Repair
     from pymoo.problems.static import StaticProblem
 
     keys = [v.key for v in varies]
     whole = whole_keys(data, varies)
-    columns = np.flatnonzero(whole)
-
-    class _Whole(Repair):  # whole-number keys rounded before they are designed
-        def _do(self, problem, X, **kwargs):
-            X = np.array(X, dtype=float)
-            X[:, columns] = np.round(X[:, columns])
-            return X
-
-    problem = Problem(
-        n_var=len(keys),
-        n_obj=len(minimise) + len(maximise),
-        n_ieq_constr=len(conditions) + 1,
-        xl=np.array([v.span[0] for v in varies], float),
-        xu=np.array([v.span[1] for v in varies], float),
-    )
-    algorithm = NSGA2(pop_size=population, repair=_Whole(), eliminate_duplicates=True)
-    algorithm.setup(problem, termination=("n_gen", generations), seed=seed, verbose=False)
+    problem, algorithm = _nsga2(varies, np.flatnonzero(whole), len(minimise) + len(maximise), len(conditions),
+                                population=population, generations=generations, seed=seed)  # fmt: skip
     rows: list[dict] = []
     overrides: list[dict] = []
     born: list[int] = []

@@ -243,19 +243,8 @@ def _constraint_keys(table) -> list[str]:
     return keys
 
 
-def sweep_page(table) -> str:
-    """The page as one HTML string."""
-    from .search_page import confirmation_section, search_section
-
-    attrs = table.attrs
-    made = int(table["refusal"].isna().sum())
-    objectives = [*attrs.get("minimise", []), *attrs.get("maximise", [])]
-    has_front = bool(table["pareto"].any())
-    rows = table[table["pareto"]] if has_front else table[table["feasible"]]
-    if objectives and objectives[0] in rows:  # the front in order along its first objective
-        rows = rows.iloc[np.argsort(_numbers(rows, objectives[0]), kind="stable")]
-    listed = rows.head(MAX_ROWS)
-    linked = {int(i) for i in listed["index"]}
+def _chart(table, linked: set[int]) -> str:
+    """The scatter of the two axes (only the listed rows linked), its legend and what it leaves out."""
     axes = _axes(table)
     if len(axes) == 2:
         chart, left_out, plotted = _scatter(table, *axes, linked)
@@ -269,6 +258,13 @@ def sweep_page(table) -> str:
         chart += f'<p class="legend">{_legend(table)}</p><p>{" ".join(notes)}</p>'
     else:
         chart = "<p>(name two objectives, or vary a key, to plot)</p>"
+    return chart
+
+
+def _listed(table, objectives: list, listed) -> tuple[str, str]:
+    """The listed rows' table head and body: the inputs, objectives, constraints (and a search's
+    generation and the confirmation) of each row, with the command that builds it."""
+    attrs = table.attrs
     inputs = list(attrs.get("inputs", []))
     shown = [*inputs, *[k for k in objectives if k not in inputs]]
     shown += [k for k in _constraint_keys(table) if k not in shown]
@@ -283,6 +279,24 @@ def sweep_page(table) -> str:
         f"{html.escape(build_command(table, r))}</code></td></tr>"
         for r in records
     )
+    return head, body
+
+
+def sweep_page(table) -> str:
+    """The page as one HTML string."""
+    from .search_page import confirmation_section, search_section
+
+    attrs = table.attrs
+    made = int(table["refusal"].isna().sum())
+    objectives = [*attrs.get("minimise", []), *attrs.get("maximise", [])]
+    has_front = bool(table["pareto"].any())
+    rows = table[table["pareto"]] if has_front else table[table["feasible"]]
+    if objectives and objectives[0] in rows:  # the front in order along its first objective
+        rows = rows.iloc[np.argsort(_numbers(rows, objectives[0]), kind="stable")]
+    listed = rows.head(MAX_ROWS)
+    linked = {int(i) for i in listed["index"]}
+    chart = _chart(table, linked)
+    head, body = _listed(table, objectives, listed)
     more = (
         f"<p>The first {MAX_ROWS} of {len(rows)} rows; front.csv and sweep.csv hold them all.</p>"
         if len(rows) > MAX_ROWS

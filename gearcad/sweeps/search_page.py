@@ -11,15 +11,8 @@ from .ticks import nice_ticks, tick_label
 __all__ = ["search_section", "confirmation_section"]
 
 
-def search_section(table) -> str:
-    """A search's generations: the hypervolume of the front after each (a line and a table),
-    against a grid's of the same budget where one was designed (``--against-grid``)."""
-    attrs = table.attrs
-    volumes = attrs.get("hypervolumes")
-    if not volumes:
-        return ""
-    sizes = attrs.get("front_sizes", [])
-    counts = table["generation"].value_counts().sort_index() if "generation" in table else None
+def _hypervolume_chart(volumes: list, attrs) -> str:
+    """The hypervolume after each generation as a line (SVG), the grid's as a dashed one."""
     w, h, left, bottom = 360, 160, 60, 36
     top = max(max(volumes), attrs.get("grid_hypervolume", 0.0))
     y0, y1, yticks, yd = nice_ticks(0.0, top if top > 0 else 1.0, most=5)
@@ -53,6 +46,20 @@ def search_section(table) -> str:
         f'<polyline class="hv" points="{line}"/>{dots}{labels}'
         f'<text class="axis" x="{(left + w) / 2:.0f}" y="{h - 4}" text-anchor="middle">generation</text></svg>'
     )
+    return svg
+
+
+def search_section(table) -> str:
+    """A search's generations: the hypervolume of the front after each (a line and a table),
+    against a grid's of the same budget where one was designed (``--against-grid``)."""
+    attrs = table.attrs
+    volumes = attrs.get("hypervolumes")
+    if not volumes:
+        return ""
+    sizes = attrs.get("front_sizes", [])
+    counts = table["generation"].value_counts().sort_index() if "generation" in table else None
+    svg = _hypervolume_chart(volumes, attrs)
+    n = len(volumes)
     rows = "".join(
         f"<tr><td>{g}</td><td>{int(counts.get(g, 0)) if counts is not None else ''}</td>"
         f"<td>{sizes[g] if g < len(sizes) else ''}</td><td>{volumes[g]:.6g}</td></tr>"

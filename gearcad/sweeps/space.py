@@ -22,8 +22,7 @@ import numpy as np
 
 from ..errors import ProfileError
 from ..profiles.messages import show
-from ..profiles.reading import _MOST_BYTES as MOST_BYTES
-from ..profiles.reading import MODEL_OF, MODELS, toml_value
+from ..profiles.reading import MODEL_OF, MODELS, MOST_BYTES, toml_value
 
 __all__ = [
     "Vary",

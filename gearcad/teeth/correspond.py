@@ -108,15 +108,10 @@ class AnchoredRing:
     """Largest curvature of the ring away from its anchored corners, 1/mm."""
 
 
-def anchor_ring(gear: ToothedGear, frame, *, tolerance: float, longest: float) -> AnchoredRing:
-    """A section's fine ring anchored tooth by tooth (see the module's text), with the density
-    τ that chords within ``tolerance`` (mm) of it and at most ``longest`` mm long need.
-
-    ``gear`` is the section as cut (``cut_teeth``, clearance applied), ``frame`` its pitch curve.
-    """
-    ring = gear.outline.outer
-    keep = np.linalg.norm(ring - np.roll(ring, 1, axis=0), axis=1) > 1e-12  # no repeated vertices
-    ring = ring[keep]
+def _base_anchors(gear: ToothedGear, frame, ring: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Each tooth's five base anchors on the ring (left pitch point, left flank's lowest straight
+    point, root, right flank's, right pitch point), as ring parameters, (teeth, 5); the ring rolled
+    so that tooth 0's left pitch point is at parameter 0."""
     n, z, rack = len(ring), gear.teeth, gear.rack
     centres = gear.phase + rack.pitch * np.arange(z)
     c, _, normal = frame.frame(centres)
@@ -146,6 +141,37 @@ def anchor_ring(gear: ToothedGear, frame, *, tolerance: float, longest: float) -
             "the helical sections cannot be matched tooth by tooth (the teeth of a section are not in "
             "order along its outline); use a smaller helix angle or fewer, larger teeth"
         )
+    return ring, base
+
+
+def _density(ring, turn, smooth, corner_vertices, length, *, tolerance: float, longest: float):
+    """The sampling density: chords needed per edge so that each strays at most ``tolerance``,
+    plus one per ``longest`` mm; anchored corners spread none (they are vertices of every
+    section).  The cumulative density τ at the vertices and the largest curvature away from the
+    corners."""
+    kappa = _curvature(ring, turn)
+    kappa[corner_vertices] = 0.0
+    smooth = smooth.copy()
+    smooth[corner_vertices] = False
+    edge_kappa = np.maximum(kappa, np.roll(kappa, -1))
+    dens = length * (np.sqrt(edge_kappa / (8 * tolerance)) + 1.0 / longest)
+    tau = np.concatenate([[0.0], np.cumsum(dens)])
+    free = float(np.max(kappa[smooth])) if np.any(smooth) else 0.0
+    return tau, free
+
+
+def anchor_ring(gear: ToothedGear, frame, *, tolerance: float, longest: float) -> AnchoredRing:
+    """A section's fine ring anchored tooth by tooth (see the module's text), with the density
+    τ that chords within ``tolerance`` (mm) of it and at most ``longest`` mm long need.
+
+    ``gear`` is the section as cut (``cut_teeth``, clearance applied), ``frame`` its pitch curve.
+    """
+    ring = gear.outline.outer
+    keep = np.linalg.norm(ring - np.roll(ring, 1, axis=0), axis=1) > 1e-12  # no repeated vertices
+    ring = ring[keep]
+    n, z = len(ring), gear.teeth
+    ring, base = _base_anchors(gear, frame, ring)
+    flat = base.ravel()
     turn = _turning(ring)
     # vertices before tooth 0's left pitch point belong to the last tooth's top: parameter + n
     vertex = np.arange(n, dtype=float)
@@ -188,17 +214,9 @@ def anchor_ring(gear: ToothedGear, frame, *, tolerance: float, longest: float) -
             "the helical sections cannot be matched tooth by tooth (a tooth's tip lies outside its flanks); "
             "use a smaller helix angle or fewer, larger teeth"
         )
-    # sampling density: chords needed per edge so that each strays at most `tolerance`, plus one
-    # per `longest` mm; anchored corners spread no density (they are vertices of every section)
-    kappa = _curvature(ring, turn)
+    # anchored corners spread no density (they are vertices of every section)
     corner_vertices = np.concatenate([best[:, 0], best[:, 1][~pointed], joints[has]])
-    kappa[corner_vertices] = 0.0
-    smooth = ~sharp
-    smooth[corner_vertices] = False
-    edge_kappa = np.maximum(kappa, np.roll(kappa, -1))
-    dens = length * (np.sqrt(edge_kappa / (8 * tolerance)) + 1.0 / longest)
-    tau = np.concatenate([[0.0], np.cumsum(dens)])
-    free = float(np.max(kappa[smooth])) if np.any(smooth) else 0.0
+    tau, free = _density(ring, turn, ~sharp, corner_vertices, length, tolerance=tolerance, longest=longest)
     return AnchoredRing(ring, anchors, tau, free)
 
 

@@ -168,32 +168,11 @@ RESIZE = "a smaller teeth.module or a larger teeth.count"
 """What to change when the teeth overlap, as a gear pair's profile says it."""
 
 
-def cut_teeth(
-    frame: ArcFrame,
-    rack: Rack,
-    teeth: int,
-    phase: float,
-    *,
-    tolerance: float,
-    resize: str = RESIZE,
-    stop: threading.Event | None = None,
-) -> ToothedGear:
-    """Cut ``teeth`` evenly spaced teeth, space k centred at arc length phase + k·pitch.
-
-    The perimeter must be exactly teeth × pitch (the caller chooses the module so).  Setting
-    ``stop`` (from another thread) ends the cut with :class:`~.sampling.Stopped`.
-    """
-    p = rack.pitch
-    if not math.isclose(frame.perimeter, teeth * p, rel_tol=1e-9):
-        raise DesignError(f"perimeter {frame.perimeter:.9g} mm is not {teeth} × π·m = {teeth * p:.9g} mm")
-    centres = phase + p * np.arange(teeth)
-    gen = _Generator(frame, rack, centres)
-    ids = np.arange(teeth)
-    nxt = (ids + 1) % teeth
-    wrap = np.where(nxt == 0, frame.perimeter, 0.0)  # space k+1 seen from tooth k, unwrapped
-
-    # Where each tooth's flanks meet its tip curve: tooth k begins on space k's right flank
-    # and ends on space k+1's left flank.
+def _tooth_ends(gen: _Generator, ids: np.ndarray, nxt: np.ndarray, wrap: np.ndarray):
+    """Where each tooth's flanks meet its tip curve: tooth k begins on space k's right flank and
+    ends on space k+1's left flank (in their crossing where they cross below the tip): the flank
+    parameters, the tip's arc lengths, the tip thickness and which teeth come to a point."""
+    teeth = len(ids)
     v_meet, s_meet = gen.meet_tip(np.concatenate([ids, nxt]), np.repeat([1.0, -1.0], teeth))
     v_start, v_end = v_meet[:teeth], v_meet[teeth:]
     s_start, s_end = s_meet[:teeth], s_meet[teeth:] + wrap
@@ -210,9 +189,16 @@ def cut_teeth(
 
         v1, v2 = _newton2(crossing, v_start[pointed] * 0.5, v_end[pointed] * 0.5)
         v_start[pointed], v_end[pointed] = v1, v2
-    left_top = v_end[(ids - 1) % teeth]
+    return v_start, v_end, s_start, s_end, thickness, pointed
 
-    # Every part of every space and tooth sampled together: (part, space, from, to) per curve.
+
+def _sampled_parts(gen, rack: Rack, centres, ids, ends, tolerance: float, stop):
+    """Every part of every space and tooth sampled together, (part, space, from, to) per curve:
+    by part number (0 left flank, 1 and 3 the fillets, 2 the root, 4 right flank) a list over
+    the spaces, and each tooth's tip by its number (the pointed ones have none)."""
+    v_start, v_end, s_start, s_end, _, pointed = ends
+    teeth = len(ids)
+    left_top = v_end[(ids - 1) % teeth]
     land = np.nonzero(~pointed)[0]
     b0, quarter, v_low = np.full(teeth, rack.fillet_start), np.full(teeth, -np.pi / 2), np.full(teeth, rack.v_low)
     curves = [
@@ -236,13 +222,15 @@ def cut_teeth(
         stop=stop,
     )
     of = {c[0]: sampled[sum(len(d[1]) for d in curves[:j]) :][: len(c[1])] for j, c in enumerate(curves)}
-    left, lfil, rfil, right = of[0], of[1], of[3], of[4]
-    root = of.get(2, [np.empty((0, 2))] * teeth)
-    tip_of = dict(zip(land, of[5]))
+    of.setdefault(2, [np.empty((0, 2))] * teeth)
+    return of, dict(zip(land, of[5]))
 
-    both = np.concatenate([centres, centres])  # each space's root centre and a module below it
-    v_root = np.repeat([rack.v_root, rack.v_root - rack.params.module], teeth)
-    root_centre, under_root = np.split(gen._point(both, v_root, both), [teeth])
+
+def _joined(of: dict, tip_of: dict, root_centre: np.ndarray):
+    """The ring of spaces and tips joined, each space's loops removed: the ring, the loops removed
+    per space and the index of each space's point nearest its root centre."""
+    teeth = len(root_centre)
+    left, lfil, root, rfil, right = of[0], of[1], of[2], of[3], of[4]
     parts, start, space_root = [], 0, np.empty(teeth, dtype=int)
     loops = np.zeros(teeth, dtype=int)
     spaces = remove_loops_each(
@@ -256,10 +244,12 @@ def cut_teeth(
         if k in tip_of:
             parts.append(tip_of[k][:-1])
             start += len(tip_of[k]) - 1
-    ring = np.vstack(parts)
-    _check_ring(ring, resize)
+    return np.vstack(parts), loops, space_root
 
-    # Undercut by the fold criterion at the lowest straight-flank point of every flank.
+
+def _undercut_depth(frame: ArcFrame, rack: Rack, centres: np.ndarray) -> np.ndarray:
+    """Undercut by the fold criterion at the lowest straight-flank point of every flank: how deep
+    each flank folds (−inf where the pitch curve bends the other way)."""
     fold = math.sin(rack.params.pressure_angle) ** 2
     s_low = np.stack(
         [
@@ -269,14 +259,47 @@ def cut_teeth(
         axis=1,
     ).ravel()
     kappa = frame.curvature(s_low)
-    depth = np.where(kappa > 0, -rack.v_low - fold / np.where(kappa > 0, kappa, 1.0), -np.inf)
+    return np.where(kappa > 0, -rack.v_low - fold / np.where(kappa > 0, kappa, 1.0), -np.inf)
+
+
+def cut_teeth(
+    frame: ArcFrame,
+    rack: Rack,
+    teeth: int,
+    phase: float,
+    *,
+    tolerance: float,
+    resize: str = RESIZE,
+    stop: threading.Event | None = None,
+) -> ToothedGear:
+    """Cut ``teeth`` evenly spaced teeth, space k centred at arc length phase + k·pitch.
+
+    The perimeter must be exactly teeth × pitch (the caller chooses the module so).  Setting
+    ``stop`` (from another thread) ends the cut with :class:`~.sampling.Stopped`.
+    """
+    p = rack.pitch
+    if not math.isclose(frame.perimeter, teeth * p, rel_tol=1e-9):
+        raise DesignError(f"perimeter {frame.perimeter:.9g} mm is not {teeth} × π·m = {teeth * p:.9g} mm")
+    centres = phase + p * np.arange(teeth)
+    gen = _Generator(frame, rack, centres)
+    ids = np.arange(teeth)
+    nxt = (ids + 1) % teeth
+    wrap = np.where(nxt == 0, frame.perimeter, 0.0)  # space k+1 seen from tooth k, unwrapped
+    ends = _tooth_ends(gen, ids, nxt, wrap)
+    thickness = ends[4]
+    of, tip_of = _sampled_parts(gen, rack, centres, ids, ends, tolerance, stop)
+    both = np.concatenate([centres, centres])  # each space's root centre and a module below it
+    v_root = np.repeat([rack.v_root, rack.v_root - rack.params.module], teeth)
+    root_centre, under_root = np.split(gen._point(both, v_root, both), [teeth])
+    ring, loops, space_root = _joined(of, tip_of, root_centre)
+    _check_ring(ring, resize)
     flank_s = np.stack([centres - rack.half_width, centres + rack.half_width], axis=1).ravel()
     return ToothedGear(
         outline=Outline((ring,)),
         teeth=teeth,
         rack=rack,
         phase=phase,
-        undercut_depth=depth,
+        undercut_depth=_undercut_depth(frame, rack, centres),
         flank_phi=frame.angle(flank_s) % (2 * np.pi),
         tip_thickness=thickness,
         tooth_phi=frame.angle(centres + p / 2) % (2 * np.pi),

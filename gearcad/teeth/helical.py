@@ -219,6 +219,24 @@ class HelicalSections:
     """Tolerance the sections were cut to before resampling, mm."""
 
 
+def _cutter(frames, plan: ToothPlan, racks, twist, *, clearance: float, fine: float, resample: float):
+    """``section(i, climbed)``: gear i's section once its helix has climbed ``climbed`` mm, cut
+    and anchored once per shift."""
+    hands, tan = twist
+    longest = plan.pitch / 8
+    cache: list[dict[float, tuple[ToothedGear, AnchoredRing]]] = [{}, {}]
+
+    def section(i: int, climbed: float) -> tuple[ToothedGear, AnchoredRing]:
+        key = float(climbed)
+        if key not in cache[i]:
+            phase = plan.phases[i] + hands[i] * key * tan
+            g = with_clearance(cut_teeth(frames[i], racks[i], plan.teeth[i], phase, tolerance=fine), clearance, fine)
+            cache[i][key] = (g, anchor_ring(g, frames[i], tolerance=resample, longest=longest))
+        return cache[i][key]
+
+    return section
+
+
 def helical_sections(
     frames: Sequence[ArcFrame],
     plan: ToothPlan,
@@ -249,20 +267,9 @@ def helical_sections(
         raise DesignError(f"output.thickness = {face_width:g}: the face width must be > 0")
     fine = resample = Budget(tolerance).fine
     budget = tolerance - fine - resample
-    longest = plan.pitch / 8
     hands = (1.0, -1.0)
     tan = math.tan(helix_angle)
-    cache: list[dict[float, tuple[ToothedGear, AnchoredRing]]] = [{}, {}]
-
-    def section(i: int, climbed: float) -> tuple[ToothedGear, AnchoredRing]:
-        """Gear i's section once its helix has climbed ``climbed`` mm (cut once per shift)."""
-        key = float(climbed)
-        if key not in cache[i]:
-            phase = plan.phases[i] + hands[i] * key * tan
-            g = with_clearance(cut_teeth(frames[i], racks[i], plan.teeth[i], phase, tolerance=fine), clearance, fine)
-            cache[i][key] = (g, anchor_ring(g, frames[i], tolerance=resample, longest=longest))
-        return cache[i][key]
-
+    section = _cutter(frames, plan, racks, (hands, tan), clearance=clearance, fine=fine, resample=resample)
     kappa = max(section(i, 0.0)[1].smooth_curvature for i in range(2))
     bound = section_spacing(frames, racks, helix_angle=helix_angle, section_curvature=kappa, budget=budget)
     h = bound.bound if spacing is None else spacing
@@ -279,36 +286,40 @@ def helical_sections(
             break
         h, measured = max(h / 2, bound.floor), math.nan
     chosen = replace(bound, spacing=h, measured=measured)
-    out = []
-    for i in range(2):
-        distinct, back = np.unique(climbed, return_inverse=True)  # herringbone levels repeat
-        cut_list = [section(i, c) for c in distinct]
-        counts, rings, deviation = correspond([a for _, a in cut_list], resample)
-        roots = (np.cumsum(counts) - counts)[2::ANCHORS]
-        gears = []
-        for (g, _), ring, c in zip(cut_list, rings, distinct):
-            if not is_simple(ring):
-                raise DesignError(f"{names[i]}: a helical section crosses itself at this tolerance; use a smaller one")
-            phase = plan.phases[i] + hands[i] * float(c) * tan
-            gears.append(replace(g, outline=Outline((ring,)), space_root=roots, phase=phase))
-        stack = np.stack([rings[k] for k in back])
-        k = int(np.argmax(np.diff(heights)))
-        mid = section(i, 0.5 * (climbed[k] + climbed[k + 1]))[0].outline.rings[0]
-        stack.flags.writeable = False
-        hand = ("right", "left")[i]
-        out.append(
-            GearSections(
-                heights=heights,
-                shifts=hands[i] * climbed * tan,
-                rings=stack,
-                gears=tuple(gears[k] for k in back),
-                hand=f"herringbone-{hand}" if herringbone else hand,
-                deviation=deviation,
-                mid_height=0.5 * float(heights[k] + heights[k + 1]),
-                mid_ring=mid,
-            )
-        )
+    twist = hands, tan, herringbone, names, resample
+    out = [_gear_sections(section, i, heights, climbed, plan, twist) for i in range(2)]
     return HelicalSections((out[0], out[1]), chosen, fine)
+
+
+def _gear_sections(section, i: int, heights, climbed, plan: ToothPlan, twist) -> GearSections:
+    """Gear i's sections at every height: its distinct levels cut (a herringbone's repeat),
+    their rings made to correspond vertex by vertex, each checked simple."""
+    hands, tan, herringbone, names, resample = twist
+    distinct, back = np.unique(climbed, return_inverse=True)  # herringbone levels repeat
+    cut_list = [section(i, c) for c in distinct]
+    counts, rings, deviation = correspond([a for _, a in cut_list], resample)
+    roots = (np.cumsum(counts) - counts)[2::ANCHORS]
+    gears = []
+    for (g, _), ring, c in zip(cut_list, rings, distinct):
+        if not is_simple(ring):
+            raise DesignError(f"{names[i]}: a helical section crosses itself at this tolerance; use a smaller one")
+        phase = plan.phases[i] + hands[i] * float(c) * tan
+        gears.append(replace(g, outline=Outline((ring,)), space_root=roots, phase=phase))
+    stack = np.stack([rings[k] for k in back])
+    k = int(np.argmax(np.diff(heights)))
+    mid = section(i, 0.5 * (climbed[k] + climbed[k + 1]))[0].outline.rings[0]
+    stack.flags.writeable = False
+    hand = ("right", "left")[i]
+    return GearSections(
+        heights=heights,
+        shifts=hands[i] * climbed * tan,
+        rings=stack,
+        gears=tuple(gears[k] for k in back),
+        hand=f"herringbone-{hand}" if herringbone else hand,
+        deviation=deviation,
+        mid_height=0.5 * float(heights[k] + heights[k + 1]),
+        mid_ring=mid,
+    )
 
 
 def _interval_deviation(section, i: int, low: float, high: float, resample: float) -> float:

@@ -158,8 +158,9 @@ def mesh_check(
     phi1 = np.linspace(0.0, pair.cycle, positions, endpoint=False)
     # tolerance-level overlap: each of the two flanks in contact may stray by the tolerance
     # over its working depth (ha + hf ≈ 2.25 m)
-    allowed = budget(tolerance).teeth_overlap(m)
-    nudge = nudge_arc(module=m, tolerance=tolerance, play=play)
+    b = budget(tolerance)
+    allowed = b.teeth_overlap(m)
+    nudge = b.nudge_arc(module=m, play=play)
     turns = nudge_turns(pair, phi1[::4], nudge)
     depths = overlap_depths(*placing(pair, gears, frames, phi1)(0.0), step=0.1 * m)
     assembled = depths.area
@@ -173,9 +174,9 @@ def mesh_check(
         nudged_min_overlap=nudged,
         worst_phi=float(phi1[worst]),
         max_depth=float(np.max(depths.depth)),
-        allowed_depth=budget(tolerance).allowed_depth,
+        allowed_depth=b.allowed_depth,
         depth_at=_deepest(depths, phi1, gears[0], frames[0]),
-        too_deep=tuple(float(a) for a in phi1[depths.depth > budget(tolerance).allowed_depth]),
+        too_deep=tuple(float(a) for a in phi1[depths.depth > b.allowed_depth]),
     )
 
 

@@ -158,28 +158,9 @@ def _rack(params: ToothSpec, module: float, shift: float, min_fillet: float = 0.
     return Rack.from_params(rack)
 
 
-def cut_pair(
-    pair: PairData,
-    gears: Sequence[GearData],
-    params: ToothSpec,
-    *,
-    mate_rotation: float | None = None,
-    tol: Tolerances = DEFAULT,
-    relief: bool = True,
-    min_fillet: float = 0.0,
-) -> ToothedPairData:
-    """Teeth on both gears of a rolling pair, proven to mesh.
-
-    ``mate_rotation`` is δ with r2(θ) = r1(θ + δ) when gear 2 is gear 1 turned (a self-conjugate
-    pair), None otherwise: then the teeth are planned so the two gears are one part.
-    ``relief`` trims gear 1 by the mate's sweep where the proof finds the rack-cut pair too deep
-    (:mod:`.relief`); False keeps the rack's teeth as cut.  ``min_fillet`` (mm) is the smallest
-    root fillet: a router's tool radius.
-    """
-    refuse_corners(gears)
-    # a self-conjugate noncircular pair: gear 2 is gear 1 turned, and the count must make the
-    # toothed gears one part too (a circle's mate is the same part at any count and turn)
-    identical = None if gears[0].round else mate_rotation
+def _planned(pair: PairData, params: ToothSpec, tol: Tolerances, identical: float | None):
+    """Both pitch curves by arc length and the teeth planned on them (the count checked on the
+    first before the mate's map is made), or a one-line refusal."""
     counted = dict(module=params.module, count=params.count, identical_rotation=identical)
     first = arc_frame(pair.gear1, tol=tol)
     tooth_count(first, pair.lobes, **counted)  # a count that cannot be refuses before the mate's map
@@ -190,9 +171,20 @@ def cut_pair(
             f"teeth.backlash = {params.backlash:g}: it would thin every tooth to under half its thickness; "
             f"the largest backlash module {plan.module:.4g} takes is {math.pi * plan.module / 2:.3f} mm"
         )
-    shifts = (params.profile_shift, -params.profile_shift)
-    fine_tol = Budget(tol.outline_mm, tol.fine_fraction).fine
+    return frames, plan
 
+
+def _identical_deviation(fine, identical: float) -> float:
+    """Both gears are cut by the same code from the same curve, so their vertices coincide when
+    they are the same part: the largest vertex-to-nearest-vertex distance says so."""
+    turned = rotate(fine[0].outline.outer, -identical)
+    return float(np.max(nearest(fine[1].outline.outer, turned)[1]))
+
+
+def _cut_both(frames, plan, params: ToothSpec, min_fillet: float, fine_tol: float) -> tuple:
+    """Both gears cut side by side at the fine tolerance (opposite profile shifts), their flank
+    clearance taken off; a gear that cannot be cut calls off its mate's cut and raises."""
+    shifts = (params.profile_shift, -params.profile_shift)
     stop = threading.Event()  # a gear that cannot be cut calls off its mate's cut
 
     def cut(frame, z, phase, shift):
@@ -210,18 +202,13 @@ def cut_pair(
         failed = [e for e in (job.exception() for job in jobs) if e is not None and not isinstance(e, Stopped)]
         if failed:
             raise failed[0]
-        fine = tuple(job.result() for job in jobs)
-    toothed = tuple(_thinned(g, tol.outline_mm - fine_tol) for g in fine)
-    mesh, play_range = _prove(pair, toothed, frames, params, plan.module, tol.outline_mm)
-    trim = None
-    if mesh.too_deep and relief and not plan.identical and mesh.max_depth <= MAX_RELIEF_MODULES * plan.module:
-        relieved, trim = relieve(pair, fine[0], toothed, frames, mesh, deep=np.array(mesh.too_deep))
-        fine, toothed = (relieved, fine[1]), (_thinned(relieved, tol.outline_mm - fine_tol), toothed[1])
-        mesh, play_range = _prove(pair, toothed, frames, params, plan.module, tol.outline_mm)
-    limits = tuple(
-        undercut_free_module(g.shape.min_curvature_radius, toothed[i].rack.params) for i, g in enumerate(gears)
-    )
-    overcut = tuple(
+        return tuple(job.result() for job in jobs)
+
+
+def _overcuts(frames, fine, gears, tolerance: float) -> tuple:
+    """Where the rack's tip cuts into each gear's concave stretches beyond the tolerance (None
+    where it does not)."""
+    return tuple(
         rack_overcut(
             frames[i],
             g.rack,
@@ -229,16 +216,51 @@ def cut_pair(
             g.phase,
             g.outline.outer,
             concave_spans(frames[i], gears[i].shape.concave_intervals),
-            tolerance=tol.outline_mm,
+            tolerance=tolerance,
         )
         for i, g in enumerate(fine)
     )
-    deviation = None
-    if plan.identical:
-        # both gears are cut by the same code from the same curve, so their vertices coincide
-        # when they are the same part: the largest vertex-to-nearest-vertex distance says so
-        turned = rotate(fine[0].outline.outer, -identical)
-        deviation = float(np.max(nearest(fine[1].outline.outer, turned)[1]))
+
+
+def cut_pair(
+    pair: PairData,
+    gears: Sequence[GearData],
+    params: ToothSpec,
+    *,
+    mate_rotation: float | None = None,
+    tol: Tolerances = DEFAULT,
+    budget: Budget | None = None,
+    relief: bool = True,
+    min_fillet: float = 0.0,
+) -> ToothedPairData:
+    """Teeth on both gears of a rolling pair, proven to mesh.
+
+    ``mate_rotation`` is δ with r2(θ) = r1(θ + δ) when gear 2 is gear 1 turned (a self-conjugate
+    pair), None otherwise: then the teeth are planned so the two gears are one part.
+    ``relief`` trims gear 1 by the mate's sweep where the proof finds the rack-cut pair too deep
+    (:mod:`.relief`); False keeps the rack's teeth as cut.  ``min_fillet`` (mm) is the smallest
+    root fillet: a router's tool radius.  ``budget`` is the design's (made once per design and
+    passed down); left out, the budget of ``tol.outline_mm``.
+    """
+    refuse_corners(gears)
+    # a self-conjugate noncircular pair: gear 2 is gear 1 turned, and the count must make the
+    # toothed gears one part too (a circle's mate is the same part at any count and turn)
+    identical = None if gears[0].round else mate_rotation
+    frames, plan = _planned(pair, params, tol, identical)
+    b = budget if budget is not None else Budget(tol.outline_mm, tol.fine_fraction)
+    fine = _cut_both(frames, plan, params, min_fillet, b.fine)
+    toothed = tuple(_thinned(g, b.fit) for g in fine)
+    mesh, play_range = _prove(pair, toothed, frames, params, plan.module, b.tolerance)
+    trim = None
+    if mesh.too_deep and relief and not plan.identical and mesh.max_depth <= MAX_RELIEF_MODULES * plan.module:
+        relieved, trim = relieve(pair, fine[0], toothed, frames, mesh, deep=np.array(mesh.too_deep))
+        fine, toothed = (relieved, fine[1]), (_thinned(relieved, b.fit), toothed[1])
+        mesh, play_range = _prove(pair, toothed, frames, params, plan.module, b.tolerance)
+    limits = tuple(
+        undercut_free_module(g.shape.min_curvature_radius, toothed[i].rack.params) for i, g in enumerate(gears)
+    )
+    overcut = _overcuts(frames, fine, gears, b.tolerance)
+    deviation = _identical_deviation(fine, identical) if plan.identical else None
     return ToothedPairData(
         plan=plan,
         gears=toothed,

@@ -41,6 +41,25 @@ made: the work is refused rather than refined without end (bounded time and memo
 sampling several sets in one call (a gear's six rack parts) passes this times their number."""
 
 
+def _too_many(max_points: int) -> DesignError:
+    return DesignError(
+        f"the tooth outline would need more than {max_points:,} points within the tolerance: the pitch "
+        "curve bends too sharply for these teeth; use a coarser output.tolerance, or smaller or fewer teeth "
+        "(teeth.module / teeth.count)"
+    )
+
+
+def _per_curve(func: Curves, t0, t1, ids, t, p) -> list[np.ndarray]:
+    """The kept chords' start points (curve ``ids``, parameter ``t``, point ``p``) in order along
+    each curve from t0 to t1, each curve's end after its last point, one view per curve."""
+    n = len(t0)
+    order = np.lexsort((t * np.sign(t1 - t0)[ids], ids))  # along each curve, from t0 to t1
+    ids, p = ids[order], p[order]
+    ends = func(np.arange(n), t1)
+    cuts = np.searchsorted(ids, np.arange(n + 1))
+    return np.split(np.insert(p, cuts[1:], ends, axis=0), cuts[1:-1] + np.arange(1, n))
+
+
 def sample_curves(
     func: Curves,
     t0,
@@ -88,11 +107,7 @@ def sample_curves(
             break
         bad = ~ok
         if 2 * np.count_nonzero(bad) + sum(len(k) for k in kept_t) > max_points:
-            raise DesignError(
-                f"the tooth outline would need more than {max_points:,} points within the tolerance: the pitch "
-                "curve bends too sharply for these teeth; use a coarser output.tolerance, or smaller or fewer teeth "
-                "(teeth.module / teeth.count)"
-            )
+            raise _too_many(max_points)
         ids = np.concatenate([ids[bad], ids[bad]])
         a, b = np.concatenate([a[bad], m[bad]]), np.concatenate([m[bad], b[bad]])
         pa, pb = np.concatenate([pa[bad], pm[bad]]), np.concatenate([pm[bad], pb[bad]])
@@ -101,10 +116,4 @@ def sample_curves(
         kept_ids.append(ids)
         kept_t.append(a)
         kept_p.append(pa)
-    ids, t, p = np.concatenate(kept_ids), np.concatenate(kept_t), np.concatenate(kept_p)
-    order = np.lexsort((t * np.sign(t1 - t0)[ids], ids))  # along each curve, from t0 to t1
-    ids, p = ids[order], p[order]
-    ends = func(np.arange(n), t1)
-    cuts = np.searchsorted(ids, np.arange(n + 1))
-    # each curve's end after its last point, then one view per curve
-    return np.split(np.insert(p, cuts[1:], ends, axis=0), cuts[1:-1] + np.arange(1, n))
+    return _per_curve(func, t0, t1, np.concatenate(kept_ids), np.concatenate(kept_t), np.concatenate(kept_p))

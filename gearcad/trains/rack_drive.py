@@ -36,6 +36,7 @@ from ..roots import brentq
 
 __all__ = [
     "RackDrive",
+    "contour_state",
     "inclination",
     "paper_inclination",
     "rack_length",
@@ -108,7 +109,7 @@ def paper_eps2(d: RackDrive, L, *, omega1: float, eps1: float = 0.0):
     return d.r / d.R * (eps1 / (1 + np.cos(beta)) + omega1 * w3 * np.sin(beta) / (1 + np.cos(beta)))
 
 
-def _contour_state(d: RackDrive, beta1: float):
+def contour_state(d: RackDrive, beta1: float):
     """Driver and wheel turns (Δφ1, Δφ2) at which the rack is inclined at β1 (eqs. 3, 5)."""
     beta0 = float(inclination(d))
     l0 = float(rack_length(d))
@@ -131,7 +132,7 @@ def law_by_contour(d: RackDrive, phi1: np.ndarray) -> np.ndarray:
             continue
 
         def miss(b, target=target):
-            return _contour_state(d, b)[0] - target
+            return contour_state(d, b)[0] - target
 
         hi = beta0
         step = 1e-3
@@ -141,7 +142,7 @@ def law_by_contour(d: RackDrive, phi1: np.ndarray) -> np.ndarray:
             if hi >= math.pi / 2 - 1e-12 and miss(hi) < 0:
                 raise DesignError("the wheel would roll past the point where the rack stands vertical")
         beta = brentq(miss, beta0, hi, xtol=1e-15, rtol=4 * np.finfo(float).eps)
-        out[k] = _contour_state(d, beta)[1]
+        out[k] = contour_state(d, beta)[1]
     return out
 
 

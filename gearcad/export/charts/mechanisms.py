@@ -45,24 +45,41 @@ def limits_chart(limits: dict, direction: str, roller_radius: float, path: Path,
 
 def field_chart(chart: dict, path: Path) -> None:
     """Velocity and acceleration of contour points at four turn angles (``chart`` as the design
-    computed it: ``mechanisms.roller_charts``), for the rollers the parts are cut with."""
-    fig, axes = subplots(2, 4, figsize=(14, 7))
-    for col, at in enumerate(chart["field"]):
-        for row, (label, key) in enumerate((("velocity", "velocity"), ("acceleration", "acceleration"))):
+    computed it: ``mechanisms.roller_charts``), for the rollers the parts are cut with.  Each row
+    draws its arrows to one scale (the longest a third of R), keyed by an arrow of a round length
+    with its unit under every panel."""
+    fig, axes = subplots(2, 4, figsize=(14, 7.6))
+    rows = (("velocity", "velocity", "R/s"), ("acceleration", "acceleration", "R/s²"))
+    for row, (label, key, unit) in enumerate(rows):
+        longest = max(float(np.max(np.hypot(*np.asarray(at[key]).T))) for at in chart["field"])
+        longest = longest if longest > 0 else 1.0
+        scale = longest / 0.35  # (units of the quantity) per R of arrow on the drawing
+        shown = _round_down(longest)
+        for col, at in enumerate(chart["field"]):
             ax = axes[row, col]
             ax.plot(*at["outline"].T, color="0.5", lw=0.8)
             p, v = at["points"], at[key]
-            ax.quiver(p[:, 0], p[:, 1], v[:, 0], v[:, 1], color="C0" if row == 0 else "C3", angles="xy")
+            arrows = ax.quiver(
+                p[:, 0], p[:, 1], v[:, 0], v[:, 1], color="C0" if row == 0 else "C3",
+                angles="xy", scale_units="xy", scale=scale, width=0.006,
+            )  # fmt: skip
+            ax.quiverkey(arrows, 0.5, -0.07, shown, f"{shown:g} {unit}", labelpos="E", coordinates="axes")
             ax.set_aspect("equal")
             ax.set_title(f"{label}, φ = {at['degrees']:.0f}°", fontsize=9)
             ax.set_xticks([])
             ax.set_yticks([])
     fig.suptitle(
         f"body on three rollers: {chart['direction']}, m = {chart['m']}, a = {chart['amplitude']:g} R, "
-        f"r = {chart['roller_radius']:.6g} R, {chart['rpm']:g} rpm (units of R)"
+        f"r = {chart['roller_radius']:.6g} R, {chart['rpm']:g} rpm (units of R; arrows to the key under each panel)"
     )
-    fig.tight_layout()
+    fig.tight_layout(h_pad=2.5)
     save_png(fig, path)
+
+
+def _round_down(value: float) -> float:
+    """The largest 1, 2 or 5 × 10^k not above ``value`` (> 0): a key arrow's length."""
+    power = 10.0 ** np.floor(np.log10(value))
+    return float(max(s * power for s in (1, 2, 5) if s * power <= value * (1 + 1e-12)))
 
 
 def rolling_chart(motion, params, path: Path) -> None:

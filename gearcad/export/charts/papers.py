@@ -25,8 +25,9 @@ _KIND_STYLE = {"convex": ("C0", "-"), "concave": ("C1", "-"), "looped": ("C3", "
 
 def limits_vs_r_chart(table: dict, path: Path, *, paper_by_eye: dict | None = None) -> None:
     """Seed 003: largest convex and simple amplitudes against the roller radius r, one line per
-    m, one panel per direction (``table`` = ``LimitTable.as_dict()``).  The paper's by-eye
-    values (no r given) are drawn as horizontal ticks at the panel's right edge."""
+    m, one panel per direction (``table`` = ``LimitTable.as_dict()``: both directions).  The
+    paper's by-eye values give no r, so they are no point here: they are listed under the legend
+    (amplitude_limits.png draws them against m, where the paper gives them)."""
     directions = list(table["convex"])
     r = np.array(table["r"], dtype=float)
     fig, axes = subplots(1, len(directions), figsize=(6.5 * len(directions), 5), squeeze=False)
@@ -36,15 +37,17 @@ def limits_vs_r_chart(table: dict, path: Path, *, paper_by_eye: dict | None = No
             simple = np.array([np.nan if v is None else v for v in table["simple"][d][i]], dtype=float)
             ax.semilogy(r, convex, "o-", color=f"C{i}", label=f"m = {m}: convex")
             ax.semilogy(r, simple, "s--", color=f"C{i}", label=f"m = {m}: simple (no loops)")
-            if paper_by_eye and m in paper_by_eye:
-                ax.plot([r[-1]], [paper_by_eye[m]], marker="<", ms=9, color=f"C{i}", ls="none")
         ax.set_xlabel("roller radius r / R")
         ax.set_ylabel("largest amplitude a / R")
-        ax.set_title(f"{d} oscillation" + ("  (◁ paper, by eye)" if paper_by_eye else ""))
+        ax.set_title(f"{d} oscillation")
         ax.grid(alpha=0.3, which="both")
     handles, labels = axes[0][0].get_legend_handles_labels()
     fig.set_size_inches(6.5 * len(directions) + 2.4, 5)
-    fig.legend(handles, labels, loc="center right", fontsize=7)  # beside the data
+    fig.legend(handles, labels, loc="upper right", fontsize=7)  # beside the data
+    if paper_by_eye:
+        values = "\n".join(f"m = {m}: {a:g}" for m, a in sorted(paper_by_eye.items()))
+        fig.text(0.995, 0.04, f"paper, 'oval' by eye\n(no r given;\nsee amplitude_limits.png):\n{values}",
+                 ha="right", va="bottom", fontsize=7)  # fmt: skip
     fig.suptitle("amplitude limits against the roller radius:\nthe convex limit does not move, the loops do")
     fig.tight_layout(rect=(0, 0, 1 - 2.4 / (6.5 * len(directions) + 2.4), 1))
     save_png(fig, path)
