@@ -1,8 +1,9 @@
-"""The certificate of the least play (gearcad/fitting/certify.py, docs/fit.md "How the least play
-is certified") on a pair built here: two eight-tooth wheels with straight-sided teeth, rolling at
-k = 1, one of gear 1's flanks carrying a narrow bump that takes play over a stretch of driver
-angle far narrower than the first positions' spacing.  The true least play comes from the
-oracle's exact vertex-against-edge turns (tests/fit_oracle.py), not from gearcad's band code."""
+"""The proven certificate of the least play (gearcad/fitting/prove.py, ``output.certificate =
+"theorem"``; docs/fit.md "How the least play is certified") on a pair built here: two eight-tooth
+wheels with straight-sided teeth, rolling at k = 1, one of gear 1's flanks carrying a narrow bump
+that takes play over a stretch of driver angle far narrower than the first positions' spacing.
+The true least play comes from the oracle's exact vertex-against-edge turns (tests/fit_oracle.py),
+not from gearcad's band code."""
 
 from __future__ import annotations
 
@@ -11,9 +12,9 @@ import math
 import numpy as np
 import shapely
 
-from gearcad.fitting.certify import certify_play
 from gearcad.fitting.pair_geometry import follower_speed
 from gearcad.fitting.play import PairGeometry
+from gearcad.fitting.prove import prove_play
 from tests.fit_oracle import free_turns
 
 N, R, A, E = 8, 10.0, 1.0, 20.3
@@ -88,12 +89,12 @@ def test_a_tight_spot_between_the_first_positions_is_found_and_bounded_below():
     true_min = min(_oracle_play(0.5 * (lo + hi)), float(plays.min()))
     assert first.min() > true_min + 0.005  # the first positions miss it: it lies between them
     margin = 0.25 * true_min  # a margin the pair keeps: the certificate must prove it
-    geo, play, cert = certify_play(g, (0.0, 0.0), 0.0, 1e-3, reach=3.0, margin=margin)
+    geo, play, cert = prove_play(g, (0.0, 0.0), 0.0, 1e-3, reach=3.0, margin=margin)
     assert cert.proven
     assert margin <= cert.lower <= true_min
     assert cert.positions > len(g.phi1)  # refined where the bound was weak
     # a margin between the true least and the first positions' least: sampled, it would fit;
     # the certificate must find the spot (a measured jam) or say it could not close, never fit
     margin = true_min + 0.004
-    geo, play, cert = certify_play(g, (0.0, 0.0), 0.0, 1e-3, reach=3.0, margin=margin, budget=64)
+    geo, play, cert = prove_play(g, (0.0, 0.0), 0.0, 1e-3, reach=3.0, margin=margin, budget=64)
     assert not (cert.proven and cert.lower >= margin)

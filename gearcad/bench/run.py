@@ -108,7 +108,7 @@ def run_bench(
         builds = 1 if quick else len(list(PROFILES.glob("*.toml")))
         peer = None if "peers" in skip else peer_version()
         timed = (3 * runs + 3 if peer else 0) + (0 if "goals" in skip else 6 * runs)
-        staged = 0 if "stages" in skip else (6 if quick else 21)  # the stages, and (not quick) the bands
+        staged = 0 if "stages" in skip else (6 if quick else 27)  # the stages, and (not quick) the bands
         progress = Progress(11 + builds + timed + staged)
         rows, hard = _studies(quick, work, progress)
         commands = gearcad_commands(work / "runs")

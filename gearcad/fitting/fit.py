@@ -274,6 +274,7 @@ def pair_bands(design: Design) -> tuple[Band, ...]:
         tol=tol,
         backlash=params.teeth.backlash,
         name=names,
+        certificate=params.output.certificate,
     )
     return (_as_driver(band, design),)
 
@@ -339,7 +340,7 @@ def with_bands(design: Design, bands: tuple[Band, ...], cures=None, fixed: bool 
     for b in bands:
         lines.append(
             f"band {b.mesh} ({process.kind}): play {b.nominal[0]:.4f}…{b.nominal[1]:.4f} mm as drawn, "
-            f"{b.band[0]:.4f}…{b.band[1]:.4f} mm made; {'fits' if b.fits else 'JAMS'}"
+            f"{b.band[0]:.4f}…{b.band[1]:.4f} mm made; {'fits' if b.fits else 'JAMS'}{_least_said(b)}"
         )
         where = f"tooth {b.worst_tooth} of the driver at driver angle {math.degrees(b.worst_phi):.1f}°"
         if not b.fits:
@@ -368,6 +369,15 @@ def with_bands(design: Design, bands: tuple[Band, ...], cures=None, fixed: bool 
             )
     data = {**design.data, "bands": [b.as_dict() for b in bands], "process": process_block(process)}
     return replace(design, findings=tuple(findings), details=tuple(lines), data=data)
+
+
+def _least_said(b: Band) -> str:
+    """The least play the verdict rests on and how it is known: "estimated" (the slope
+    estimate, ``output.certificate = "estimate"``) or "proven" (the theorem); "" without one."""
+    cert = b.certificate
+    if cert is None or (cert.kind == "theorem" and not cert.proven):
+        return ""
+    return f" (least {b.least:.4f} mm, {'proven' if cert.kind == 'theorem' else 'estimated'})"
 
 
 def process_block(process) -> dict:
