@@ -298,7 +298,8 @@ def _jam_sentence(params, b: Band, where: str, cures, module: float) -> str:
     if b.unproven:
         lo, hi = (math.degrees(x) for x in b.certificate.open)
         head = (
-            f"{b.mesh}: the play could not be certified within the work budget between driver angles "
+            f"{b.mesh}: the play could not be {'proven' if b.certificate.kind == 'theorem' else 'certified'} within "
+            f"the work budget between driver angles "
             f"{lo:.2f}° and {hi:.2f}° (the bound reaches {b.least:.4f} mm, the margin is {b.margin:.4f} mm; "
             f"least measured {b.band[0]:.4f} mm at {where})"
         )
