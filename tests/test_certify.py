@@ -12,6 +12,7 @@ import math
 import numpy as np
 import shapely
 
+from gearcad.fitting.band import pair_band
 from gearcad.fitting.pair_geometry import follower_speed
 from gearcad.fitting.play import PairGeometry
 from gearcad.fitting.prove import prove_play
@@ -98,3 +99,15 @@ def test_a_tight_spot_between_the_first_positions_is_found_and_bounded_below():
     margin = true_min + 0.004
     geo, play, cert = prove_play(g, (0.0, 0.0), 0.0, 1e-3, reach=3.0, margin=margin, budget=64)
     assert not (cert.proven and cert.lower >= margin)
+
+
+def test_the_band_takes_the_certificate_output_certificate_names():
+    """pair_band bounds the play by the slope estimate unless told "theorem" (the profile's
+    ``output.certificate``), and the report says which; the theorem's bound proves this pair's
+    exact-parts margin, no more than the least play it measured."""
+    g = _pair(np.linspace(0.0, 2 * math.pi, 2 * N, endpoint=False))
+    kw = {"edge": (0.0, 0.0, 0.0), "spread": 0.0, "tol": 1e-3, "backlash": 0.0}
+    assert pair_band(g, **kw).as_dict()["certificate"] == "estimate"
+    proven = pair_band(g, **kw, certificate="theorem").as_dict()
+    assert proven["certificate"] == "theorem" and proven["proven"] and proven["verdict"] == "fits"
+    assert proven["certified_min"] <= proven["min"]
