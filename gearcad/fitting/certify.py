@@ -3,7 +3,7 @@ the least play is certified"), as ``output.certificate`` picks it: by default an
 tight case's play bounded between positions by a Lipschitz constant taken from the slopes it
 shows, refined where that cannot settle the verdict (:func:`certify_play`); a dip narrower than
 the slopes around it could hide.  The *theorem* (:func:`.prove.prove_play`) bounds it from the
-geometry, at 10–40 times the CPU."""
+geometry, at 6–45 times the CPU."""
 
 from __future__ import annotations
 

@@ -97,7 +97,7 @@ class OutputParams(ParamsModel):
     """How a gear pair's least play is bounded between the driver positions measured (its band's verdict rests
     on it): "estimate" (default) bounds it by twice the steepest slope the measured play shows nearby — a dip
     narrower than those slopes could hide; "theorem" proves it from the geometry (the follower's motion about
-    the instant centre), at 10–40 times the CPU (seconds a pair), and says jams, naming the interval, where the
+    the instant centre), at 6–45 times the CPU (10–25 s a pair), and says jams, naming the interval, where the
     work budget cannot close it."""
 
     @model_validator(mode="after")
