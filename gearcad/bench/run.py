@@ -108,7 +108,7 @@ def run_bench(
         builds = 1 if quick else len(list(PROFILES.glob("*.toml")))
         peer = None if "peers" in skip else peer_version()
         timed = (3 * runs + 3 if peer else 0) + (0 if "goals" in skip else 8 * runs)
-        staged = 0 if "stages" in skip else (7 if quick else 31)  # the stages, the overhead, (not quick) the bands
+        staged = 0 if "stages" in skip else (7 if quick else 37)  # the stages, the overhead, (not quick) the bands
         progress = Progress(11 + builds + timed + staged)
         rows, hard = _studies(quick, work, progress)
         commands = gearcad_commands(work / "runs")

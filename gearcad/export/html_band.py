@@ -24,7 +24,8 @@ def section_bands(report: dict) -> str:
         f"<td class='num'>{mm(b['min'])} … {mm(b['max'])}</td>"
         f"<td class='num'>{b['worst_tooth']} at "
         f"{'–' if b['worst_phi'] is None else format(math.degrees(b['worst_phi']), '.1f')}°</td>"
-        f'<td><span class="{"good" if b["verdict"] == "fits" else "bad"}">{escape(str(b["verdict"]))}</span></td>'
+        f'<td><span class="{"good" if b["verdict"] == "fits" else "bad"}">{escape(str(b["verdict"]))}</span>'
+        f"{_how(b)}</td>"
         f"<td class='num'>{mm(b['needed_backlash'], 3)}</td></tr>"
         for b in bands
     )
@@ -35,6 +36,15 @@ def section_bands(report: dict) -> str:
         "<table><tr><th>mesh</th><th>as drawn</th><th>made</th><th>tightest (driver tooth, angle)</th>"
         f"<th>verdict</th><th>backlash to add</th></tr>{rows}</table>" + _contact(bands)
     )
+
+
+def _how(b: dict) -> str:
+    """How the least play the verdict rests on is known: by the slope estimate or proven
+    (``output.certificate``); nothing for a band without a certificate or one not settled."""
+    kind = b.get("certificate")
+    if kind is None or (kind == "theorem" and not b.get("proven")):
+        return ""
+    return f" (least {min(b['min'], b['certified_min']):.4f} mm, {'proven' if kind == 'theorem' else 'estimated'})"
 
 
 def _contact(bands: list[dict]) -> str:

@@ -22,6 +22,7 @@ import numpy as np
 from ..threads import side_by_side
 from .certify import Certificate, certify_play
 from .play import PairGeometry, play_between, signed_play
+from .prove import prove_play
 
 __all__ = ["Band", "band_of", "pair_band"]
 
@@ -43,7 +44,8 @@ class Band:
     margin: float
     pressure_angle: float
     certificate: Certificate | None = None
-    """How the least play was proven between positions (None: measured at the positions only)."""
+    """How the least play was bounded between positions (estimated or proven: its ``kind``; None:
+    measured at the positions only)."""
     gear1_phi: float | None = None
     """Gear 1's turn at the least play (rad) where the driver is gear 2 (``worst_phi`` is the driver's)."""
     mate_phi: float | None = None
@@ -91,25 +93,29 @@ def pair_band(
     backlash: float,
     name: str = "pair",
     internal: bool = False,
+    certificate: str = "estimate",
 ) -> Band:
     """The band of one pair under an edge offset (nominal, smallest, largest; mm) and ±``spread``
     of centre distance (closer centres take play from an external mesh, farther from an internal
     one); ``tol`` the outline tolerance (the worst case must keep twice it free), ``backlash``
-    the designed play (bounds the search with the stack)."""
+    the designed play (bounds the search with the stack), ``certificate`` how the tight case's
+    least play is bounded between positions (``output.certificate``: "estimate", the slopes'
+    :func:`~.certify.certify_play`, or "theorem", :func:`~.prove.prove_play`)."""
     closer = spread if internal else -spread
     alpha = g.pressure_angle
     reach = backlash + 4 * max(abs(e) for e in edge) / math.cos(alpha) + 2 * spread * math.tan(alpha) + 0.5 * g.module
     margin = _margin(edge, spread, tol, alpha)
     certify = g.at is not None and g.ratio is not None
+    bounded = prove_play if certificate == "theorem" else certify_play
     if edge[0] == edge[1] == edge[2] and not spread:  # no stack (no process): one case, not three alike
         if certify:
-            found = certify_play(g, (edge[0], edge[0]), 0.0, tol, reach=reach, margin=margin)
+            found = bounded(g, (edge[0], edge[0]), 0.0, tol, reach=reach, margin=margin)
             return _band_certified(name, found, None, None, edge=edge, spread=spread, tol=tol, alpha=alpha)
         nominal = tight = wide = signed_play(g, (edge[0], edge[0]), 0.0, tol, reach=reach)
     else:
         with side_by_side() as pool:  # GEOS releases the GIL: the cases side by side
             if certify:
-                tight_job = pool.submit(certify_play, g, (edge[2], edge[2]), closer, tol, reach=reach, margin=margin)
+                tight_job = pool.submit(bounded, g, (edge[2], edge[2]), closer, tol, reach=reach, margin=margin)
             else:
                 tight_job = pool.submit(signed_play, g, (edge[2], edge[2]), closer, tol, reach=reach)
             jobs = [
@@ -133,7 +139,8 @@ def _margin(edge, spread: float, tol: float, alpha: float) -> float:
 
 
 def _band_certified(name, found, nominal, wide, *, edge, spread, tol, alpha) -> Band:
-    """The band from the certified tight case ``found`` (:func:`~.certify.certify_play`) and the nominal and wide
+    """The band from the certified tight case ``found`` (:func:`~.certify.certify_play` or
+    :func:`~.prove.prove_play`) and the nominal and wide
     plays at the first positions (None: no stack, the tight case is all three)."""
     g, tight, cert = found
     if nominal is None:

@@ -1,6 +1,9 @@
-"""The certificate of a pair's least play between the driver positions measured (docs/fit.md):
-the tight case's play bounded between positions and refined where the bound cannot settle the
-verdict (:func:`certify_play`)."""
+"""The certificate of a pair's least play between the driver positions measured (docs/fit.md, "How
+the least play is certified"), as ``output.certificate`` picks it: by default an *estimate* — the
+tight case's play bounded between positions by a Lipschitz constant taken from the slopes it
+shows, refined where that cannot settle the verdict (:func:`certify_play`); a dip narrower than
+the slopes around it could hide.  The *theorem* (:func:`.prove.prove_play`) bounds it from the
+geometry, at 6–45 times the CPU."""
 
 from __future__ import annotations
 
@@ -10,15 +13,20 @@ import numpy as np
 
 from .play import PairGeometry, measure
 
-__all__ = ["PER_TOOTH", "Certificate", "certify_play"]
+__all__ = ["KINDS", "PER_TOOTH", "Certificate", "certify_play"]
+
+KINDS = ("estimate", "theorem")
+"""The certificates ``output.certificate`` picks from: the slope estimate (:func:`certify_play`,
+the default) and the theorem (:func:`.prove.prove_play`)."""
 
 
 @dataclass(frozen=True)
 class Certificate:
-    """How the smallest play of the tight case was proven between the positions measured."""
+    """How the smallest play of the tight case was bounded between the positions measured."""
 
     lower: float
-    """The certified least play (mm): no driver angle of the cycle has less (:func:`certify_play`)."""
+    """The least play the verdict rests on (mm): under ``kind`` "theorem" no driver angle of the
+    cycle has less (proven); under "estimate" the slope bound's least (:func:`certify_play`)."""
     positions: int
     """Driver positions measured for it (the first even ones and those refined)."""
     slack: float
@@ -28,9 +36,12 @@ class Certificate:
     falls below it); False: the work budget ran out first (``open`` is the interval)."""
     open: tuple[float, float] = (0.0, 0.0)
     """The driver interval (rad) whose play the budget could not bound, when not ``proven``."""
+    kind: str = "estimate"
+    """Which bound: "estimate" (slopes, :func:`certify_play`) or "theorem" (:func:`.prove.prove_play`)."""
 
     def as_dict(self) -> dict:
-        out = {"certified_min": self.lower, "positions": self.positions, "slack": self.slack, "proven": self.proven}
+        out = {"certificate": self.kind, "certified_min": self.lower, "positions": self.positions}
+        out |= {"slack": self.slack, "proven": self.proven}
         if not self.proven:
             out["open_phi"] = list(self.open)
         return out
@@ -50,9 +61,9 @@ more to say how far short it falls (the verdict is settled)."""
 
 
 def certify_play(g: PairGeometry, offsets, spread: float, tol: float, *, reach: float, margin: float, budget: int = 0):
-    """The tight case's signed play, measured at ``g``'s positions and refined where the bound
-    between them cannot settle the verdict: (geometry at every position measured, play there,
-    :class:`Certificate`).
+    """The tight case's signed play, measured at ``g``'s positions and refined where the estimated
+    bound between them cannot settle the verdict: (geometry at every position measured, play
+    there, :class:`Certificate` of kind "estimate").
 
     Between two measured driver angles a and b = a + h the play is at least
     min(p(a), p(b)) − L·h/2, L the Lipschitz bound: :data:`SAFETY` times the steepest slope

@@ -238,6 +238,7 @@ def pair_bands(design: Design) -> tuple[Band, ...]:
         tol=tol,
         backlash=params.teeth.backlash,
         name=names,
+        certificate=params.output.certificate,
     )
     return (_as_driver(band, design),)
 
@@ -261,7 +262,8 @@ def _jam_sentence(params, b: Band, where: str, cures, module: float) -> str:
     if b.unproven:
         lo, hi = (math.degrees(x) for x in b.certificate.open)
         head = (
-            f"{b.mesh}: the play could not be certified within the work budget between driver angles "
+            f"{b.mesh}: the play could not be {'proven' if b.certificate.kind == 'theorem' else 'certified'} within "
+            f"the work budget between driver angles "
             f"{lo:.2f}° and {hi:.2f}° (the bound reaches {b.least:.4f} mm, the margin is {b.margin:.4f} mm; "
             f"least measured {b.band[0]:.4f} mm at {where})"
         )
@@ -314,7 +316,7 @@ def with_bands(
     for b in bands:
         lines.append(
             f"band {b.mesh} ({process.kind}): play {b.nominal[0]:.4f}…{b.nominal[1]:.4f} mm as drawn, "
-            f"{b.band[0]:.4f}…{b.band[1]:.4f} mm made; {'fits' if b.fits else 'JAMS'}"
+            f"{b.band[0]:.4f}…{b.band[1]:.4f} mm made; {'fits' if b.fits else 'JAMS'}{_least_said(b)}"
         )
         where = f"tooth {b.worst_tooth} of the driver at driver angle {math.degrees(b.worst_phi):.1f}°"
         if not b.fits:
@@ -343,6 +345,15 @@ def with_bands(
             )
     data = {**design.data, "bands": [{**b.as_dict(), **chosen} for b in bands], "process": process_block(process)}
     return replace(design, findings=tuple(findings), details=tuple(lines), data=data)
+
+
+def _least_said(b: Band) -> str:
+    """The least play the verdict rests on and how it is known: "estimated" (the slope
+    estimate, ``output.certificate = "estimate"``) or "proven" (the theorem); "" without one."""
+    cert = b.certificate
+    if cert is None or (cert.kind == "theorem" and not cert.proven):
+        return ""
+    return f" (least {b.least:.4f} mm, {'proven' if cert.kind == 'theorem' else 'estimated'})"
 
 
 def process_block(process) -> dict:

@@ -27,6 +27,7 @@ def pair_geometry(design: Design, positions: int | None = None) -> PairGeometry 
     first = teeth.gears[0]
     rings = tuple(g.outline.outer for g in teeth.gears)
     alpha = design.params.teeth.pressure_angle
+    ratio = follower_speed(pair.angle_map.slope, pair.cycle)
 
     def at(phi1: np.ndarray) -> PairGeometry:
         arc = teeth.frames[0].arc(phi1 % (2 * np.pi))
@@ -40,7 +41,8 @@ def pair_geometry(design: Design, positions: int | None = None) -> PairGeometry 
             pressure_angle=alpha,
             teeth=np.floor((arc - first.phase) / first.rack.pitch).astype(int) % first.teeth,
             at=at,
-            ratio=follower_speed(pair.angle_map.slope, pair.cycle),
+            ratio=ratio,
+            slope=pair.angle_map.slope,
             cycle=pair.cycle,
             first=start,
         )
@@ -54,28 +56,36 @@ def pair_geometry(design: Design, positions: int | None = None) -> PairGeometry 
 
 
 def follower_speed(slope, cycle: float, samples: int = 8192):
-    """ratio(lo, hi) -> (k, s) per driver interval [lo, hi] (rad; hi may pass the cycle): the
-    largest follower speed k = dφ2/dφ1 there and the largest speed of the unit instant centre
-    k/(1+k)·(cos φ1, sin φ1) (its distance from gear 1's pivot over E, and that turning), from
-    ``samples`` even driver angles over the ``cycle``, each raised by the largest step between
-    neighbours (what falls between two samples)."""
+    """ratio(lo, hi) -> (k, s, dk, ddk, s2) per driver interval [lo, hi] (rad; either end may pass
+    the cycle): the largest follower speed k = dφ2/dφ1 there, the largest speed |I'| and
+    acceleration |I''| of the unit instant centre I = k/(1+k)·(cos φ1, sin φ1) (its distance from
+    gear 1's pivot over E, and that turning: ``s``, ``s2``) and the largest |dk/dφ1|, |d²k/dφ1²|,
+    from ``samples`` even driver angles over the ``cycle``, each raised by the largest step
+    between neighbours (what falls between two samples)."""
     grid = np.linspace(0.0, cycle, samples + 1)
     k = np.abs(slope(grid))
     unit = k / (1 + k)
-    turn = np.gradient(unit, grid)
-    speed = np.hypot(unit, turn)
-    k_step, s_step = float(np.max(np.abs(np.diff(k)))), float(np.max(np.abs(np.diff(speed))))
-    k, speed = k[:-1], speed[:-1]
+    du = np.gradient(unit, grid)
+    ddu = np.gradient(du, grid)
+    speed = np.hypot(unit, du)
+    accel = np.hypot(ddu - unit, 2 * du)
+    dk = np.gradient(k, grid)
+    ddk = np.abs(np.gradient(dk, grid))
+    dk = np.abs(dk)
+    series = (k, speed, dk, ddk, accel)
+    steps = [float(np.max(np.abs(np.diff(a)))) for a in series]
+    tables = [a[:-1] for a in series]
     step = cycle / samples
 
-    def ratio(lo, hi) -> tuple[np.ndarray, np.ndarray]:
+    def ratio(lo, hi) -> tuple[np.ndarray, ...]:
         lo, hi = np.atleast_1d(np.asarray(lo, dtype=float)), np.atleast_1d(np.asarray(hi, dtype=float))
         first = np.floor(lo / step).astype(int)
         last = np.ceil(hi / step).astype(int)
-        kmax, smax = np.empty(len(lo)), np.empty(len(lo))
+        out = [np.empty(len(lo)) for _ in tables]
         for i, (f, g) in enumerate(zip(first.tolist(), last.tolist())):
             idx = np.arange(f, max(g, f) + 1) % samples
-            kmax[i], smax[i] = k[idx].max(), speed[idx].max()
-        return kmax + k_step, smax + s_step
+            for o, t in zip(out, tables):
+                o[i] = t[idx].max()
+        return tuple(o + s for o, s in zip(out, steps))
 
     return ratio

@@ -43,7 +43,10 @@ class PairGeometry:
     at: Callable[[np.ndarray], PairGeometry] | None = field(default=None, compare=False, repr=False)
     """The same pair at other driver angles (what the certificate refines with); None: no refining."""
     ratio: Callable[[np.ndarray, np.ndarray], np.ndarray] | None = field(default=None, compare=False, repr=False)
-    """(lo, hi) -> the largest follower speed dφ2/dφ1 over each driver interval [lo, hi] (rad)."""
+    """(lo, hi) -> over each driver interval [lo, hi] (rad): the largest follower speed k = dφ2/dφ1,
+    the largest speed of the instant centre over the centre distance, and the largest |dk/dφ1|."""
+    slope: Callable[[np.ndarray], np.ndarray] | None = field(default=None, compare=False, repr=False)
+    """φ1 -> the follower speed dφ2/dφ1 there (what the certificate's bound starts from)."""
     cycle: float = 2 * math.pi
     """The driver's turn after which the pair repeats (rad): the positions wrap there."""
     first: np.ndarray | None = field(default=None, compare=False, repr=False)

@@ -1,0 +1,113 @@
+"""The proven certificate of the least play (gearcad/fitting/prove.py, ``output.certificate =
+"theorem"``; docs/fit.md "How the least play is certified") on a pair built here: two eight-tooth
+wheels with straight-sided teeth, rolling at k = 1, one of gear 1's flanks carrying a narrow bump
+that takes play over a stretch of driver angle far narrower than the first positions' spacing.
+The true least play comes from the oracle's exact vertex-against-edge turns (tests/fit_oracle.py),
+not from gearcad's band code."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import shapely
+
+from gearcad.fitting.band import pair_band
+from gearcad.fitting.pair_geometry import follower_speed
+from gearcad.fitting.play import PairGeometry
+from gearcad.fitting.prove import prove_play
+from tests.fit_oracle import free_turns
+
+N, R, A, E = 8, 10.0, 1.0, 20.3
+PITCH = 2 * math.pi / N
+MODULE = 2 * R / N
+
+
+def _wheel(base: float, tip: float, phase: float, bump: bool = False) -> np.ndarray:
+    """A wheel of N straight-sided teeth (half-angles ``base`` at the root, ``tip`` at the tip,
+    fractions of the pitch), the first centred at ``phase``; ``bump``: a 0.25 mm bump half way up
+    the first tooth's leading flank."""
+    pts = []
+    for i in range(N):
+        c = phase + i * PITCH
+        corners = [(R - 1.25 * A, c - 0.5 * PITCH), (R - A, c - base * PITCH)]
+        if bump and i == 0:
+            lo, hi = np.array([R - A, c - base * PITCH]), np.array([R + A, c - tip * PITCH])
+            for f, out in ((0.47, 0.0), (0.5, 0.25), (0.53, 0.0)):
+                r, a = lo + f * (hi - lo)
+                corners.append((r, a - out / r))
+        corners += [(R + A, c - tip * PITCH), (R + A, c + tip * PITCH), (R - A, c + base * PITCH)]
+        pts += [(r * math.cos(a), r * math.sin(a)) for r, a in corners]
+    return np.array(pts)
+
+
+RINGS = (_wheel(0.3, 0.2, 0.0, bump=True), _wheel(0.28, 0.17, math.pi + PITCH / 2))
+SLOPE = np.ones_like
+
+
+def _pair(phi1: np.ndarray) -> PairGeometry:
+    return PairGeometry(
+        rings=RINGS,
+        center_distance=E,
+        phi1=phi1,
+        phi2=phi1.copy(),
+        r1=np.full(len(phi1), E / 2),
+        module=MODULE,
+        pressure_angle=math.radians(20),
+        teeth=np.zeros(len(phi1), dtype=int),
+        at=_pair,
+        ratio=RATIO,
+        slope=SLOPE,
+    )
+
+
+RATIO = follower_speed(SLOPE, 2 * math.pi, samples=256)
+
+
+def _oracle_play(phi: float) -> float:
+    """Gear 2's free turn each way at driver angle φ, exact (the oracle), times its arm."""
+    c, s = math.cos(-phi), math.sin(-phi)
+    g1 = shapely.Polygon(RINGS[0] @ np.array([[c, s], [-s, c]]))
+    c2, s2 = math.cos(phi), math.sin(phi)
+    g2 = shapely.Polygon(RINGS[1] @ np.array([[c2, s2], [-s2, c2]]) + [E, 0.0])
+    up, down = free_turns(g1, g2, np.array([E, 0.0]), np.array([E / 2, 0.0]), 3 * MODULE, 0.3)
+    return (up + down) * (E / 2)
+
+
+def test_a_tight_spot_between_the_first_positions_is_found_and_bounded_below():
+    g = _pair(np.linspace(0.0, 2 * math.pi, 2 * N, endpoint=False))
+    first = np.array([_oracle_play(p) for p in g.phi1])
+    dense = np.linspace(-0.6, 0.0, 31)  # the bump meets gear 2's tip about φ = −0.4
+    plays = np.array([_oracle_play(p) for p in dense])
+    j = int(np.argmin(plays))
+    lo, hi = dense[max(j - 1, 0)], dense[min(j + 1, len(dense) - 1)]
+    for _ in range(16):  # golden section on the oracle's play about the least
+        a, b = hi - 0.618 * (hi - lo), lo + 0.618 * (hi - lo)
+        if _oracle_play(a) <= _oracle_play(b):
+            hi = b
+        else:
+            lo = a
+    true_min = min(_oracle_play(0.5 * (lo + hi)), float(plays.min()))
+    assert first.min() > true_min + 0.005  # the first positions miss it: it lies between them
+    margin = 0.25 * true_min  # a margin the pair keeps: the certificate must prove it
+    geo, play, cert = prove_play(g, (0.0, 0.0), 0.0, 1e-3, reach=3.0, margin=margin)
+    assert cert.proven
+    assert margin <= cert.lower <= true_min
+    assert cert.positions > len(g.phi1)  # refined where the bound was weak
+    # a margin between the true least and the first positions' least: sampled, it would fit;
+    # the certificate must find the spot (a measured jam) or say it could not close, never fit
+    margin = true_min + 0.004
+    geo, play, cert = prove_play(g, (0.0, 0.0), 0.0, 1e-3, reach=3.0, margin=margin, budget=64)
+    assert not (cert.proven and cert.lower >= margin)
+
+
+def test_the_band_takes_the_certificate_output_certificate_names():
+    """pair_band bounds the play by the slope estimate unless told "theorem" (the profile's
+    ``output.certificate``), and the report says which; the theorem's bound proves this pair's
+    exact-parts margin, no more than the least play it measured."""
+    g = _pair(np.linspace(0.0, 2 * math.pi, 2 * N, endpoint=False))
+    kw = {"edge": (0.0, 0.0, 0.0), "spread": 0.0, "tol": 1e-3, "backlash": 0.0}
+    assert pair_band(g, **kw).as_dict()["certificate"] == "estimate"
+    proven = pair_band(g, **kw, certificate="theorem").as_dict()
+    assert proven["certificate"] == "theorem" and proven["proven"] and proven["verdict"] == "fits"
+    assert proven["certified_min"] <= proven["min"]
