@@ -5,6 +5,7 @@ there; the tuples are named so that a drawer may still unpack them."""
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, NamedTuple, TypeAlias, TypedDict, Union
 
 import numpy as np
@@ -12,7 +13,19 @@ import numpy as np
 if TYPE_CHECKING:
     from ..teeth.pair import ToothedPairData
     from .pair_pitch import PairDesign
-    from .rolling_wheel import RollingWheelDetail
+
+
+@dataclass(frozen=True)
+class RollingWheelDetail:
+    """The motion over the travel: driver angle, the wheel's angle by both methods, rates."""
+
+    phi1: np.ndarray
+    by_contour: np.ndarray
+    by_rates: np.ndarray
+    omega2: np.ndarray
+    omega3: np.ndarray
+    eps2: np.ndarray
+
 
 __all__ = [
     "Json",

@@ -4,7 +4,6 @@ length, rates, the motion law two ways, and the two wheels as parts."""
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 import numpy as np
 
@@ -13,7 +12,7 @@ from ..geometry.rings import circle_ring
 from ..profiles import RollingWheelParams
 from ..tolerances import budget
 from ..trains import rack_drive as RD
-from .chart_data import Blocks
+from .chart_data import Blocks, RollingWheelDetail
 from .finish import Contact, Draft, PartSpec
 from .parts import Placement
 
@@ -21,18 +20,6 @@ __all__ = ["RollingWheelDetail", "design"]
 
 TWO_PI = 2 * math.pi
 UNITS = {"length": "mm", "angle": "rad", "speed": "rad/s", "acceleration": "rad/s^2"}
-
-
-@dataclass(frozen=True)
-class RollingWheelDetail:
-    """The motion over the travel: driver angle, the wheel's angle by both methods, rates."""
-
-    phi1: np.ndarray
-    by_contour: np.ndarray
-    by_rates: np.ndarray
-    omega2: np.ndarray
-    omega3: np.ndarray
-    eps2: np.ndarray
 
 
 def _motion(d: RD.RackDrive, p: RollingWheelParams, w1: float) -> RollingWheelDetail:

@@ -132,16 +132,16 @@ def check_values(vary: Vary) -> None:
 _PART = re.compile(r"[A-Za-z0-9_]+")
 
 
-def _admits(annotation: Any) -> tuple[list[type], bool]:
+def admits(annotation: Any) -> tuple[list[type], bool]:
     """The tables (profile models) a field's type admits, and whether it admits a plain value
     (a number, text, a list); TOML has no null, so ``None`` admits neither."""
     origin = get_origin(annotation)
     if origin is Annotated:
-        return _admits(get_args(annotation)[0])
+        return admits(get_args(annotation)[0])
     if origin is Union or origin is types.UnionType:
         tables, plain = [], False
         for arg in get_args(annotation):
-            t, p = _admits(arg)
+            t, p = admits(arg)
             tables += t
             plain |= p
         return tables, plain
@@ -173,7 +173,7 @@ def check_key(data: dict, key: str) -> None:
             )
         tables, plain = [], False
         for f in fields:
-            t, p = _admits(f.annotation)
+            t, p = admits(f.annotation)
             tables += t
             plain |= p
     if not plain:

@@ -27,8 +27,8 @@ from typing import Annotated, Any
 from pydantic import BaseModel, TypeAdapter
 
 from ..profiles.reading import MODEL_OF, parse_profile
-from .evaluate import overridden
-from .space import _admits
+from .overrides import overridden
+from .space import admits
 
 __all__ = ["Variants"]
 
@@ -110,7 +110,7 @@ def _table_class(cls: type[BaseModel], key: str, tag: Any) -> type[BaseModel] | 
     """The model a table given for ``cls.key`` is (its tag ``tag`` where the field is a tagged
     union), if it can be built here: the field admits tables only, with no constraint of its own."""
     field = cls.model_fields[key]
-    tables, plain = _admits(field.annotation)
+    tables, plain = admits(field.annotation)
     if plain or not tables or field.metadata:
         return None
     if len(tables) > 1:
