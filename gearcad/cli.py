@@ -80,7 +80,7 @@ def _parser() -> argparse.ArgumentParser:
         choices=["peers", "goals", "stages"],
         help="leave out a section that runs whole processes (repeatable)",
     )
-    from .sweeps.command import add_parser as add_sweep
+    from .sweeps.cli import add_parser as add_sweep
 
     add_sweep(sub)
     return parser
@@ -189,7 +189,7 @@ def _run(args) -> int:
         print(f"{len(rows)} measurements written to {args.out}/ (results.md, results.csv, *.png)")
         return 0
     if args.command == "sweep":
-        from .sweeps.command import run
+        from .sweeps.cli import run
 
         return run(args)
     if args.command == "check":

@@ -1,4 +1,5 @@
-"""``gearcad sweep``: its arguments and what it runs (kept here so cli.py only registers it)."""
+"""``gearcad sweep`` on the command line: its arguments, what it runs and what it prints (kept
+here so gearcad/cli.py only registers it)."""
 
 from __future__ import annotations
 
