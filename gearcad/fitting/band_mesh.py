@@ -31,7 +31,7 @@ from ..geometry.outline import place_each
 from ..threads import side_by_side
 from .band import Band, band_of
 
-__all__ = ["MeshGeometry", "clip", "mesh_band", "mesh_play"]
+__all__ = ["MeshGeometry", "clip", "mesh_band", "mesh_play", "signed_mesh_play"]
 
 _WINDOW = 3.0
 """Radius of the window about the contact, modules: contact stays within about one pitch."""
@@ -188,7 +188,7 @@ def _turn_to_touch(gap_at, gap: np.ndarray, far: np.ndarray, limit, steps: int, 
     return turn
 
 
-def _signed_play(g: MeshGeometry, pieces, edge: float, shift: float, tol: float, *, reach: float) -> np.ndarray:
+def signed_mesh_play(g: MeshGeometry, pieces, edge: float, shift: float, tol: float, *, reach: float) -> np.ndarray:
     """:func:`mesh_play` with both parts grown by ``edge``, negative where jammed: the shrink ε
     that frees it counts −4ε/cos α.
 
@@ -252,7 +252,7 @@ def mesh_band(
         cases = cases[:1]
     pieces = clip(g, max(abs(e) for e in edge) + 0.5 * g.module)  # the bisection shrinks up to half a module
     with side_by_side() as pool:  # GEOS releases the GIL: the cases side by side
-        jobs = [pool.submit(_signed_play, g, pieces, e, s, tol, reach=reach) for e, s in cases]
+        jobs = [pool.submit(signed_mesh_play, g, pieces, e, s, tol, reach=reach) for e, s in cases]
         plays = [job.result() for job in jobs]
     nominal, tight, wide = (plays * 3)[:3] if len(plays) == 1 else plays
     return band_of(name, (nominal, tight, wide), g.teeth, g.phi1, edge=edge, spread=spread, tol=tol, alpha=alpha)

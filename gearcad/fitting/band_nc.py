@@ -40,9 +40,9 @@ from ..teeth.contact import ContactData, contact_ratio
 from ..teeth.frame import arc_frame
 from ..threads import side_by_side
 from .band import band_of
-from .band_mesh import MeshGeometry, _signed_play, clip, mesh_play
+from .band_mesh import MeshGeometry, clip, mesh_play, signed_mesh_play
 from .band_trains import MeshBand, radial_room, with_mesh_bands
-from .certify import JAM_HALVINGS, REACH, SAFETY, Certificate
+from .certify import certify
 from .fit import smallest_fit
 from .made import made, sliver
 from .mesh_fit import closed_form, with_backlash
@@ -240,52 +240,6 @@ def planetary_meshes(draft) -> list[NcMesh]:
     ]
 
 
-def certify(measure, first: np.ndarray, cycle: float, *, module: float, tol: float, margin: float, budget: int = 0):
-    """The tight case's signed play measured at the driver angles ``first`` and refined where the
-    bound between them cannot settle the verdict: (angles measured, play there, certificate).
-    ``measure(phi) -> play``.  The bound, constants and refining are
-    :func:`~.certify.certify_play`'s: between a and b = a + h the play is at least
-    min(p(a), p(b)) − L·h/2, L :data:`~.certify.SAFETY` times the steepest slope over the interval
-    and :data:`~.certify.REACH` either side, never under the resolution over the cycle."""
-    budget = budget or 4 * len(first)
-    resolution = max(tol, 1e-4 * module)
-    narrowest = 1e-6 * cycle
-    phi, play = np.asarray(first, dtype=float), measure(np.asarray(first, dtype=float))
-    jammed = 0
-    while True:
-        order = np.argsort(phi, kind="stable")
-        a, b = order, np.roll(order, -1)
-        lo = phi[a]
-        h = (phi[b] - lo) % cycle
-        slope = np.abs(play[b] - play[a]) / np.maximum(h, narrowest)
-        near = np.max([np.roll(slope, j) for j in range(-REACH, REACH + 1)], axis=0)
-        lipschitz = np.maximum(SAFETY * near, resolution / cycle)
-        ends = np.minimum(play[a], play[b])
-        low = ends - lipschitz * h / 2
-        least = float(np.min(play))
-        if least < margin:
-            jammed += 1
-            split = (low < least - resolution) & (ends < least + 8 * resolution) & (jammed <= JAM_HALVINGS)
-        else:
-            split = low < margin
-        split &= h > narrowest
-        bound = float(np.min(low))
-        proven = least < margin or bound >= margin
-        if not split.any() or len(phi) + int(split.sum()) > budget:
-            worst = int(np.argmin(low))
-            lower = least if least < margin else min(bound, least)
-            cert = Certificate(
-                lower=lower,
-                positions=len(phi),
-                slack=least - lower,
-                proven=proven,
-                open=(0.0, 0.0) if proven else (float(lo[worst]), float(lo[worst] + h[worst])),
-            )
-            return phi, play, cert
-        mids = (lo[split] + h[split] / 2) % cycle
-        phi, play = np.concatenate([phi, mids]), np.concatenate([play, measure(mids)])
-
-
 def _band(mesh: NcMesh, params, *, quick: bool = False):
     """The certified band of one mesh under the profile's process; ``quick``: the tight case
     alone at the first positions, not certified between them (the backlash search's look)."""
@@ -300,7 +254,7 @@ def _band(mesh: NcMesh, params, *, quick: bool = False):
 
     def signed(phi, e, shift):
         g = mesh.at(phi)
-        return _signed_play(g, clip(g, grow + 0.5 * m), e, shift, tol, reach=reach)
+        return signed_mesh_play(g, clip(g, grow + 0.5 * m), e, shift, tol, reach=reach)
 
     def tight(phi):
         return signed(phi, edge[2], spread)

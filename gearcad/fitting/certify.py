@@ -7,13 +7,14 @@ geometry, at 6–45 times the CPU."""
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass, replace
 
 import numpy as np
 
 from .play import PairGeometry, measure
 
-__all__ = ["KINDS", "PER_TOOTH", "Certificate", "certify_play"]
+__all__ = ["KINDS", "PER_TOOTH", "Certificate", "certify", "certify_play"]
 
 KINDS = ("estimate", "theorem")
 """The certificates ``output.certificate`` picks from: the slope estimate (:func:`certify_play`,
@@ -77,24 +78,41 @@ def certify_play(g: PairGeometry, offsets, spread: float, tol: float, *, reach: 
     positions) runs out: then the certificate is not ``proven`` and names the interval."""
     if g.first is not None:  # the certificate's own even start along the pitch curve
         g = g.at(g.first)
-    n0 = len(g.phi1)
-    budget = budget or 4 * n0
-    resolution = max(tol, 1e-4 * g.module)
-    narrowest = 1e-6 * g.cycle
-    geo, play = g, measure(g, offsets, spread, tol, reach=reach)
+    measured: list[PairGeometry] = []
+
+    def play_at(phi: np.ndarray) -> np.ndarray:
+        sub = g.at(phi) if measured else g
+        measured.append(sub)
+        return measure(sub, offsets, spread, tol, reach=reach)
+
+    _, play, cert = certify(play_at, g.phi1, g.cycle, module=g.module, tol=tol, margin=margin, budget=budget)
+    return functools.reduce(_joined, measured), play, cert
+
+
+def certify(measure, first: np.ndarray, cycle: float, *, module: float, tol: float, margin: float, budget: int = 0):
+    """The tight case's signed play measured at the driver angles ``first`` and refined where the
+    bound between them cannot settle the verdict: (angles measured, play there, certificate).
+    ``measure(phi) -> play``.  The bound, constants and refining are
+    :func:`~.certify.certify_play`'s: between a and b = a + h the play is at least
+    min(p(a), p(b)) − L·h/2, L :data:`~.certify.SAFETY` times the steepest slope over the interval
+    and :data:`~.certify.REACH` either side, never under the resolution over the cycle."""
+    budget = budget or 4 * len(first)
+    resolution = max(tol, 1e-4 * module)
+    narrowest = 1e-6 * cycle
+    phi, play = np.asarray(first, dtype=float), measure(np.asarray(first, dtype=float))
     jammed = 0
     while True:
-        order = np.argsort(geo.phi1, kind="stable")
+        order = np.argsort(phi, kind="stable")
         a, b = order, np.roll(order, -1)
-        lo = geo.phi1[a]
-        h = (geo.phi1[b] - lo) % g.cycle
+        lo = phi[a]
+        h = (phi[b] - lo) % cycle
         slope = np.abs(play[b] - play[a]) / np.maximum(h, narrowest)
         near = np.max([np.roll(slope, j) for j in range(-REACH, REACH + 1)], axis=0)
-        lipschitz = np.maximum(SAFETY * near, resolution / g.cycle)
+        lipschitz = np.maximum(SAFETY * near, resolution / cycle)
         ends = np.minimum(play[a], play[b])
         low = ends - lipschitz * h / 2
         least = float(np.min(play))
-        if least < margin:  # it jams: pin the least play down where it may lie lower, a few halvings
+        if least < margin:
             jammed += 1
             split = (low < least - resolution) & (ends < least + 8 * resolution) & (jammed <= JAM_HALVINGS)
         else:
@@ -102,20 +120,19 @@ def certify_play(g: PairGeometry, offsets, spread: float, tol: float, *, reach: 
         split &= h > narrowest
         bound = float(np.min(low))
         proven = least < margin or bound >= margin
-        if not split.any() or len(geo.phi1) + int(split.sum()) > budget:
+        if not split.any() or len(phi) + int(split.sum()) > budget:
             worst = int(np.argmin(low))
             lower = least if least < margin else min(bound, least)
             cert = Certificate(
                 lower=lower,
-                positions=len(geo.phi1),
+                positions=len(phi),
                 slack=least - lower,
                 proven=proven,
                 open=(0.0, 0.0) if proven else (float(lo[worst]), float(lo[worst] + h[worst])),
             )
-            return geo, play, cert
-        mids = (lo[split] + h[split] / 2) % g.cycle
-        sub = g.at(mids)
-        geo, play = _joined(geo, sub), np.concatenate([play, measure(sub, offsets, spread, tol, reach=reach)])
+            return phi, play, cert
+        mids = (lo[split] + h[split] / 2) % cycle
+        phi, play = np.concatenate([phi, mids]), np.concatenate([play, measure(mids)])
 
 
 def _joined(g: PairGeometry, more: PairGeometry) -> PairGeometry:
