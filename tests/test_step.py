@@ -39,7 +39,7 @@ from OCP.GProp import GProp_GProps  # noqa: E402
 from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_SHELL, TopAbs_SOLID  # noqa: E402
 from OCP.TopoDS import TopoDS  # noqa: E402
 
-from .conftest import bulge_arc  # noqa: E402
+from .conftest import EXAMPLES, bulge_arc  # noqa: E402
 from .occ import every as _all  # noqa: E402
 from .occ import face_counts as _faces  # noqa: E402
 from .occ import read_step as _read  # noqa: E402
@@ -401,3 +401,34 @@ def test_profiles_take_step_and_refuse_what_is_not_a_format():
     assert "step" not in load_profile("profiles/spur_pair.toml").output.formats  # asked for, not default
     with pytest.raises(gearcad.ProfileError, match="step"):
         load_profile("profiles/spur_pair.toml", ['output.formats=["stp"]'])
+
+
+def test_a_step_file_that_cannot_be_written_is_one_line_and_nothing_published(tmp_path, monkeypatch, capsys):
+    """OpenCASCADE's writer says only that it failed (a full disk, a folder it may not write): the
+    build ends in one line, exit 2, and nothing lands in --out (as for a full disk under any
+    other format)."""
+    import OCP.STEPCAFControl as control
+    from OCP.IFSelect import IFSelect_RetFail
+
+    from gearcad.cli import main
+
+    real = control.STEPCAFControl_Writer
+
+    class Failing:
+        def __init__(self):
+            self._writer = real()
+
+        def __getattr__(self, name):
+            return getattr(self._writer, name)
+
+        def Write(self, path):  # noqa: N802 - OpenCASCADE's name
+            return IFSelect_RetFail
+
+    monkeypatch.setattr(control, "STEPCAFControl_Writer", Failing)
+    out = tmp_path / "out"
+    quick = ['output.formats=["step"]', "output.charts=false", "output.animation=false", "output.tolerance=0.01"]
+    sets = [a for q in quick for a in ("--set", q)]
+    code = main(["build", str(EXAMPLES / "rolling_wheel.toml"), "--out", str(out), *sets])
+    err = capsys.readouterr().err.strip().splitlines()
+    assert code == 2 and len(err) == 1 and "cannot write" in err[0] and "nothing was published" in err[0], err
+    assert not out.exists() or not any(out.rglob("*.step"))

@@ -89,8 +89,9 @@ def _write(path: Path, doc) -> None:
     if not writer.Transfer(doc, STEPControl_AsIs):
         raise RuntimeError(f"STEP: OpenCASCADE could not write {path.name}")
     _fixed_header(writer.ChangeWriter().Model(), path.stem)
-    if writer.Write(str(path)) != IFSelect_RetDone:
-        raise RuntimeError(f"STEP: OpenCASCADE could not write {path.name}")
+    if writer.Write(str(path)) != IFSelect_RetDone:  # it says no more: a full disk, a folder it may not write
+        why = "OpenCASCADE could not write it: a full disk, or a folder it may not write"
+        raise OSError(0, why, str(path))
     path.write_text(compact(path.read_text(encoding="latin-1")), encoding="latin-1", newline="\n")
 
 
