@@ -66,8 +66,10 @@ def test_a_laser_focus_pair_fits_by_default_and_the_band_is_fast():
     # the smallest backlash that fits: one step of a bisection over fixed backlashes brackets it
     # within the chooser's resolution (1 % or a tolerance) below its choice (before: 0.3447 mm
     # chosen, the smallest 0.297: 16 % over; the band measured the follower at the rolling angle)
+    # (two steps: the proven least play is a lower bound, a little under the true least, so the
+    # search may stop a step early: 0.3058 mm chosen, 0.2995 proven to jam)
     chosen = d.params.teeth.backlash
-    less = chosen - max(0.01 * chosen, d.params.output.tolerance)
+    less = chosen - 2 * max(0.01 * chosen, d.params.output.tolerance)
     below = gearcad.design(
         gearcad.load_profile(ROOT / "profiles" / "elliptic_focus.toml", {**laser, "teeth.backlash": less})
     )
@@ -77,7 +79,7 @@ def test_a_laser_focus_pair_fits_by_default_and_the_band_is_fast():
 
     start = time.process_time()  # warm (the design measured it once); CPU time, of both threads if two (a
     pair_bands(d)  # shared machine's load stretches the wall clock, not this)
-    assert time.process_time() - start <= 3.0  # about 0.5 s of CPU (0.3–0.5 s wall on two threads when quiet)
+    assert time.process_time() - start <= 10.0  # proven: about 4 s of CPU (the estimate took 0.5 s)
 
 
 def test_a_fixed_backlash_too_small_jams_and_fails_the_check(spur):

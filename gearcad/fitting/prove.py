@@ -1,33 +1,20 @@
 """The proven certificate of a pair's least play between the driver positions measured
-(``output.certificate = "theorem"``; docs/fit.md, "How the least play is certified"): a lower
-bound on the play over each driver interval derived from the geometry — a theorem, not the slope
-estimate of :mod:`.certify` — refined where it cannot keep the margin (:func:`prove_play`).
-
-The bound (:func:`_tube`).  In gear 1's frame gear 2 is placed by the driver angle φ and its own
-turn t beyond the rolling angle: a point of it is X(φ, t) = C(φ) + R(φ + φ2(φ) + t)·q, C = E'(cos φ,
-sin φ) its pivot.  Its speeds are ∂φX = ω·J(X − I) (ω = 1 + k, k = dφ2/dφ, I = k/(1+k)·C the
-instant centre) and ∂tX = J(X − C); its second derivatives are bounded by |∂φφX| ≤ (|k'| + ω²)·ρ
-+ ω·|I'|, |∂φtX| ≤ ω·|X − C| (or ω·ρ), |∂ttX| ≤ |X − C|, ρ = |X − I|.  Measured at a position c,
-gear 2 turns freely over [t0 − Δc, t0 + Δc]; placed at (c, t0) the windows are apart.  Over the
-box φ ∈ [c − h, c + h], t ∈ [t0 − Δ, t0 + Δ] no vertex of either window reaches an edge of the
-other when, for each (vertex, edge), either its distance to the edge's segment less the most the
-vertex can move, or its distance to the edge's line less the line's Taylor bound (first
-derivatives exact at (c, t0), second bounded as above) stays ≥ 0; then the windows never touch
-(two polygons moving continuously first meet vertex on edge), so every driver angle of the
-interval has a free turn 2Δ wide, a play ≥ 2Δ·r2_min.  Gear 1's vertices against gear 2's moving
-edges are the same bound in gear 2's frame (the relative motion inverted: the same ω, |I'|)."""
+(``output.certificate = "theorem"``, the default; docs/fit.md, "How the least play is
+certified"): the bound of :mod:`.tube` over each driver interval — a theorem, not the slope
+estimate of :mod:`.certify` — refined where it cannot keep the margin (:func:`prove_play`)."""
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, replace
+from dataclasses import replace
 
 import numpy as np
 import shapely
 
 from ..geometry.outline import place_each
 from .certify import Certificate
-from .play import _WINDOW, PairGeometry, _signed_from, _windows, play_between
+from .play import _WINDOW, PairGeometry, _signed_from, _windows, play_between, signed_play
+from .tube import Site, nearest, outline, tube
 
 __all__ = ["prove_play"]
 
@@ -39,41 +26,12 @@ JAM_HALVINGS = 1
 more to say how far short it falls (the verdict is settled)."""
 
 
-@dataclass
-class _Site:
-    """One measured driver angle: the windows placed at the middle of gear 2's free turn there."""
-
-    phi: float
-    play: float
-    t0: float = 0.0
-    """Middle of the free turn (rad beyond the rolling angle)."""
-    cap: float = -math.inf
-    """Half the free turn (rad); −inf: jammed, or the windows not apart at ``t0``."""
-    k: float = 0.0
-    dk: float = 0.0
-    arm: float = 0.0
-    a: tuple | None = None
-    """Gear 1's window: (vertices, edge starts, edge ends, polygon)."""
-    b: tuple | None = None
-    """Gear 2's window at (φ, t0): the same."""
-
-
 BEYOND = 0.5
 """Gear 1's window for the bound reaches this many modules beyond gear 2's (:data:`~.play._WINDOW`):
 the cut edges of the two windows then lie apart, and only the real outlines come near."""
 
 
-def _edges(narrow, wide, other) -> tuple:
-    """(the vertices of ``narrow``, the edge starts and ends of ``wide``, each vertex's distance
-    to ``other``): a gear's narrow window's vertices, its wide window's edges."""
-    xy = shapely.get_coordinates(narrow)
-    rings = shapely.get_rings(shapely.get_parts(wide))
-    ends, ring = shapely.get_coordinates(rings, return_index=True)
-    same = ring[1:] == ring[:-1]
-    return xy, ends[:-1][same], ends[1:][same], shapely.distance(shapely.points(xy), other)
-
-
-def _sites(g: PairGeometry, offsets, spread: float, tol: float, reach: float) -> tuple[list[_Site], np.ndarray]:
+def _sites(g: PairGeometry, offsets, spread: float, tol: float, reach: float) -> tuple[list[Site], np.ndarray]:
     """Measure ``g``'s positions: the signed play and, where free, the windows as the bound needs them."""
     halves: list[np.ndarray] = []
     keep: dict = {}
@@ -82,7 +40,7 @@ def _sites(g: PairGeometry, offsets, spread: float, tol: float, reach: float) ->
     up, down = halves
     t0 = start + (up - down) / 2
     free = np.flatnonzero(~np.isnan(play))
-    sites = [_Site(float(p), float(s)) for p, s in zip(g.phi1, signed)]
+    sites = [Site(float(p), float(s)) for p, s in zip(g.phi1, signed)]
     if not len(free):
         return sites, signed
     # each gear's window and a wider one, gear 2's placed at the middle of its free turn; the
@@ -107,120 +65,9 @@ def _sites(g: PairGeometry, offsets, spread: float, tol: float, reach: float) ->
         s = sites[i]
         s.t0, s.cap, s.k, s.dk = float(t0[i]), float((up[i] + down[i]) / 2), float(k[j]), float(dk[j])
         s.arm = float(g.center_distance - g.r1[i])
-        s.a, s.b = _edges(narrow1[j], wide1[j], wide2[j]), _edges(narrow2[j], wide2[j], wide1[j])
+        a, b = outline(narrow1[j], wide1[j]), outline(narrow2[j], wide2[j])
+        s.a, s.b = (*a, nearest(a[0], *b[1:])), (*b, nearest(b[0], *a[1:]))
     return sites, signed
-
-
-def _one_sided_min(b: np.ndarray, c: np.ndarray, a) -> np.ndarray:
-    """min of b·x + c·x²/2 over 0 ≤ x ≤ a (elementwise)."""
-    end = b * a + 0.5 * c * a * a
-    inside = (c > 0) & (b < 0) & (-b < c * a)
-    vertex = np.full_like(end, np.inf)
-    vertex[inside] = -0.5 * b[inside] ** 2 / c[inside]
-    return np.minimum(np.minimum(end, 0.0), vertex)
-
-
-def _tube(s: _Site, h: float, e: float, bounds) -> float:
-    """The half-width Δ (rad) of gear 2's turn about ``s.t0`` proven free at every driver angle
-    within ``h`` of ``s.phi`` (module docstring; −inf: none), gear 2's pivot ``e`` mm from gear 1's;
-    ``bounds``: over the interval, the largest k, |I'|/E', |k'|, |k''| and |I''|/E'."""
-    if s.a is None:
-        return -math.inf
-    kmax, unit_speed, dk, ddk, unit_accel = bounds
-    w, sigma, sigma2 = 1.0 + kmax, e * unit_speed, e * unit_accel
-    if w * h >= 0.5:
-        return -math.inf
-    cosp, sinp = math.cos(s.phi), math.sin(s.phi)
-    centre = e * np.array([cosp, sinp])
-    u, du = s.k / (1 + s.k), s.dk / (1 + s.k) ** 2
-    instant = u * centre
-    turning = e * np.array([du * cosp - u * sinp, du * sinp + u * cosp])  # I'(c)
-    omega = 1.0 + s.k
-    cap = s.cap
-    best = cap
-    for mine, other, moving in ((s.b, s.a, True), (s.a, s.b, False)):
-        xy = mine[0]
-        r0 = np.hypot(*(xy - centre).T)
-        rho0 = np.hypot(*(xy - instant).T)
-        if moving:  # gear 2's vertices: |X − C| is fixed; ρ grows with the motion itself
-            rbar = r0
-            rho = (rho0 + r0 * cap + sigma * h) / (1 - w * h)
-        else:  # gear 1's, seen from gear 2: |w − I(φ)| and |w − C(φ)| move with φ only
-            rbar = r0 + e * h
-            rho = rho0 + sigma * h
-        move = w * rho * h  # the most a vertex moves over the driver interval
-        lip = (mine[3] - move) / rbar
-        near = np.flatnonzero(lip < best)
-        if not len(near):
-            continue
-        p, q = other[1], other[2]
-        v = xy[near][:, None, :]
-        seg = q - p
-        length = np.maximum(np.hypot(*seg.T), 1e-300)
-        unit = seg / length[:, None]
-        normal = np.column_stack([-unit[:, 1], unit[:, 0]])
-        rel = v - p[None]
-        side = rel[..., 0] * normal[None, :, 0] + rel[..., 1] * normal[None, :, 1]
-        ahead = rel[..., 0] * unit[None, :, 0] + rel[..., 1] * unit[None, :, 1]
-        along = np.clip(ahead, 0.0, length[None])
-        dseg = np.hypot(*(rel - along[..., None] * unit[None]).transpose(2, 0, 1))
-        # two linear functionals, each a lower bound on the distance to the segment where
-        # positive: the distance to its line (normal towards the vertex), and how far the vertex
-        # lies past the segment's nearer end along it (negative while its foot is on it)
-        rn, rb = rho[near][:, None], rbar[near][:, None]
-        lip_pair = (dseg - move[near][:, None]) / rb
-        vi, ei = np.nonzero(lip_pair < best)  # the pairs the segment's bound leaves open
-        if not len(vi):
-            best = min(best, float(np.min(lip_pair)))
-            continue
-        side, ahead, rel = side[vi, ei], ahead[vi, ei], rel[vi, ei]
-        normal, unit, length = normal[ei], unit[ei], length[ei]
-        v = xy[near][vi]
-        rn, rb = rn[vi, 0], rb[vi, 0]
-        n_line = np.where(side[:, None] < 0, -1.0, 1.0) * normal
-        past = np.where(ahead > length, ahead - length, -ahead)
-        n_end = np.where((ahead > length)[:, None], 1.0, -1.0) * unit
-        xi = v - instant  # from the instant centre
-        xc = v - centre  # from gear 2's pivot
-        jxi = np.stack([-xi[:, 1], xi[:, 0]], -1)
-        jxc = np.stack([-xc[:, 1], xc[:, 0]], -1)
-        jturn = np.array([-turning[1], turning[0]])
-        sign = 1.0 if moving else -1.0  # gear 1's vertices move against gear 2's edges
-        accel = sign * s.dk * jxi - omega**2 * xi - sign * omega * jturn
-        big = np.maximum(rn, rb)
-        m_ppp = ddk * rn + dk * (3 * w * rn + 2 * sigma) + w * w * (w * rn + sigma) + w * (sigma2 + w * sigma)
-        m_ppt = (dk + w * w) * big + w * sigma
-        m_ptt = w * big
-        m_ttt = rb
-        # the two functionals (axis 0) over the four quadrants (axis 1: the signs of φ − c and
-        # t − t0), all at once
-        d = np.stack([n_line, n_end])[:, None]  # (2, 1, pairs, 2)
-        f0 = np.stack([np.abs(side), past])[:, None]
-        sp = np.array([1.0, 1.0, -1.0, -1.0])[None, :, None]
-        st = np.array([1.0, -1.0, 1.0, -1.0])[None, :, None]
-        f_p, f_t = sign * omega * (d * jxi).sum(-1), sign * (d * jxc).sum(-1)
-        f_pp, f_tt = (d * accel).sum(-1), (d * -xc).sum(-1)
-        f_pt = (d * (-omega * (xc if moving else xi))).sum(-1)
-        # over a quadrant: lead − b·y − c·y² − d·y³ for a turn y ≤ Δ (each term a bound: the
-        # turn's own curvature counted only where it closes the gap)
-        f_p, f_pp = np.broadcast_arrays(sp * f_p, f_pp)
-        lead = f0 + _one_sided_min(f_p, f_pp, h) - m_ppp * h**3 / 6
-        b1 = np.maximum(0.0, -st * f_t) + np.maximum(0.0, -sp * st * f_pt) * h + m_ppt * h * h / 2
-        c1 = np.maximum(0.0, -f_tt) / 2 + m_ptt * h / 2
-        d1 = m_ttt / 6
-        lo, hi = np.zeros_like(lead), np.full_like(lead, best)
-        ok0 = lead >= 0
-        okhi = lead - hi * (b1 + hi * (c1 + hi * d1)) >= 0
-        for _ in range(12):
-            mid = 0.5 * (lo + hi)
-            good = lead - mid * (b1 + mid * (c1 + mid * d1)) >= 0
-            lo, hi = np.where(good, mid, lo), np.where(good, hi, mid)
-        safe = np.where(okhi, best, np.where(ok0, lo, -np.inf))  # (2, 4, pairs)
-        pair = np.min(np.max(safe, axis=0), axis=0)
-        pair = np.maximum(pair, lip_pair[vi, ei])
-        best = min(best, float(np.min(lip_pair[lip_pair >= best], initial=best)))
-        best = min(best, float(np.min(pair)))
-    return best
 
 
 def prove_play(g: PairGeometry, offsets, spread: float, tol: float, *, reach: float, margin: float, budget: int = 0):
@@ -229,7 +76,7 @@ def prove_play(g: PairGeometry, offsets, spread: float, tol: float, *, reach: fl
     :class:`Certificate`).
 
     Each measured position c covers the driver angles up to half way to its neighbours (h); its
-    bound (:func:`_tube`) proves a free turn 2Δ wide over all of them, a play of at least
+    bound (:func:`.tube.tube`) proves a free turn 2Δ wide over all of them, a play of at least
     2Δ·E/(1 + k_max) there, and neighbours' free turns overlap (the follower passes from one to
     the next).  A position whose bound falls under the margin (or whose free turn does not reach
     its neighbour's) has the intervals either side halved, until every one keeps the margin, one
@@ -238,6 +85,8 @@ def prove_play(g: PairGeometry, offsets, spread: float, tol: float, *, reach: fl
     play short of the margin by the resolution, max(tol, 1e-4·m) (what a fit search then adds).  A
     measured position under the margin proves the pair jams; the intervals about the least play
     are then halved :data:`JAM_HALVINGS` times to say how far short it falls."""
+    if margin < 0:  # exact parts may bite: the outlines, each moved in by what it may lose, apart
+        return _bitten(g, offsets, spread, tol, reach=reach, margin=margin, budget=budget)
     if g.first is not None:  # the certificate's own even start along the pitch curve
         g = g.at(g.first)
     n0 = len(g.phi1)
@@ -260,7 +109,7 @@ def prove_play(g: PairGeometry, offsets, spread: float, tol: float, *, reach: fl
         for j, i in enumerate(order):
             h = float(half[j])
             if tubes.get(i, (None,))[0] != h:
-                tubes[i] = (h, _tube(sites[i], h, e, tuple(float(t[j]) for t in table)))
+                tubes[i] = (h, tube(sites[i], h, e, tuple(float(t[j]) for t in table)))
             delta[j] = tubes[i][1]
             arm = min(sites[i].arm, g.center_distance / (1 + float(table[0][j])))
             bound[j] = 2 * delta[j] * arm if delta[j] >= 0 else -math.inf
@@ -302,7 +151,7 @@ def prove_play(g: PairGeometry, offsets, spread: float, tol: float, *, reach: fl
                 for _ in range(6):
                     h /= 2
                     near = tuple(float(t[0]) for t in g.ratio(np.array([phi[j] - h]), np.array([phi[j] + h])))
-                    if 2 * _tube(sites[i], h, e, near) * min(sites[i].arm, arm) >= margin:
+                    if 2 * tube(sites[i], h, e, near) * min(sites[i].arm, arm) >= margin:
                         break
                 need = int(min(16, math.ceil(float(half[j]) / h)))
                 for gj in (j, (j - 1) % len(order)):
@@ -319,6 +168,27 @@ def prove_play(g: PairGeometry, offsets, spread: float, tol: float, *, reach: fl
         sites += more
         geos.append(sub)
         plays.append(signed)
+
+
+def _bitten(g: PairGeometry, offsets, spread: float, tol: float, *, reach: float, margin: float, budget: int):
+    """:func:`prove_play` for a margin under 0: exact parts may bite by −``margin`` (the shrink ε
+    that frees a jammed position counts −4ε/cos α, :func:`~.play.signed_play`).  Where the first
+    positions keep twice the tolerance free, the outlines as drawn are proven apart (a margin of
+    0; the bound is then their least play); otherwise, or where that fails, the outlines, each
+    moved in by ε = −margin·cos α/4, are: proven apart, the play is at least ``margin``
+    everywhere (the certificate's ``lower``; their plays, not these, are measured as drawn), and a
+    position of theirs that jams jams by ε more as drawn (its play less −margin)."""
+    first = g.at(g.first) if g.first is not None else g
+    if float(np.min(signed_play(first, offsets, spread, tol, reach=reach))) >= 2 * tol:
+        found = prove_play(g, offsets, spread, tol, reach=reach, margin=0.0, budget=budget)
+        if found[2].proven and found[2].lower >= 0:
+            return found
+    give = -margin * math.cos(g.pressure_angle) / 4
+    inward = tuple(o - give for o in offsets)
+    geo, _, cert = prove_play(g, inward, spread, tol, reach=reach, margin=0.0, budget=budget)
+    lower = cert.lower + margin if cert.lower < 0 else margin
+    drawn = signed_play(geo, offsets, spread, tol, reach=reach)
+    return geo, drawn, replace(cert, lower=lower, slack=float(np.min(drawn)) - lower)
 
 
 def _joined(parts: list[PairGeometry]) -> PairGeometry:

@@ -1,0 +1,258 @@
+"""The bound between two driver positions of the proven certificate (:mod:`.prove`;
+docs/fit.md, "How the least play is certified"): the largest turn of gear 2 proven free over a
+driver interval about a measured position (:func:`tube`).
+
+In gear 1's frame gear 2 is placed by the driver angle φ and its own turn t beyond the rolling
+angle: a point of it is X(φ, t) = C(φ) + R(φ + φ2(φ) + t)·q, C = E'(cos φ, sin φ) its pivot.  Its
+speeds are ∂φX = ω·J(X − I) (ω = 1 + k, k = dφ2/dφ, I = k/(1+k)·C the instant centre) and ∂tX =
+J(X − C); its second derivatives are exact at the position and its third bounded from |k'|, |k''|,
+ω, |I'|, |I''| and ρ = |X − I|.  Measured at a position c, gear 2 turns freely over [t0 − Δc, t0 +
+Δc]; placed at (c, t0) the windows are apart.  Over the box φ ∈ [c − h, c + h], t ∈ [t0 − Δ, t0 +
+Δ] no vertex of either window reaches an edge of the other when, for each (vertex, edge), either
+its distance to the edge's segment less the most the vertex can move, or one of a few linear
+functionals of its place that bound that distance from below (:func:`_safe_turn`) stays ≥ 0 by
+its Taylor bound; then the windows never touch (two polygons moving continuously first meet
+vertex on edge), so every driver angle of the interval has a free turn 2Δ wide.  Gear 1's
+vertices against gear 2's moving edges are the same bound in gear 2's frame (the relative motion
+inverted: the same ω, |I'|)."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+import shapely
+
+__all__ = ["Site", "outline", "nearest", "tube"]
+
+
+@dataclass
+class Site:
+    """One measured driver angle: the windows placed at the middle of gear 2's free turn there."""
+
+    phi: float
+    play: float
+    t0: float = 0.0
+    """Middle of the free turn (rad beyond the rolling angle)."""
+    cap: float = -math.inf
+    """Half the free turn (rad); −inf: jammed, or the windows not apart at ``t0``."""
+    k: float = 0.0
+    dk: float = 0.0
+    arm: float = 0.0
+    a: tuple | None = None
+    """Gear 1's window: (vertices, edge starts, edge ends, polygon)."""
+    b: tuple | None = None
+    """Gear 2's window at (φ, t0): the same."""
+
+
+def outline(narrow, wide) -> tuple:
+    """(the vertices of ``narrow``, the edge starts and ends of ``wide``): a gear's narrow
+    window's vertices, its wide window's edges."""
+    rings = shapely.get_rings(shapely.get_parts(wide))
+    ends, ring = shapely.get_coordinates(rings, return_index=True)
+    same = ring[1:] == ring[:-1]
+    return shapely.get_coordinates(narrow), ends[:-1][same], ends[1:][same]
+
+
+def nearest(xy: np.ndarray, p: np.ndarray, q: np.ndarray) -> np.ndarray:
+    """Each point's distance to the nearest of the segments [p, q] (the distance to the
+    polygon they bound, for points outside it)."""
+    seg = q - p
+    length = np.maximum(np.hypot(*seg.T), 1e-300)
+    ux, uy = seg[:, 0] / length, seg[:, 1] / length
+    rx = xy[:, 0][:, None] - p[None, :, 0]
+    ry = xy[:, 1][:, None] - p[None, :, 1]
+    ahead = rx * ux + ry * uy
+    beyond = np.maximum(ahead - length, 0.0) + np.maximum(-ahead, 0.0)
+    return np.min(np.hypot(rx * uy - ry * ux, beyond), axis=1)
+
+
+def _one_sided_min(b: np.ndarray, c: np.ndarray, a) -> np.ndarray:
+    """min of b·x + c·x²/2 over 0 ≤ x ≤ a (elementwise)."""
+    end = b * a + 0.5 * c * a * a
+    inside = (c > 0) & (b < 0) & (-b < c * a)
+    vertex = np.full_like(end, np.inf)
+    vertex[inside] = -0.5 * b[inside] ** 2 / c[inside]
+    return np.minimum(np.minimum(end, 0.0), vertex)
+
+
+def _closest_on(x, a, b):
+    """The point of each segment [a, b] nearest each x (rows)."""
+    ab = b - a
+    t = np.clip(np.sum((x - a) * ab, -1) / np.maximum(np.sum(ab * ab, -1), 1e-300), 0.0, 1.0)
+    return a + t[:, None] * ab
+
+
+def _parting(a0, a1, p, q, fallback, fallback_at):
+    """(unit normals, points on [p, q]): for each pair of segments [a0, a1] and [p, q] the
+    direction from the nearest point of [p, q] to the nearest of [a0, a1] and that point — [p, q]
+    lies behind the line through it across that direction (nearest points of two convex sets), so
+    n·(x − point) bounds any x's distance to [p, q] from below where positive.  Where they cross
+    (or touch), ``fallback`` and ``fallback_at``."""
+    cands = [
+        (a0, _closest_on(a0, p, q)),
+        (a1, _closest_on(a1, p, q)),
+        (_closest_on(p, a0, a1), p),
+        (_closest_on(q, a0, a1), q),
+    ]
+    on_path = np.stack([c[0] for c in cands])
+    on_seg = np.stack([c[1] for c in cands])
+    gaps = np.hypot(*(on_path - on_seg).transpose(2, 0, 1))
+    best = np.argmin(gaps, axis=0)
+    rows = np.arange(len(best))
+    gap = gaps[best, rows]
+    at = on_seg[best, rows]
+    n = (on_path[best, rows] - at) / np.maximum(gap, 1e-300)[:, None]
+    cross = (gap < 1e-12) | _crossing(a0, a1, p, q)
+    return np.where(cross[:, None], fallback, n), np.where(cross[:, None], fallback_at, at)
+
+
+def _crossing(a0, a1, p, q):
+    """Whether each pair of segments [a0, a1], [p, q] crosses."""
+
+    def orient(o, x, y):
+        return (x[:, 0] - o[:, 0]) * (y[:, 1] - o[:, 1]) - (x[:, 1] - o[:, 1]) * (y[:, 0] - o[:, 0])
+
+    return (orient(a0, a1, p) * orient(a0, a1, q) < 0) & (orient(p, q, a0) * orient(p, q, a1) < 0)
+
+
+def _safe_turn(d, f0, derivs, terms, h: float, best: float) -> np.ndarray:
+    """For each (vertex, edge) pair, the largest turn Δ ≤ ``best`` (rad) of gear 2 about t0 over
+    which one of the linear functionals ``d`` (directions, (functionals, pairs, 2); values at (c,
+    t0) ``f0``) stays ≥ 0 in every quadrant of the box |φ − c| ≤ h, |t − t0| ≤ Δ (−inf: none).
+    ``derivs``: the vertex's ∂φ, ∂t, ∂φφ, ∂tt, ∂φt at (c, t0); ``terms``: the third derivatives'
+    bounds ∂φφφ, ∂φφt, ∂φtt, ∂ttt.
+
+    Over a quadrant a functional is at least lead − b·y − c·y² − e·y³ for a turn y ≤ Δ (its Taylor
+    polynomial, each term a bound: the turn's own curvature counted only where it closes the gap;
+    the driver's part minimised over 0 ≤ ±(φ − c) ≤ h).  That polynomial is increasing in y, so
+    with Y = min(best, lead/b) ≥ its root, y = lead/(b + c·Y + e·Y²) keeps it ≥ 0."""
+    v_p, v_t, v_pp, v_tt, v_pt = derivs
+    m_ppp, m_ppt, m_ptt, m_ttt = terms
+    d = d[:, None]  # (functionals, 1, pairs, 2)
+    f0 = f0[:, None]
+    sp = np.array([1.0, 1.0, -1.0, -1.0])[None, :, None]  # the quadrants: the signs of φ − c
+    st = np.array([1.0, -1.0, 1.0, -1.0])[None, :, None]  # and of t − t0
+    f_p, f_t = (d * v_p).sum(-1), (d * v_t).sum(-1)
+    f_pp, f_tt, f_pt = (d * v_pp).sum(-1), (d * v_tt).sum(-1), (d * v_pt).sum(-1)
+    f_p, f_pp = np.broadcast_arrays(sp * f_p, f_pp)
+    lead = f0 + _one_sided_min(f_p, f_pp, h) - m_ppp * h**3 / 6
+    b1 = np.maximum(0.0, -st * f_t) + np.maximum(0.0, -sp * st * f_pt) * h + m_ppt * h * h / 2
+    c1 = np.maximum(0.0, -f_tt) / 2 + m_ptt * h / 2
+    e1 = m_ttt / 6
+    with np.errstate(divide="ignore", invalid="ignore"):
+        top = np.where(b1 > 0, np.minimum(best, lead / b1), best)
+        turn = np.minimum(best, lead / (b1 + top * (c1 + top * e1)))
+    safe = np.where(lead >= 0, np.nan_to_num(turn, nan=best, posinf=best), -np.inf)
+    return np.min(np.max(safe, axis=0), axis=0)
+
+
+def tube(s: Site, h: float, e: float, bounds) -> float:
+    """The half-width Δ (rad) of gear 2's turn about ``s.t0`` proven free at every driver angle
+    within ``h`` of ``s.phi`` (module docstring; −inf: none), gear 2's pivot ``e`` mm from gear 1's;
+    ``bounds``: over the interval, the largest k, |I'|/E', |k'|, |k''| and |I''|/E'."""
+    if s.a is None:
+        return -math.inf
+    kmax, unit_speed, dk, ddk, unit_accel = bounds
+    w, sigma, sigma2 = 1.0 + kmax, e * unit_speed, e * unit_accel
+    if w * h >= 0.5:
+        return -math.inf
+    cosp, sinp = math.cos(s.phi), math.sin(s.phi)
+    centre = e * np.array([cosp, sinp])
+    u, du = s.k / (1 + s.k), s.dk / (1 + s.k) ** 2
+    instant = u * centre
+    turning = e * np.array([du * cosp - u * sinp, du * sinp + u * cosp])  # I'(c)
+    omega = 1.0 + s.k
+    cap = s.cap
+    best = cap
+    for mine, other, moving in ((s.b, s.a, True), (s.a, s.b, False)):
+        xy = mine[0]
+        r0 = np.hypot(*(xy - centre).T)
+        rho0 = np.hypot(*(xy - instant).T)
+        if moving:  # gear 2's vertices: |X − C| is fixed; ρ grows with the motion itself
+            rbar = r0
+            rho = (rho0 + r0 * cap + sigma * h) / (1 - w * h)
+        else:  # gear 1's, seen from gear 2: |w − I(φ)| and |w − C(φ)| move with φ only
+            rbar = r0 + e * h
+            rho = rho0 + sigma * h
+        move = w * rho * h  # the most a vertex moves over the driver interval
+        lip = (mine[3] - move) / rbar
+        near = np.flatnonzero(lip < best)
+        if not len(near):
+            continue
+        p, q = other[1], other[2]
+        seg = q - p
+        length = np.maximum(np.hypot(*seg.T), 1e-300)
+        unit = seg / length[:, None]
+        normal = np.column_stack([-unit[:, 1], unit[:, 0]])
+        rx = xy[near, 0][:, None] - p[None, :, 0]  # (near vertices, edges)
+        ry = xy[near, 1][:, None] - p[None, :, 1]
+        side = rx * normal[None, :, 0] + ry * normal[None, :, 1]
+        ahead = rx * unit[None, :, 0] + ry * unit[None, :, 1]
+        beyond = np.maximum(ahead - length[None], 0.0) + np.maximum(-ahead, 0.0)
+        dseg = np.hypot(side, beyond)
+        rn, rb = rho[near][:, None], rbar[near][:, None]
+        lip_pair = (dseg - move[near][:, None]) / rb
+        vi, ei = np.nonzero(lip_pair < best)  # the pairs the segment's bound leaves open
+        if not len(vi):
+            best = min(best, float(np.min(lip_pair)))
+            continue
+        side, ahead = side[vi, ei], ahead[vi, ei]
+        normal, unit, length = normal[ei], unit[ei], length[ei]
+        v = xy[near][vi]
+        rn, rb = rn[vi, 0], rb[vi, 0]
+        n_line = np.where(side[:, None] < 0, -1.0, 1.0) * normal
+        past = np.where(ahead > length, ahead - length, -ahead)
+        n_end = np.where((ahead > length)[:, None], 1.0, -1.0) * unit
+        xi = v - instant  # from the instant centre
+        xc = v - centre  # from gear 2's pivot
+        jxi = np.stack([-xi[:, 1], xi[:, 0]], -1)
+        jxc = np.stack([-xc[:, 1], xc[:, 0]], -1)
+        jturn = np.array([-turning[1], turning[0]])
+        sign = 1.0 if moving else -1.0  # gear 1's vertices move against gear 2's edges
+        accel = sign * s.dk * jxi - omega**2 * xi - sign * omega * jturn
+        big = np.maximum(rn, rb)
+        m_ppp = ddk * rn + dk * (3 * w * rn + 2 * sigma) + w * w * (w * rn + sigma) + w * (sigma2 + w * sigma)
+        m_ppt = (dk + w * w) * big + w * sigma
+        m_ptt = w * big
+        m_ttt = rb
+        # linear functionals of the vertex's place, each a lower bound on its distance to the
+        # segment where positive (the segment lies behind the line across the functional's
+        # direction): the distance to the segment's line; how far the vertex lies past the
+        # segment's nearer end along it; and, exact at (c, t0), the distance across the direction
+        # from its nearest point on the segment to the vertex (past a polygon's corner neither of
+        # the first two holds for long)
+        foot = p[ei] + np.clip(ahead, 0.0, length)[:, None] * unit
+        gap = np.maximum(np.hypot(*(v - foot).T), 1e-300)
+        n_near = (v - foot) / gap[:, None]
+        derivs = (sign * omega * jxi, sign * jxc, accel, -xc, -omega * (xc if moving else xi))
+        terms = (m_ppp, m_ppt, m_ptt, m_ttt)
+        pair = _safe_turn(
+            np.stack([n_line, n_end, n_near]), np.stack([np.abs(side), past, gap]), derivs, terms, h, best
+        )
+        open_ = np.flatnonzero(pair < best)
+        if len(open_):
+            # two more where those leave it open, one for each way the driver turns: the
+            # direction that parts the vertex's path over the interval (its chord, to second
+            # order) from the segment, where they do not cross (a vertex that slides past the
+            # segment's end within a few µm)
+            o = open_
+            ends = (p[ei][o], p[ei][o] + length[o, None] * unit[o])
+            ways = [
+                _parting(v[o], v[o] + w_ * h * derivs[0][o] + 0.5 * h * h * accel[o], *ends, n_near[o], foot[o])
+                for w_ in (1.0, -1.0)
+            ]
+            more = _safe_turn(
+                np.stack([n for n, _ in ways]),
+                np.stack([np.sum(n * (v[o] - a), -1) for n, a in ways]),
+                tuple(x[o] for x in derivs),
+                tuple(x[o] for x in terms),
+                h,
+                best,
+            )
+            pair[o] = np.maximum(pair[o], more)
+        pair = np.maximum(pair, lip_pair[vi, ei])
+        best = min(best, float(np.min(lip_pair[lip_pair >= best], initial=best)))
+        best = min(best, float(np.min(pair)))
+    return best
