@@ -373,6 +373,28 @@ def test_a_chamfer_is_its_own_faces_at_the_closed_form_volume():
     assert _volume(shape) == pytest.approx(outer - hole, rel=1e-5)
 
 
+def test_rings_with_slight_kinks_are_told_from_smooth_and_cornered_ones():
+    """OpenCASCADE's chamfer fails on a ring whose runs meet at small angles (an arc fit's joints
+    on a noncircular gear's teeth): such a part's STEP is its unchamfered solid. A circle (one
+    run) and a square (90° corners) are chamfered; 12 arcs of radius 10.1 through the corners of
+    a regular 12-gon on a 10 mm circle meet at 2·asin(sin 15°·10/10.1) − 30° ≈ 0.30° — kinked;
+    the same with radius 10 meet tangent — not."""
+    from gearcad.export.step_brep import kinked
+    from gearcad.geometry.arcfit import ArcRing
+
+    corners = 10.0 * np.column_stack([np.cos(np.arange(12) * math.pi / 6), np.sin(np.arange(12) * math.pi / 6)])
+    chord = 2 * 10.0 * math.sin(math.pi / 12)
+
+    def arcs(radius: float) -> ArcRing:
+        sweep = 2 * math.asin(chord / 2 / radius)
+        return ArcRing(corners, np.full(12, math.tan(sweep / 4)))
+
+    assert kinked(arcs(10.1)) and not kinked(arcs(10.0))
+    square = ArcRing(np.array([[-1, -1], [1, -1], [1, 1], [-1, 1]], dtype=float), np.zeros(4))
+    circle = ArcRing(np.array([[1, 0], [0, 1], [-1, 0], [0, -1]], dtype=float), np.full(4, math.tan(math.pi / 8)))
+    assert not kinked(square) and not kinked(circle)
+
+
 def test_a_twisted_solid_keeps_its_sections_area_up_its_height():
     """An ellipse turned 30° per mm up 4 mm (a twisted prism: every section the same area πab),
     with a round 2 mm bore, chamfered 0.2 mm: the report's volume (the fitted faces' in closed

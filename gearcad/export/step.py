@@ -14,7 +14,7 @@ import numpy as np
 import shapely
 
 from ..mechanisms import Design
-from .step_brep import StepSolid, flank_section, straight_solid, twisted_solid, volume
+from .step_brep import StepSolid, flank_section, kinked, straight_solid, twisted_solid, volume
 from .step_text import compact
 
 __all__ = [
@@ -163,7 +163,11 @@ def _solid(design: Design, part, rings) -> tuple[StepSolid, dict]:
     out = design.params.output
     twisted = design.sections.get(part.name)
     if twisted is None:
-        return straight_solid(rings, out.thickness, name=part.name, chamfer=out.chamfer), {}
+        # OpenCASCADE cannot chamfer an arc fit's slightly kinked joints (a noncircular gear's
+        # teeth): such a part is its exact unchamfered solid, which its files entry says
+        chamfer = 0.0 if any(kinked(r) for r in rings) else out.chamfer
+        extra = {"chamfer": chamfer} if chamfer != out.chamfer else {}
+        return straight_solid(rings, out.thickness, name=part.name, chamfer=chamfer), extra
     breaks = (out.thickness / 2,) if twisted.hand.startswith("herringbone") else ()
     solid = twisted_solid(
         twisted.heights,
