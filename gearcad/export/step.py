@@ -15,7 +15,7 @@ import shapely
 
 from ..mechanisms import Design
 from .step_brep import StepSolid, flank_section, kinked, straight_solid, twisted_solid, volume
-from .step_text import compact
+from .step_text import assemble, compact
 
 __all__ = [
     "write_step_files",
@@ -211,21 +211,14 @@ def _same(design: Design, part) -> bytes | None:
     return b"|".join([*data, np.array([out.thickness, out.chamfer]).tobytes()])
 
 
-def _copy(solid: StepSolid, name: str) -> StepSolid:
-    """A solid alike ``solid`` as a B-rep of its own (the assembly names each part's product; a
-    shared B-rep would be one product): copied, not built again from the rings."""
-    from OCP.BRepBuilderAPI import BRepBuilderAPI_Copy
-
-    return StepSolid(name, BRepBuilderAPI_Copy(solid.shape).Shape(), solid.volume)
-
-
 def write_step_files(design: Design, folder: Path, made: object = None) -> dict[str, dict]:
     """Every part's ``<name>.step`` and ``assembly.step`` (parts placed as in assembly.3mf) into
     ``folder``; returns their files entries (faces by type, volume in mm³).  A part alike an
     earlier one (the same solid) is that one's file with its own name: the bytes OpenCASCADE
-    would write, without transferring the solid again."""
+    would write, without transferring the solid again.  The assembly is made of the parts' files
+    as written (``step_text.assemble``): no solid is transferred twice."""
     files: dict[str, dict] = {}
-    solids: dict[str, StepSolid] = {}
+    texts: dict[str, str] = {}
     written: dict[bytes, str] = {}
     for part in design.parts():
         key, path = _same(design, part), folder / f"{part.name}.step"
@@ -234,15 +227,18 @@ def write_step_files(design: Design, folder: Path, made: object = None) -> dict[
             text = (folder / f"{first}.step").read_bytes()
             old, new = f"'{first}'".encode(), f"'{part.name}'".encode()
             if text.count(old) == 3 and new not in text:  # FILE_NAME's and PRODUCT's names only
-                solids[part.name] = _copy(solids[first], part.name)  # the assembly's own
                 path.write_bytes(text.replace(old, new))
                 entry = files[f"{first}.step"]
                 files[path.name] = {**entry, "part": part.name, "bytes": path.stat().st_size}
+                texts[part.name] = path.read_text(encoding="latin-1")
                 continue
-        solids[part.name], files[path.name] = write_part_step(design, part.name, folder)
+        _, files[path.name] = write_part_step(design, part.name, folder)
+        texts[part.name] = path.read_text(encoding="latin-1")
         if key is not None:
             written.setdefault(key, part.name)
     path = folder / "assembly.step"
-    count = write_step_assembly(path, solids, design.placements)
+    placements = [(p.part, float(p.angle), float(p.offset[0]), float(p.offset[1])) for p in design.placements]
+    path.write_text(assemble(texts, placements), encoding="latin-1", newline="\n")
+    count = len(placements)
     files[path.name] = {"bytes": path.stat().st_size, "kind": "step", "part": "assembly", "components": count}
     return files
