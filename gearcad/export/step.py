@@ -7,21 +7,20 @@ OpenCASCADE (OCP) is imported only when STEP is asked for.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
 from pathlib import Path
 
 import numpy as np
 import shapely
 
 from ..mechanisms import Design
-from .step_brep import StepSolid, flank_section, kinked, straight_solid, twisted_solid, volume
+from .step_brep import StepSolid, flank_section, kinked, ring_area, runs_of, straight_solid, twisted_solid, volume
+from .step_prism import prism_text
 from .step_text import assemble, compact
 
 __all__ = [
     "write_step_files",
     "write_part_step",
     "write_step",
-    "write_step_assembly",
     "face_counts",
     "volume",
     "STEP_TIMESTAMP",
@@ -107,22 +106,6 @@ def _fixed_header(model, name: str) -> None:
     header.SetAuthorValue(1, TCollection_HAsciiString("gearcad"))
     header.SetOrganizationValue(1, TCollection_HAsciiString(""))
     header.SetOriginatingSystem(TCollection_HAsciiString("gearcad"))
-    _number_occurrences(model)
-
-
-def _number_occurrences(model) -> None:
-    """The assembly's occurrences numbered 1, 2, … in the file (OpenCASCADE numbers them from a
-    counter that lives as long as the process: the second build's assembly would differ)."""
-    from OCP.StepRepr import StepRepr_NextAssemblyUsageOccurrence
-    from OCP.TCollection import TCollection_HAsciiString
-
-    occurrences = model.Entities()  # picked by type in OpenCASCADE: a file has 10⁴–10⁵ entities
-    occurrences.SelectType(StepRepr_NextAssemblyUsageOccurrence.get_type_descriptor_s(), True)
-    count = 0
-    while occurrences.More():
-        count += 1
-        occurrences.Value().SetId(TCollection_HAsciiString(str(count)))
-        occurrences.Next()
 
 
 def write_step(path: Path, solid: StepSolid) -> dict:
@@ -134,40 +117,12 @@ def write_step(path: Path, solid: StepSolid) -> dict:
     return {"faces": face_counts(solid.shape), "volume": measured}
 
 
-def write_step_assembly(path: Path, solids: dict[str, StepSolid], placements: Sequence) -> int:
-    """Every placed part (turned by ``angle`` rad about z, then moved by ``offset`` mm) as a named
-    component of one assembly; returns the number of components."""
-    from OCP.gp import gp_Ax1, gp_Dir, gp_Pnt, gp_Trsf, gp_Vec
-    from OCP.TopLoc import TopLoc_Location
-
-    doc, tool = _document()
-    assembly = tool.NewShape()
-    _named(assembly, "assembly")
-    labels = {}
-    for name, solid in solids.items():
-        labels[name] = tool.AddShape(solid.shape, False)
-        _named(labels[name], name)
-    for placement in placements:
-        turn, move = gp_Trsf(), gp_Trsf()
-        turn.SetRotation(gp_Ax1(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1)), float(placement.angle))
-        move.SetTranslation(gp_Vec(float(placement.offset[0]), float(placement.offset[1]), 0.0))
-        component = tool.AddComponent(assembly, labels[placement.part], TopLoc_Location(move.Multiplied(turn)))
-        _named(component, placement.part)
-    tool.UpdateAssemblies()
-    _write(path, doc)
-    return len(placements)
-
-
 def _solid(design: Design, part, rings) -> tuple[StepSolid, dict]:
     """The part's solid and what its files entry adds (the twisted parts' section deviation)."""
     out = design.params.output
     twisted = design.sections.get(part.name)
     if twisted is None:
-        # OpenCASCADE cannot chamfer an arc fit's slightly kinked joints (a noncircular gear's
-        # teeth): such a part is its exact unchamfered solid, which its files entry says
-        chamfer = 0.0 if any(kinked(r) for r in rings) else out.chamfer
-        extra = {"chamfer": chamfer} if chamfer != out.chamfer else {}
-        return straight_solid(rings, out.thickness, name=part.name, chamfer=chamfer), extra
+        return straight_solid(rings, out.thickness, name=part.name, chamfer=out.chamfer), {}
     breaks = (out.thickness / 2,) if twisted.hand.startswith("herringbone") else ()
     solid = twisted_solid(
         twisted.heights,
@@ -190,11 +145,29 @@ def _solid(design: Design, part, rings) -> tuple[StepSolid, dict]:
     }
 
 
-def write_part_step(design: Design, name: str, folder: Path) -> tuple[StepSolid, dict]:
-    """The part ``name``'s ``<name>.step`` into ``folder``: its solid and its files entry."""
+def write_part_step(design: Design, name: str, folder: Path) -> tuple[StepSolid | None, dict]:
+    """The part ``name``'s ``<name>.step`` into ``folder``: its solid and its files entry.  A
+    straight part without a chamfer is written as text (``export/step_prism.py``: no OpenCASCADE
+    loaded, its solid None), any other through OpenCASCADE."""
     part = design.part(name)
-    solid, extra = _solid(design, part, design.made_rings(name))  # the part itself: no kerf
+    rings = design.made_rings(name)  # the part itself: no kerf
+    out = design.params.output
     path = folder / f"{name}.step"
+    if name not in design.sections and (out.chamfer == 0 or any(kinked(r) for r in rings)):
+        path.write_text(prism_text(name, rings, out.thickness, STEP_TIMESTAMP), encoding="latin-1", newline="\n")
+        runs = [run[0] for ring in rings for run in runs_of(ring)]
+        faces = {"cylinder": runs.count("arc"), "plane": runs.count("line") + 2}
+        entry = {
+            "bytes": path.stat().st_size,
+            "kind": "step",
+            "part": name,
+            "faces": {k: v for k, v in faces.items() if v},
+            "volume": out.thickness * sum(ring_area(r) for r in rings),
+        }
+        # OpenCASCADE cannot chamfer an arc fit's slightly kinked joints (a noncircular gear's
+        # teeth): such a part is its exact unchamfered solid, which its files entry says
+        return None, {**entry, "chamfer": 0.0} if out.chamfer else entry
+    solid, extra = _solid(design, part, rings)
     counts = write_step(path, solid)
     return solid, {"bytes": path.stat().st_size, "kind": "step", "part": name, **counts, **extra}
 

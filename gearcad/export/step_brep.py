@@ -23,7 +23,7 @@ from ..geometry.arcfit import ArcRing
 from ..geometry.inset import inset_ring
 from .flank_fit import FlankFit, band_volume, fit_heights, fit_rings, greville, split_spans
 
-__all__ = ["StepSolid", "straight_solid", "twisted_solid", "kinked", "flank_section", "volume"]
+__all__ = ["StepSolid", "straight_solid", "twisted_solid", "kinked", "runs_of", "ring_area", "flank_section", "volume"]
 
 _MERGE = 1e-9
 """Two arcs are one circle, two lines one line, where centres, radii and offsets agree this
@@ -99,6 +99,11 @@ def kinked(ring: ArcRing) -> bool:
         if KINK[0] < turn < KINK[1]:
             return True
     return False
+
+
+def runs_of(ring: ArcRing) -> list[tuple]:
+    """The ring's runs as its solid's side faces are made of them (see ``_segments``)."""
+    return _segments(ring)
 
 
 def _joined(s: tuple, t: tuple) -> tuple:
@@ -190,10 +195,10 @@ def straight_solid(rings: Sequence[ArcRing], thickness: float, *, name: str, cha
     shape = BRepPrimAPI_MakePrism(_face(rings), gp_Vec(0.0, 0.0, float(thickness))).Shape()
     if chamfer > 0:  # the volume of OpenCASCADE's corners: integrated
         return StepSolid(name, _chamfered(shape, chamfer, (0.0, thickness)))
-    return StepSolid(name, shape, thickness * sum(_area(r) for r in rings))
+    return StepSolid(name, shape, thickness * sum(ring_area(r) for r in rings))
 
 
-def _area(ring: ArcRing) -> float:
+def ring_area(ring: ArcRing) -> float:
     """The signed area inside a ring of lines and arcs (mm²): its chords' shoelace area and each
     arc's circular segment r²(θ − sin θ)/2, θ the signed sweep."""
     area = 0.0

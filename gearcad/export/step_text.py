@@ -99,20 +99,8 @@ def _real(x: float) -> str:
     return "0." if out in ("-0.", "0.") else out
 
 
-def _entities(text: str) -> tuple[str, list[tuple[int, str]]]:
-    """A compacted STEP file's header (its text up to ``DATA;``) and its entities (number, body
-    without the ``;``), in the file's order."""
-    head, _, rest = text.partition("DATA;\n")
-    data = rest.partition("ENDSEC;\nEND-ISO")[0]
-    out = []
-    for line in data.splitlines():
-        number, _, body = line.partition("=")
-        out.append((int(number.strip()[1:]), body.strip()[:-1]))
-    return head, out
-
-
-def _refs(body: str) -> list[int]:
-    return [int(m[1]) for m in _TOKEN.finditer(body) if m[1]]
+_LINE = re.compile(r"^#(\d+)=([A-Z_0-9]*)(.*);$", re.M)
+"""A compacted file's entity: its number, its type (empty for a complex entity), the rest."""
 
 
 def assemble(parts: dict[str, str], placements: list[tuple[str, float, float, float]]) -> str:
@@ -121,71 +109,74 @@ def assemble(parts: dict[str, str], placements: list[tuple[str, float, float, fl
     about z in rad, x, y in mm), in order: the entities OpenCASCADE's assembly writer writes
     (the assembly's product and shape representation, each part's file under it, and per
     placement a CONTEXT_DEPENDENT_SHAPE_REPRESENTATION with an ITEM_DEFINED_TRANSFORMATION and a
-    NEXT_ASSEMBLY_USAGE_OCCURRENCE numbered 1, 2, …), made from text: no solid transferred again."""
-    lines: list[str] = []
-    count = 0
-
-    def add(body: str) -> int:
-        nonlocal count
-        count += 1
-        lines.append(f"#{count}={body};")
-        return count
-
-    first_head = None
-    # the assembly's own product; its shape representation (#10) is written once the placements
-    # are known, its context is the first part's
-    add("APPLICATION_PROTOCOL_DEFINITION('international standard','automotive_design',2000,#2)")
-    add("APPLICATION_CONTEXT('core data for automotive mechanical design processes')")
-    add("SHAPE_DEFINITION_REPRESENTATION(#4,#10)")
-    add("PRODUCT_DEFINITION_SHAPE('','',#5)")
-    add("PRODUCT_DEFINITION('design','',#6,#9)")
-    add("PRODUCT_DEFINITION_FORMATION('','',#7)")
-    add("PRODUCT('assembly','assembly','',(#8))")
-    add("PRODUCT_CONTEXT('',#2,'mechanical')")
-    add("PRODUCT_DEFINITION_CONTEXT('part definition',#2,'design')")
-    add("SHAPE_REPRESENTATION")  # #10: filled in below
-    origin = add("AXIS2_PLACEMENT_3D('',#12,#13,#14)")
-    add("CARTESIAN_POINT('',(0.,0.,0.))")
-    add("DIRECTION('',(0.,0.,1.))")
-    add("DIRECTION('',(1.,0.,0.))")
-    add("PRODUCT_RELATED_PRODUCT_CATEGORY('part',$,(#7))")
+    NEXT_ASSEMBLY_USAGE_OCCURRENCE numbered 1, 2, …), made from text: no solid transferred again.
+    A part whose file is an earlier one's but for its name refers to that one's geometry
+    (:data:`SHARED`): its own vertices, edges, faces and product only."""
+    lines: list[str] = [
+        "#1=APPLICATION_PROTOCOL_DEFINITION('international standard','automotive_design',2000,#2);",
+        "#2=APPLICATION_CONTEXT('core data for automotive mechanical design processes');",
+        "#3=SHAPE_DEFINITION_REPRESENTATION(#4,#10);",
+        "#4=PRODUCT_DEFINITION_SHAPE('','',#5);",
+        "#5=PRODUCT_DEFINITION('design','',#6,#9);",
+        "#6=PRODUCT_DEFINITION_FORMATION('','',#7);",
+        "#7=PRODUCT('assembly','assembly','',(#8));",
+        "#8=PRODUCT_CONTEXT('',#2,'mechanical');",
+        "#9=PRODUCT_DEFINITION_CONTEXT('part definition',#2,'design');",
+        "",  # #10, the assembly's shape representation: its items are the placements below
+        "#11=AXIS2_PLACEMENT_3D('',#12,#13,#14);",
+        "#12=CARTESIAN_POINT('',(0.,0.,0.));",
+        "#13=DIRECTION('',(0.,0.,1.));",
+        "#14=DIRECTION('',(1.,0.,0.));",
+        "#15=PRODUCT_RELATED_PRODUCT_CATEGORY('part',$,(#7));",
+    ]
+    count = len(lines)
+    head = ""
     known: dict[str, tuple[int, int, int, int]] = {}  # part: its definition, representation, origin, context
+    alike: dict[str, dict[int, int]] = {}  # a part's file without its name: its entities' numbers here
     for name, text in parts.items():
-        head, entities = _entities(text)
-        first_head = first_head or head
-        kinds = {n: body.partition("(")[0] for n, body in entities}
-        dropped = {n for n, k in kinds.items() if k in ("APPLICATION_PROTOCOL_DEFINITION", "APPLICATION_CONTEXT")}
-        new = {n: (2 if kinds[n] == "APPLICATION_CONTEXT" else 0) for n in dropped}
-        for n, _ in entities:
-            if n not in dropped:
+        head = head or text.partition("DATA;\n")[0]
+        data = text.partition("DATA;\n")[2].partition("ENDSEC;\nEND-ISO")[0]
+        entities = _LINE.findall(data)
+        earlier = alike.get(text.replace(f"'{name}'", "''"))
+        new: dict[int, int] = {}
+        kept = []
+        for number, kind, rest in entities:
+            n = int(number)
+            if kind in ("APPLICATION_PROTOCOL_DEFINITION", "APPLICATION_CONTEXT"):
+                new[n] = 2  # the assembly's (nothing refers to the protocol definition)
+            elif earlier is not None and kind in SHARED:
+                new[n] = earlier[n]
+            else:
                 count += 1
                 new[n] = count
-        for n, body in entities:
-            if n not in dropped:
-                lines.append(f"#{new[n]}={_TOKEN.sub(lambda m: f'#{new[int(m[1])]}' if m[1] else m[0], body)};")
-        sdr = next(body for n, body in entities if kinds[n] == "SHAPE_DEFINITION_REPRESENTATION")
-        pds = next(n for n, _ in entities if kinds[n] == "PRODUCT_DEFINITION")
-        rep = _refs(sdr)[1]
-        rep_refs = _refs(dict(entities)[rep])
-        known[name] = (new[pds], new[rep], new[rep_refs[0]], new[rep_refs[-1]])
+                kept.append(f"#{number}={kind}{rest};")
+        lines.append(_TOKEN.sub(lambda m: f"#{new[int(m[1])]}" if m[1] else m[0], "\n".join(kept)))
+        alike.setdefault(text.replace(f"'{name}'", "''"), new)
+        bodies = {int(n): (kind, rest) for n, kind, rest in entities}
+        sdr = next(rest for _, kind, rest in entities if kind == "SHAPE_DEFINITION_REPRESENTATION")
+        definition = next(int(n) for n, kind, _ in entities if kind == "PRODUCT_DEFINITION")
+        representation = [int(m[1]) for m in _TOKEN.finditer(sdr) if m[1]][1]
+        refs = [int(m[1]) for m in _TOKEN.finditer(bodies[representation][1]) if m[1]]
+        known[name] = (new[definition], new[representation], new[refs[0]], new[refs[-1]])
     items = []
     for k, (name, angle, x, y) in enumerate(placements):
-        pd, rep, part_origin, _ = known[name]
-        c, s = math.cos(angle), math.sin(angle)
-        point = add(f"CARTESIAN_POINT('',({_real(x)},{_real(y)},0.))")
-        ref = add(f"DIRECTION('',({_real(c)},{_real(s)},0.))")
-        placed = add(f"AXIS2_PLACEMENT_3D('',#{point},#13,#{ref})")
-        items.append(placed)
-        n = count + 1  # the representation in context, its relation, transformation, shape, occurrence
-        add(f"CONTEXT_DEPENDENT_SHAPE_REPRESENTATION(#{n + 1},#{n + 3})")
-        add(
-            f"( REPRESENTATION_RELATIONSHIP('','',#{rep},#10) "
-            f"REPRESENTATION_RELATIONSHIP_WITH_TRANSFORMATION(#{n + 2}) SHAPE_REPRESENTATION_RELATIONSHIP() )"
-        )
-        add(f"ITEM_DEFINED_TRANSFORMATION('','',#{part_origin},#{placed})")
-        add(f"PRODUCT_DEFINITION_SHAPE('Placement','Placement of an item',#{n + 4})")
-        add(f"NEXT_ASSEMBLY_USAGE_OCCURRENCE('{k + 1}','{name}','',#5,#{pd},$)")
+        definition, representation, origin, _ = known[name]
+        n = count + 1  # the placement's point, direction and axes; the representation in context,
+        # its relation, transformation, shape and occurrence
+        lines += [
+            f"#{n}=CARTESIAN_POINT('',({_real(x)},{_real(y)},0.));",
+            f"#{n + 1}=DIRECTION('',({_real(math.cos(angle))},{_real(math.sin(angle))},0.));",
+            f"#{n + 2}=AXIS2_PLACEMENT_3D('',#{n},#13,#{n + 1});",
+            f"#{n + 3}=CONTEXT_DEPENDENT_SHAPE_REPRESENTATION(#{n + 4},#{n + 6});",
+            f"#{n + 4}=( REPRESENTATION_RELATIONSHIP('','',#{representation},#10) "
+            f"REPRESENTATION_RELATIONSHIP_WITH_TRANSFORMATION(#{n + 5}) SHAPE_REPRESENTATION_RELATIONSHIP() );",
+            f"#{n + 5}=ITEM_DEFINED_TRANSFORMATION('','',#{origin},#{n + 2});",
+            f"#{n + 6}=PRODUCT_DEFINITION_SHAPE('Placement','Placement of an item',#{n + 7});",
+            f"#{n + 7}=NEXT_ASSEMBLY_USAGE_OCCURRENCE('{k + 1}','{name}','',#5,#{definition},$);",
+        ]
+        items.append(n + 2)
+        count += 8
     context = next(iter(known.values()))[3]
-    lines[9] = f"#10=SHAPE_REPRESENTATION('',({','.join(f'#{n}' for n in [origin, *items])}),#{context});"
-    head = re.sub(r"FILE_NAME\('(?:[^']|'')*'", "FILE_NAME('assembly'", first_head or "", count=1)
-    return compact(head + "DATA;\n" + "\n".join(lines) + "\nENDSEC;\nEND-ISO-10303-21;\n")
+    lines[9] = f"#10=SHAPE_REPRESENTATION('',({','.join(f'#{n}' for n in [11, *items])}),#{context});"
+    head = re.sub(r"FILE_NAME\('(?:[^']|'')*'", "FILE_NAME('assembly'", head, count=1)
+    return head + "DATA;\n" + "\n".join(lines) + "\nENDSEC;\nEND-ISO-10303-21;\n"
