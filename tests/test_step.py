@@ -403,6 +403,42 @@ def test_rings_with_slight_kinks_are_told_from_smooth_and_cornered_ones():
     assert not kinked(square) and not kinked(circle)
 
 
+def test_an_assembly_of_alike_parts_shares_their_geometry_and_places_each(tmp_path):
+    """Two parts alike but for their names (a self-conjugate pair's gears) in one assembly made
+    of their files' text: their points, curves and surfaces written once, each its own product
+    and solid, read back where placed — a 20 × 10 mm plate with a 4 mm hole, 3 mm thick
+    (600 − 12π mm³ each), the second turned 90° and moved to (50, 0)."""
+    import re
+
+    from OCP.Bnd import Bnd_Box
+    from OCP.BRepBndLib import BRepBndLib
+
+    from gearcad.export.step_prism import prism_text
+    from gearcad.export.step_text import assemble
+    from gearcad.geometry.arcfit import ArcRing
+
+    plate = ArcRing(np.array([[-10, -5], [10, -5], [10, 5], [-10, 5]], dtype=float), np.zeros(4))
+    hole = ArcRing(2.0 * np.array([[1, 0], [0, -1], [-1, 0], [0, 1]], dtype=float), np.full(4, -math.tan(math.pi / 8)))
+    texts = {name: prism_text(name, [plate, hole], 3.0, "2000-01-01T00:00:00") for name in ("a", "b")}
+    text = assemble(texts, [("a", 0.0, 0.0, 0.0), ("b", math.pi / 2, 50.0, 0.0)])
+    points = len(re.findall(r"CARTESIAN_POINT\(", texts["a"]))
+    assert len(re.findall(r"CARTESIAN_POINT\(", text)) == points + 3  # the assembly's origin, a's and b's places
+    assert text.count("ADVANCED_FACE(") == 2 * texts["a"].count("ADVANCED_FACE(")
+    assert "PRODUCT('a'" in text and "PRODUCT('b'" in text and "PRODUCT('assembly'" in text
+    path = tmp_path / "assembly.step"
+    path.write_text(text, encoding="latin-1")
+    solids = _all(_read(path), TopAbs_SOLID)
+    assert len(solids) == 2
+    for solid, (x, y, extent) in zip(solids, [(0, 0, (20, 10)), (50, 0, (10, 20))]):
+        assert BRepCheck_Analyzer(solid).IsValid()
+        assert _volume(solid) == pytest.approx(3 * (200 - 4 * math.pi), rel=1e-9)
+        box = Bnd_Box()
+        BRepBndLib.Add_s(solid, box)
+        box.SetGap(0.0)
+        (x0, y0), (x1, y1) = [(p.X(), p.Y()) for p in (box.CornerMin(), box.CornerMax())]
+        assert np.allclose([(x0 + x1) / 2, (y0 + y1) / 2, x1 - x0, y1 - y0], [x, y, *extent], atol=1e-6)
+
+
 def test_a_twisted_solid_keeps_its_sections_area_up_its_height():
     """An ellipse turned 30° per mm up 4 mm (a twisted prism: every section the same area πab),
     with a round 2 mm bore, chamfered 0.2 mm: the report's volume (the fitted faces' in closed
