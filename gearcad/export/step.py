@@ -1,8 +1,10 @@
 """STEP files: every part as one exact named solid in mm, and the assembly of them.
 
-The solids are built in ``export/step_brep.py``: a straight part's arc-fitted cut rings extruded
-(planes and cylinders, cones at a chamfer), a twisted part ruled through the 3MF's sections.
-OpenCASCADE (OCP) is imported only when STEP is asked for.
+A straight part without a chamfer is written as text (``export/step_prism.py``: its arc-fitted
+cut rings extruded, planes and cylinders); the other solids are built in ``export/step_brep.py``
+(a chamfered straight part's cones, a twisted part fitted through the 3MF's sections) and written
+by OpenCASCADE (OCP), imported only for them.  ``assembly.step`` is made of the parts' files
+(``export/step_text.py``).
 """
 
 from __future__ import annotations
