@@ -1,27 +1,28 @@
 """STEP files: every part as one exact named solid in mm, and the assembly of them.
 
-The solids are built in ``export/step_brep.py``: a straight part's arc-fitted cut rings extruded
-(planes and cylinders, cones at a chamfer), a twisted part ruled through the 3MF's sections.
-OpenCASCADE (OCP) is imported only when STEP is asked for.
+A straight part without a chamfer is written as text (``export/step_prism.py``: its arc-fitted
+cut rings extruded, planes and cylinders); the other solids are built in ``export/step_brep.py``
+(a chamfered straight part's cones, a twisted part fitted through the 3MF's sections) and written
+by OpenCASCADE (OCP), imported only for them.  ``assembly.step`` is made of the parts' files
+(``export/step_text.py``).
 """
 
 from __future__ import annotations
 
-from collections.abc import Sequence
 from pathlib import Path
 
 import numpy as np
 import shapely
 
 from ..mechanisms import Design
-from .step_brep import StepSolid, flank_section, straight_solid, twisted_solid, volume
-from .step_text import compact
+from .step_brep import StepSolid, flank_section, kinked, ring_area, runs_of, straight_solid, twisted_solid, volume
+from .step_prism import prism_text
+from .step_text import assemble, compact
 
 __all__ = [
     "write_step_files",
     "write_part_step",
     "write_step",
-    "write_step_assembly",
     "face_counts",
     "volume",
     "STEP_TIMESTAMP",
@@ -107,22 +108,6 @@ def _fixed_header(model, name: str) -> None:
     header.SetAuthorValue(1, TCollection_HAsciiString("gearcad"))
     header.SetOrganizationValue(1, TCollection_HAsciiString(""))
     header.SetOriginatingSystem(TCollection_HAsciiString("gearcad"))
-    _number_occurrences(model)
-
-
-def _number_occurrences(model) -> None:
-    """The assembly's occurrences numbered 1, 2, … in the file (OpenCASCADE numbers them from a
-    counter that lives as long as the process: the second build's assembly would differ)."""
-    from OCP.StepRepr import StepRepr_NextAssemblyUsageOccurrence
-    from OCP.TCollection import TCollection_HAsciiString
-
-    occurrences = model.Entities()  # picked by type in OpenCASCADE: a file has 10⁴–10⁵ entities
-    occurrences.SelectType(StepRepr_NextAssemblyUsageOccurrence.get_type_descriptor_s(), True)
-    count = 0
-    while occurrences.More():
-        count += 1
-        occurrences.Value().SetId(TCollection_HAsciiString(str(count)))
-        occurrences.Next()
 
 
 def write_step(path: Path, solid: StepSolid) -> dict:
@@ -132,30 +117,6 @@ def write_step(path: Path, solid: StepSolid) -> dict:
     _write(path, doc)
     measured = volume(solid.shape) if solid.volume is None else solid.volume
     return {"faces": face_counts(solid.shape), "volume": measured}
-
-
-def write_step_assembly(path: Path, solids: dict[str, StepSolid], placements: Sequence) -> int:
-    """Every placed part (turned by ``angle`` rad about z, then moved by ``offset`` mm) as a named
-    component of one assembly; returns the number of components."""
-    from OCP.gp import gp_Ax1, gp_Dir, gp_Pnt, gp_Trsf, gp_Vec
-    from OCP.TopLoc import TopLoc_Location
-
-    doc, tool = _document()
-    assembly = tool.NewShape()
-    _named(assembly, "assembly")
-    labels = {}
-    for name, solid in solids.items():
-        labels[name] = tool.AddShape(solid.shape, False)
-        _named(labels[name], name)
-    for placement in placements:
-        turn, move = gp_Trsf(), gp_Trsf()
-        turn.SetRotation(gp_Ax1(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1)), float(placement.angle))
-        move.SetTranslation(gp_Vec(float(placement.offset[0]), float(placement.offset[1]), 0.0))
-        component = tool.AddComponent(assembly, labels[placement.part], TopLoc_Location(move.Multiplied(turn)))
-        _named(component, placement.part)
-    tool.UpdateAssemblies()
-    _write(path, doc)
-    return len(placements)
 
 
 def _solid(design: Design, part, rings) -> tuple[StepSolid, dict]:
@@ -186,11 +147,29 @@ def _solid(design: Design, part, rings) -> tuple[StepSolid, dict]:
     }
 
 
-def write_part_step(design: Design, name: str, folder: Path) -> tuple[StepSolid, dict]:
-    """The part ``name``'s ``<name>.step`` into ``folder``: its solid and its files entry."""
+def write_part_step(design: Design, name: str, folder: Path) -> tuple[StepSolid | None, dict]:
+    """The part ``name``'s ``<name>.step`` into ``folder``: its solid and its files entry.  A
+    straight part without a chamfer is written as text (``export/step_prism.py``: no OpenCASCADE
+    loaded, its solid None), any other through OpenCASCADE."""
     part = design.part(name)
-    solid, extra = _solid(design, part, design.made_rings(name))  # the part itself: no kerf
+    rings = design.made_rings(name)  # the part itself: no kerf
+    out = design.params.output
     path = folder / f"{name}.step"
+    if name not in design.sections and (out.chamfer == 0 or any(kinked(r) for r in rings)):
+        path.write_text(prism_text(name, rings, out.thickness, STEP_TIMESTAMP), encoding="latin-1", newline="\n")
+        runs = [run[0] for ring in rings for run in runs_of(ring)]
+        faces = {"cylinder": runs.count("arc"), "plane": runs.count("line") + 2}
+        entry = {
+            "bytes": path.stat().st_size,
+            "kind": "step",
+            "part": name,
+            "faces": {k: v for k, v in faces.items() if v},
+            "volume": out.thickness * sum(ring_area(r) for r in rings),
+        }
+        # OpenCASCADE cannot chamfer an arc fit's slightly kinked joints (a noncircular gear's
+        # teeth): such a part is its exact unchamfered solid, which its files entry says
+        return None, {**entry, "chamfer": 0.0} if out.chamfer else entry
+    solid, extra = _solid(design, part, rings)
     counts = write_step(path, solid)
     return solid, {"bytes": path.stat().st_size, "kind": "step", "part": name, **counts, **extra}
 
@@ -207,21 +186,14 @@ def _same(design: Design, part) -> bytes | None:
     return b"|".join([*data, np.array([out.thickness, out.chamfer]).tobytes()])
 
 
-def _copy(solid: StepSolid, name: str) -> StepSolid:
-    """A solid alike ``solid`` as a B-rep of its own (the assembly names each part's product; a
-    shared B-rep would be one product): copied, not built again from the rings."""
-    from OCP.BRepBuilderAPI import BRepBuilderAPI_Copy
-
-    return StepSolid(name, BRepBuilderAPI_Copy(solid.shape).Shape(), solid.volume)
-
-
 def write_step_files(design: Design, folder: Path, made: object = None) -> dict[str, dict]:
     """Every part's ``<name>.step`` and ``assembly.step`` (parts placed as in assembly.3mf) into
     ``folder``; returns their files entries (faces by type, volume in mm³).  A part alike an
     earlier one (the same solid) is that one's file with its own name: the bytes OpenCASCADE
-    would write, without transferring the solid again."""
+    would write, without transferring the solid again.  The assembly is made of the parts' files
+    as written (``step_text.assemble``): no solid is transferred twice."""
     files: dict[str, dict] = {}
-    solids: dict[str, StepSolid] = {}
+    texts: dict[str, str] = {}
     written: dict[bytes, str] = {}
     for part in design.parts():
         key, path = _same(design, part), folder / f"{part.name}.step"
@@ -230,15 +202,18 @@ def write_step_files(design: Design, folder: Path, made: object = None) -> dict[
             text = (folder / f"{first}.step").read_bytes()
             old, new = f"'{first}'".encode(), f"'{part.name}'".encode()
             if text.count(old) == 3 and new not in text:  # FILE_NAME's and PRODUCT's names only
-                solids[part.name] = _copy(solids[first], part.name)  # the assembly's own
                 path.write_bytes(text.replace(old, new))
                 entry = files[f"{first}.step"]
                 files[path.name] = {**entry, "part": part.name, "bytes": path.stat().st_size}
+                texts[part.name] = path.read_text(encoding="latin-1")
                 continue
-        solids[part.name], files[path.name] = write_part_step(design, part.name, folder)
+        _, files[path.name] = write_part_step(design, part.name, folder)
+        texts[part.name] = path.read_text(encoding="latin-1")
         if key is not None:
             written.setdefault(key, part.name)
     path = folder / "assembly.step"
-    count = write_step_assembly(path, solids, design.placements)
+    placements = [(p.part, float(p.angle), float(p.offset[0]), float(p.offset[1])) for p in design.placements]
+    path.write_text(assemble(texts, placements), encoding="latin-1", newline="\n")
+    count = len(placements)
     files[path.name] = {"bytes": path.stat().st_size, "kind": "step", "part": "assembly", "components": count}
     return files

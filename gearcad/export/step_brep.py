@@ -23,7 +23,7 @@ from ..geometry.arcfit import ArcRing
 from ..geometry.inset import inset_ring
 from .flank_fit import FlankFit, band_volume, fit_heights, fit_rings, greville, split_spans
 
-__all__ = ["StepSolid", "straight_solid", "twisted_solid", "flank_section", "volume"]
+__all__ = ["StepSolid", "straight_solid", "twisted_solid", "kinked", "runs_of", "ring_area", "flank_section", "volume"]
 
 _MERGE = 1e-9
 """Two arcs are one circle, two lines one line, where centres, radii and offsets agree this
@@ -66,6 +66,44 @@ def _segments(ring: ArcRing) -> list[tuple]:
     if len(out) > 1 and _same_curve(out[-1], out[0]):
         out[-1] = _joined(out[-1], out.pop(0))
     return out
+
+
+def _tangents(seg: tuple) -> tuple[np.ndarray, np.ndarray]:
+    """A run's unit tangents at its start and at its end."""
+    if seg[0] == "line":
+        d = (seg[2] - seg[1]) / float(np.hypot(*(seg[2] - seg[1])))
+        return d, d
+    out = []
+    for p in (seg[1], seg[2]):
+        r = p - seg[3]
+        out.append(np.sign(seg[5]) * np.array([-r[1], r[0]]) / float(np.hypot(*r)))
+    return out[0], out[1]
+
+
+KINK = (1e-9, np.radians(20))
+"""A joint between two runs that turns by more than nothing and less than a corner (20°, as
+``geometry/inset.py`` counts corners), rad: an arc fit's joints (its arcs end on the outline's
+vertices, tangent to neither neighbour)."""
+
+
+def kinked(ring: ArcRing) -> bool:
+    """Whether ``ring`` has a joint that turns by a little (:data:`KINK`): OpenCASCADE's chamfer
+    fails on such a ring (the cones and planes either side of a joint meet nearly tangent), after
+    seconds; a circle, a bore's keyway, a square take it."""
+    runs = _segments(ring)
+    if len(runs) < 2:
+        return False
+    ends = [_tangents(s) for s in runs]
+    for (_, t_in), (t_out, _) in zip(ends[-1:] + ends[:-1], ends):
+        turn = abs(float(np.arctan2(t_in[0] * t_out[1] - t_in[1] * t_out[0], float(np.dot(t_in, t_out)))))
+        if KINK[0] < turn < KINK[1]:
+            return True
+    return False
+
+
+def runs_of(ring: ArcRing) -> list[tuple]:
+    """The ring's runs as its solid's side faces are made of them (see ``_segments``)."""
+    return _segments(ring)
 
 
 def _joined(s: tuple, t: tuple) -> tuple:
@@ -157,10 +195,10 @@ def straight_solid(rings: Sequence[ArcRing], thickness: float, *, name: str, cha
     shape = BRepPrimAPI_MakePrism(_face(rings), gp_Vec(0.0, 0.0, float(thickness))).Shape()
     if chamfer > 0:  # the volume of OpenCASCADE's corners: integrated
         return StepSolid(name, _chamfered(shape, chamfer, (0.0, thickness)))
-    return StepSolid(name, shape, thickness * sum(_area(r) for r in rings))
+    return StepSolid(name, shape, thickness * sum(ring_area(r) for r in rings))
 
 
-def _area(ring: ArcRing) -> float:
+def ring_area(ring: ArcRing) -> float:
     """The signed area inside a ring of lines and arcs (mm²): its chords' shoelace area and each
     arc's circular segment r²(θ − sin θ)/2, θ the signed sweep."""
     area = 0.0

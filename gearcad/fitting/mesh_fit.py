@@ -22,7 +22,7 @@ from ..mechanisms.registry import MECHANISMS
 from . import band_trains
 from .fit import smallest_fit
 from .made import made, sliver
-from .tips import LEAST_ADDENDUM, largest_chamfer, tip_target, with_choices
+from .tips import LEAST_ADDENDUM, foot_room, tip_target, with_choices
 
 __all__ = ["chooses", "closed_form", "chosen", "radial_room", "with_backlash"]
 
@@ -75,7 +75,7 @@ def _tips(given, design_of):
     :func:`.fit.tip_target`): ``output.chamfer`` the elephant foot when printed (as far as the parts take
     it: the first layers' bulge is the one error a chamfer takes off), then a shorter
     ``train.addendum`` (down to :data:`.fit.LEAST_ADDENDUM`).  No backlash frees the tips."""
-    process, out = given.process, given.output
+    process = given.process
     if process.kind == "none":
         return given
     draft = None if hasattr(given, "modules") else design_of(made(given))  # a body's module: its draft's
@@ -85,12 +85,7 @@ def _tips(given, design_of):
         return given
     draft = draft or design_of(made(given))
     picks: dict[str, float] = {}
-    foot = process.value("elephant_foot") if process.kind == "fdm" else 0.0
-    if foot > out.chamfer and "chamfer" not in out.model_fields_set:
-        chamfer = largest_chamfer(draft, foot)
-        if chamfer > out.chamfer:
-            picks["output.chamfer"] = chamfer
-            lack -= 2 * (chamfer - out.chamfer)
+    lack = foot_room(given, draft, lack, picks)
     table, section = _table(given), MECHANISMS[given.mechanism].backlash_table
     if lack > 0 and hasattr(table, "addendum") and "addendum" not in table.model_fields_set:
         addendum = max(math.floor((table.addendum - lack / module) * 1000 + 1e-6) / 1000, LEAST_ADDENDUM)

@@ -53,7 +53,7 @@ def tip_choices(given, draft) -> dict[str, float]:
     itself; the thinnest tip land kept 0.2·m) and a shorter ``teeth.addendum`` (tip relief, down
     to 0.8).  What they cannot give is left: the band jams, and its finding says so.  ``draft``
     is ``given`` as made, designed."""
-    process, out, teeth = given.process, given.output, getattr(given, "teeth", None)
+    process, teeth = given.process, getattr(given, "teeth", None)
     if process is None or process.kind == "none" or teeth is None or not hasattr(teeth, "addendum"):
         return {}
     module = draft.detail.teeth.plan.module
@@ -61,12 +61,7 @@ def tip_choices(given, draft) -> dict[str, float]:
     picks: dict[str, float] = {}
     if lack <= 0:
         return picks
-    foot = process.value("elephant_foot") if process.kind == "fdm" else 0.0
-    if foot > out.chamfer and "chamfer" not in out.model_fields_set:
-        chamfer = largest_chamfer(draft, foot)
-        if chamfer > out.chamfer:
-            picks["output.chamfer"] = chamfer
-            lack -= 2 * (chamfer - out.chamfer)
+    lack = foot_room(given, draft, lack, picks)
     if lack > 0 and "clearance" not in teeth.model_fields_set:
         land = min(float(np.min(g.tip_thickness)) for g in draft.detail.teeth.gears)
         most = _thousandths((land - LEAST_TIP_LAND * module) / 2, math.floor)
@@ -101,6 +96,20 @@ def foot_chamfer(given) -> dict[str, float]:
     if foot <= out.chamfer or radial_room(made(given), module) >= tip_target(given, module):
         return {}
     return {"output.chamfer": foot}
+
+
+def foot_room(given, draft, lack: float, picks: dict[str, float]) -> float:
+    """The tips' room the first-layer chamfer gives (a printer's, where the profile leaves
+    ``output.chamfer`` out): the elephant foot, as far as every part's solid takes it
+    (:func:`largest_chamfer`), put in ``picks``; what is still lacking of ``lack`` (mm)."""
+    process, out = given.process, given.output
+    foot = process.value("elephant_foot") if process.kind == "fdm" else 0.0
+    if foot > out.chamfer and "chamfer" not in out.model_fields_set:
+        chamfer = largest_chamfer(draft, foot)
+        if chamfer > out.chamfer:
+            picks["output.chamfer"] = chamfer
+            lack -= 2 * (chamfer - out.chamfer)
+    return lack
 
 
 def largest_chamfer(draft, chamfer: float) -> float:

@@ -166,7 +166,8 @@ def design(p: CarrierTrainParams) -> Draft[None]:
     placements = tuple(Placement(q.name, a, (c, 0.0)) for q, a, c in zip(parts, _phases(p), centres))
     # each mesh: the second gear is nudged on its own pitch circle (the compound's inner one)
     contacts = tuple(
-        Contact(k, k + 1, module=p.modules[k + 1], radius=r_to, touch="mesh") for k, (_, r_to) in enumerate(lay.sides)
+        Contact(k, k + 1, module=p.modules[k + 1], radius=r_to, touch="mesh", play=p.backlash)
+        for k, (_, r_to) in enumerate(lay.sides)
     )
     data: Blocks = {
         "train": {

@@ -74,6 +74,8 @@ class Contact:
     length: float = 0.0
     nudge: bool = True
     touch: str = ""
+    play: float = 0.0
+    """A mesh's designed play (arc at the contact, mm): the nudged test turns beyond it."""
 
     def __post_init__(self):
         touch = self.touch or ("mesh" if self.module is not None else "rolling" if self.length > 0 else "apart")
@@ -144,7 +146,7 @@ def prove(parts: dict[str, Part], draft: Draft) -> Assembly:
     for c in draft.contacts:
         if c.touch != "mesh" or not c.nudge:
             continue
-        turn = b.nudge_arc(module=c.module) / c.radius
+        turn = b.nudge_arc(module=c.module, play=c.play) / c.radius
         first, mate = placements[c.first], placements[c.second]
         # turned a little either way, the second part must bite into the first: they do touch
         turned = [Placement(mate.part, mate.angle + d, mate.offset) for d in (-turn, turn)]

@@ -258,7 +258,9 @@ def _parts(p: RollerBodyParams, osc: RB.Oscillation, r: float, teeth: ToothedBod
             PartSpec("roller", teeth.roller_ring, bore=axle, marks=(roller_circle,)),
         )
         turns = list(teeth.roller_turns)
-        contacts = tuple(Contact(0, k, module=teeth.module, radius=r * p.scale, touch="mesh") for k in (1, 2, 3))
+        contacts = tuple(
+            Contact(0, k, module=teeth.module, radius=r * p.scale, touch="mesh", play=p.backlash) for k in (1, 2, 3)
+        )
     centres = [(p.scale * math.sin(a), p.scale * math.cos(a)) for a in (0.0, TWO_PI / 3, 2 * TWO_PI / 3)]
     placements = (Placement("body"),) + tuple(Placement("roller", a, c) for a, c in zip(turns, centres))
     return parts, placements, contacts
