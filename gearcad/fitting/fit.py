@@ -160,15 +160,26 @@ def remedies(given, band: Band, design, module: float) -> tuple[tuple[str, ...],
         tried.append(("teeth.backlash", backlash, {"teeth": teeth.model_copy(update={"backlash": backlash})}))
     good, bad = [], []
     for key, value, update in tried:
-        try:
-            trial = design(given.model_copy(update=update))
-        except GearcadError as error:
-            bad.append(f"{key} = {value:g} is refused ({error})")
-            continue
-        if any(f.code == "jams" for f in trial.findings):
+        for _ in range(3 if key == "teeth.backlash" else 1):
+            try:
+                trial = design(given.model_copy(update=update))
+            except GearcadError as error:
+                bad.append(f"{key} = {value:g} is refused ({error})")
+                break
+            if not any(f.code == "jams" for f in trial.findings):
+                good.append(f"--set {key}={value:g}")
+                break
             bad.append(f"{key} = {value:g} still jams")
+            lacks = trial.data.get("bands") or [{}]
+            if key != "teeth.backlash" or "needed_backlash" not in lacks[0]:
+                break
+            # more backlash: what the trial still lacks (a jam's play grows more slowly than it)
+            value = math.ceil((value + 1.1 * lacks[0]["needed_backlash"] + tol / 4) * 1000) / 1000
+            update = {"teeth": teeth.model_copy(update={"backlash": value})}
         else:
-            good.append(f"--set {key}={value:g}")
+            continue
+        if good and good[-1].startswith(f"--set {key}="):
+            bad = [b for b in bad if not b.startswith(f"{key} = ")]
     return tuple(good), tuple(bad)
 
 
