@@ -146,7 +146,8 @@ def fixed_pair(one, two, *, internal: bool, module: float, alpha: float) -> Pair
 
     def ratio(lo, hi) -> tuple[np.ndarray, ...]:
         n = len(np.atleast_1d(lo))
-        return tuple(np.full(n, v) for v in (abs(k), unit, 0.0, 0.0, unit))
+        # k itself, signed (constant: its largest; 1 + k the turn rate, E/(1 + k) gear 2's radius)
+        return tuple(np.full(n, v) for v in (k, unit, 0.0, 0.0, unit))
 
     def at(phi1: np.ndarray) -> PairGeometry:
         phi1 = np.asarray(phi1, dtype=float)

@@ -90,7 +90,7 @@ def prove_play(g: PairGeometry, offsets, spread: float, tol: float, *, reach: fl
     if g.first is not None:  # the certificate's own even start along the pitch curve
         g = g.at(g.first)
     n0 = len(g.phi1)
-    budget = budget or max(BUDGET * n0, 256)  # (a circular mesh proves one pitch: few first positions)
+    budget = budget or BUDGET * n0
     narrowest = 1e-6 * g.cycle
     e = g.center_distance + spread
     geos, plays = [g], []
