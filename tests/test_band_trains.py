@@ -285,3 +285,18 @@ def test_the_rollers_share_one_band_found_at_their_own_turns(rollers):
     assert shared[1].band.band == pytest.approx(own.band, abs=1e-6)
     assert shared[1].band.nominal == pytest.approx(own.nominal, abs=1e-6)
     assert shared[1].band.worst_phi == pytest.approx((shared[0].band.worst_phi - 2 * math.pi / 3) % (2 * math.pi))
+
+
+def test_a_train_mesh_is_proven_and_no_more_optimistic_than_a_dense_sweep(laser_train):
+    """Each mesh of a carrier train is proven as a pair about fixed centres over one pitch (each
+    outline repeats a tooth): report.json's certified least play is never above the least that
+    band_mesh — another engine, the parts placed by their placements — finds at 96 positions over
+    every tooth, and the verdict keeps the margin."""
+    p = laser_train.params
+    edge, spread, tol = p.process.edge(p.output.chamfer), p.process.center_spread(), p.output.tolerance
+    meshes = train_meshes(carrier_train.design(p), 96)
+    for band, (name, g, *_) in zip(laser_train.data["bands"], meshes):
+        assert band["mesh"] == name and band["certificate"] == "theorem" and band["proven"]
+        dense = mesh_band(g, edge=edge, spread=spread, tol=tol, name=name, backlash=p.train.backlash)
+        assert band["certified_min"] <= dense.band[0] + 1e-6, (name, band["certified_min"], dense.band[0])
+        assert band["certified_min"] >= 2 * tol

@@ -57,6 +57,10 @@ class MeshGeometry:
     pressure_angle: float
     teeth: np.ndarray
     """(n,) gear 1's tooth at the contact (index from its first)."""
+    pair: object | None = None
+    """The same mesh as a :class:`~.play.PairGeometry` about fixed centres (a carrier train's: what
+    the proven certificate measures; its gear 1 the one that is not a ring), or None (a roller's
+    axle moves along the body)."""
 
     def at(self, keep: np.ndarray) -> MeshGeometry:
         """The same mesh at the positions ``keep`` (a boolean mask) only."""

@@ -22,13 +22,16 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 import shapely
+import shapely.affinity
 
 from ..findings import finding
 from ..mechanisms.registry import MECHANISMS
 from ..teeth.contact import ContactData, contact_ratio
-from .band import Band
+from .band import Band, pair_band
 from .band_mesh import MeshGeometry, mesh_band
+from .certify import PER_TOOTH
 from .fit import process_block
+from .play import PairGeometry
 
 __all__ = ["MeshBand", "mesh_bands", "radial_room", "with_mesh_bands", "train_meshes", "roller_meshes"]
 
@@ -93,6 +96,8 @@ def train_meshes(draft, positions: int = 12) -> list[tuple[str, MeshGeometry, bo
         tile = lambda v: np.tile(v, (positions, 1))  # noqa: E731
         material = (math.atan2(*(contact - c1)[::-1]) - a1) / (TWO_PI / z)
         teeth = (np.floor(material) if first_ring else np.round(material)).astype(int) % z
+        z2 = p.inner_teeth if k + 1 == p.compound else p.teeth[k + 1]
+        ends = [(shapes[k], one, r_from, z), (shapes[k + 1], two, r_to, z2)]
         geometry = MeshGeometry(
             shapes=(shapes[k], shapes[k + 1]),
             phi1=turn,
@@ -103,6 +108,7 @@ def train_meshes(draft, positions: int = 12) -> list[tuple[str, MeshGeometry, bo
             module=m,
             pressure_angle=alpha,
             teeth=teeth,
+            pair=fixed_pair(*(ends[::-1] if first_ring else ends), internal=inside, module=m, alpha=alpha),
         )
         k1 = np.full(positions, (-1.0 if first_ring else 1.0) / r_from)
         k2 = np.full(positions, (-1.0 if second_ring else 1.0) / r_to)
@@ -111,6 +117,70 @@ def train_meshes(draft, positions: int = 12) -> list[tuple[str, MeshGeometry, bo
         name = f"{draft.parts[k].name}/{draft.parts[k + 1].name}"
         out.append((name, geometry, inside, ContactData(turn, ratio_along, flat, flat)))
     return out
+
+
+def fixed_pair(one, two, *, internal: bool, module: float, alpha: float) -> PairGeometry | None:
+    """A mesh of two circles about fixed centres as a :class:`~.play.PairGeometry` (what the proven
+    certificate measures): ``one`` and ``two`` each (shape about its pivot, placement, pitch
+    radius, teeth), ``two`` the ring of an internal mesh; None unless each toothed outline is its
+    own vertices turned by a tooth (then one pitch of gear 1 is the whole cycle; otherwise every
+    tooth pair would have to meet, z2/gcd(z1, z2) turns: minutes under the proof).  Both shapes are
+    turned so that the line of centres lies along x, as assembled; gear 1 turned by −φ turns gear 2
+    by φ2 = k·φ, k = r1/r2 (an internal mesh: −r1/r2, the ring the same way), and gear 1's contact
+    lies r1 along the line (an internal mesh: −r1, its pitch point away from the ring's centre)."""
+    (shape1, place1, r1, z1), (shape2, place2, r2, z2) = one, two
+    gap = np.asarray(place2.offset, dtype=float) - np.asarray(place1.offset, dtype=float)
+    theta = math.atan2(gap[1], gap[0])
+    rings = tuple(
+        shapely.affinity.rotate(shape, place.angle - theta, origin=(0.0, 0.0), use_radians=True)
+        for shape, place in ((shape1, place1), (shape2, place2))
+    )
+    k = -r1 / r2 if internal else r1 / r2
+    contact = -r1 if internal else r1
+    unit = abs(k / (1 + k))  # the instant centre's distance from gear 1's pivot over E (fixed)
+    if not (_repeats(shape1.exterior, z1) and _repeats(shape2.interiors[0] if internal else shape2.exterior, z2)):
+        return None
+    cycle = TWO_PI / z1
+    start = np.linspace(0.0, cycle, max(2 * PER_TOOTH, round(PER_TOOTH * z1 * cycle / TWO_PI)), endpoint=False)
+    own = (math.pi if internal else 0.0) + theta - place1.angle  # the contact's angle on gear 1 at φ = 0
+
+    def ratio(lo, hi) -> tuple[np.ndarray, ...]:
+        n = len(np.atleast_1d(lo))
+        # k itself, signed (constant: its largest; 1 + k the turn rate, E/(1 + k) gear 2's radius)
+        return tuple(np.full(n, v) for v in (k, unit, 0.0, 0.0, unit))
+
+    def at(phi1: np.ndarray) -> PairGeometry:
+        phi1 = np.asarray(phi1, dtype=float)
+        return PairGeometry(
+            rings=rings,
+            center_distance=float(np.hypot(*gap)),
+            phi1=phi1,
+            phi2=k * phi1,
+            r1=np.full(len(phi1), contact),
+            module=module,
+            pressure_angle=alpha,
+            teeth=np.floor(((own + phi1) % TWO_PI) / (TWO_PI / z1)).astype(int) % z1,
+            at=at,
+            ratio=ratio,
+            slope=lambda phi: np.full(np.shape(phi), k),
+            cycle=cycle,
+            first=start,
+        )
+
+    return at(start)
+
+
+def _repeats(ring, teeth: int) -> bool:
+    """Whether the toothed ring is its own vertices turned by a tooth, to 1e-9 of its size (then
+    a mesh of it repeats every pitch, not only when every tooth pair has met)."""
+    xy = np.asarray(ring.coords)[:-1]
+    n = len(xy)
+    if n % teeth:
+        return False
+    turned = _rotate(xy, np.full(n, TWO_PI / teeth))
+    size = float(np.max(np.abs(xy)))
+    shifts = (n // teeth, -n // teeth)
+    return any(np.max(np.abs(turned - np.roll(xy, shift, axis=0))) <= 1e-9 * size for shift in shifts)
 
 
 def roller_meshes(draft, positions: int = 36) -> list[tuple[str, MeshGeometry, bool, ContactData]]:
@@ -163,7 +233,10 @@ def mesh_bands(draft) -> tuple[MeshBand, ...]:
     edge, spread = params.process.edge(params.output.chamfer), params.process.center_spread()
     tol, backlash = params.output.tolerance, params.backlash
 
-    def band(name, g):
+    def band(name, g, inside=False):
+        if g.pair is not None:  # about fixed centres: the least play certified as a pair's is
+            kw = {"internal": inside, "certificate": params.output.certificate}
+            return pair_band(g.pair, edge=edge, spread=spread, tol=tol, backlash=backlash, name=name, **kw)
         return mesh_band(g, edge=edge, spread=spread, tol=tol, name=name, backlash=backlash)
 
     rollers = (draft.data.get("teeth") or {}).get("roller_teeth")  # a body's rollers, alike: one band turned
@@ -171,7 +244,7 @@ def mesh_bands(draft) -> tuple[MeshBand, ...]:
         first = band(*meshes[0][:2])
         bands = [_turned(first, name, TWO_PI * k / 3) for k, (name, *_) in enumerate(meshes)]
     else:
-        bands = [band(name, g) for name, g, *_ in meshes]
+        bands = [band(name, g, inside) for name, g, inside, _ in meshes]
     return tuple(MeshBand(b, inside, contact) for b, (_, _, inside, contact) in zip(bands, meshes))
 
 

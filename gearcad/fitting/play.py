@@ -31,7 +31,8 @@ class PairGeometry:
     origin), the centre distance E, and per driver angle φ1 (rad) the mate's angle φ2 and the
     contact radius on gear 1; gear 1 turns by −φ1 about the origin, gear 2 by +φ2 about (E, 0)."""
 
-    rings: tuple[np.ndarray, np.ndarray]
+    rings: tuple
+    """Each gear's outer ring (an array), or its polygon (a ring gear's, with its toothed hole)."""
     center_distance: float
     phi1: np.ndarray
     phi2: np.ndarray
@@ -60,8 +61,8 @@ class PairGeometry:
 
 def _windows(ring: np.ndarray, centres: np.ndarray, radius: float, offset, tol: float) -> np.ndarray:
     """The gear's shape near each centre, grown by ``offset`` (mm, scalar or per centre), clipped
-    to ``radius``."""
-    gear = shapely.Polygon(ring)
+    to ``radius``; ``ring`` its outer ring, or its polygon (a ring gear's, with its toothed hole)."""
+    gear = ring if isinstance(ring, shapely.Geometry) else shapely.Polygon(ring)
     largest = float(np.max(np.abs(offset)))
     discs = shapely.buffer(shapely.points(centres), radius + largest + radius / 6, quad_segs=16)
     pieces = shapely.intersection(gear, discs)
