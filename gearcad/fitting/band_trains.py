@@ -30,7 +30,7 @@ from ..teeth.contact import ContactData, contact_ratio
 from .band import Band, pair_band
 from .band_mesh import MeshGeometry, mesh_band
 from .certify import PER_TOOTH
-from .fit import process_block
+from .fit import least_said, process_block
 from .play import PairGeometry
 
 __all__ = ["MeshBand", "mesh_bands", "radial_room", "with_mesh_bands", "train_meshes", "roller_meshes"]
@@ -325,7 +325,7 @@ def with_mesh_bands(draft, bands: tuple[MeshBand, ...] | None = None, *, chosen:
         b = mb.band
         lines.append(
             f"band {b.mesh} ({process.kind}): play {b.nominal[0]:.4f}…{b.nominal[1]:.4f} mm as drawn, "
-            f"{b.band[0]:.4f}…{b.band[1]:.4f} mm made; {'fits' if b.fits else 'JAMS'}"
+            f"{b.band[0]:.4f}…{b.band[1]:.4f} mm made; {'fits' if b.fits else 'JAMS'}{least_said(b)}"
         )
         lines.append(mb.sentence())
         if not b.fits:

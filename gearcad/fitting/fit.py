@@ -327,7 +327,7 @@ def with_bands(
     for b in bands:
         lines.append(
             f"band {b.mesh} ({process.kind}): play {b.nominal[0]:.4f}…{b.nominal[1]:.4f} mm as drawn, "
-            f"{b.band[0]:.4f}…{b.band[1]:.4f} mm made; {'fits' if b.fits else 'JAMS'}{_least_said(b)}"
+            f"{b.band[0]:.4f}…{b.band[1]:.4f} mm made; {'fits' if b.fits else 'JAMS'}{least_said(b)}"
         )
         where = f"tooth {b.worst_tooth} of the driver at driver angle {math.degrees(b.worst_phi):.1f}°"
         if not b.fits:
@@ -358,13 +358,15 @@ def with_bands(
     return replace(design, findings=tuple(findings), details=tuple(lines), data=data)
 
 
-def _least_said(b: Band) -> str:
-    """The least play the verdict rests on and how it is known: "estimated" (the slope
-    estimate, ``output.certificate = "estimate"``) or "proven" (the theorem); "" without one."""
+def least_said(b: Band) -> str:
+    """The least play the verdict rests on and how it is known: "proven" (the theorem),
+    "estimated" (the slope estimate, ``output.certificate = "estimate"``) or "sampled" (measured
+    at fixed positions only, no bound between them); "" where the budget left it open."""
     cert = b.certificate
-    if cert is None or (cert.kind == "theorem" and not cert.proven):
+    if cert is not None and cert.kind == "theorem" and not cert.proven:
         return ""
-    return f" (least {b.least:.4f} mm, {'proven' if cert.kind == 'theorem' else 'estimated'})"
+    how = "sampled" if cert is None else "proven" if cert.kind == "theorem" else "estimated"
+    return f" (least {b.least:.4f} mm, {how})"
 
 
 def process_block(process) -> dict:
