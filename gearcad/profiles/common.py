@@ -97,7 +97,7 @@ class OutputParams(ParamsModel):
     """How a gear pair's least play is bounded between the driver positions measured (its band's verdict rests
     on it): "theorem" (default) proves it from the geometry (the follower's motion about the instant centre) and
     says jams, naming the interval, where the work budget cannot close it (every cut of a fit search is proven).
-    "estimate" bounds it by twice the steepest slope the measured play shows nearby, at a half to a third of
+    "estimate" bounds it by twice the steepest slope the measured play shows nearby, at 1/40 to 1/2 of
     the CPU — not a proof: a dip narrower than those slopes can hide (the laser focus pair's estimate says
     fits by 10 µm where it jams by 3.6 µm)."""
 
