@@ -25,15 +25,6 @@ def pytest_collection_finish(session):
     gc.set_threshold(10_000, 10, 10)
 
 
-def pytest_collection_modifyitems(config, items):
-    """The tests that read the ``built`` files run in one test process (``--dist loadgroup``):
-    the build's lock is never waited on, and what they read once (:func:`read_dxf`, 62 DXF
-    files: 4 CPU-s) is not read again in the other."""
-    for item in items:
-        if "built" in getattr(item, "fixturenames", ()):
-            item.add_marker(pytest.mark.xdist_group("built"))
-
-
 DATA = Path(__file__).parent / "data"
 ROOT = Path(__file__).parent.parent
 EXAMPLES = ROOT / "profiles"
