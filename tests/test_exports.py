@@ -494,6 +494,54 @@ def test_engraving_is_polyline_and_the_cut_layer_takes_the_flavour(tmp_path):
         assert all(2.0 < np.hypot(*np.diff(d, axis=0).T).sum() < 3.5 for d in dashes)
 
 
+class _EzdxfMarks:
+    """ezdxf's own way with the engraving: a VERTEX entity a point, written by ``saveas``."""
+
+    def __init__(self, doc):
+        self.doc = doc
+
+    def add(self, msp, rows, layer, *, close=False):
+        msp.add_polyline2d(rows, format="xyb"[: len(rows[0])], close=close, dxfattribs={"layer": layer})
+
+    def save(self, path):
+        self.doc.saveas(path)
+
+
+def test_engraving_written_as_text_is_what_ezdxf_writes(tmp_path, monkeypatch):
+    """The engraving's vertices written as text (gearcad/export/dxf_marks.py) give the same bytes
+    as ezdxf's own POLYLINE entities: closed and open, with bulges (positive, negative, zero and
+    -0.0) and without, a -0.0 coordinate, on two layers, between the cut path's LWPOLYLINEs."""
+    from gearcad.export import dxf
+    from gearcad.export.drawing import Drawing
+
+    t = np.linspace(0, 2 * np.pi, 7, endpoint=False)
+    circle = np.column_stack([np.cos(t), np.sin(t)])
+    bulges = np.array([0.1, -0.2, 0.0, -0.0, 0.3, 1e-17, 0.05])
+    drawing = Drawing(
+        closed={
+            "CUT": [ArcRing(10 * circle, np.full(7, 0.07)), ArcRing(2 * circle[::-1], np.zeros(7))],
+            "MARK": [ArcRing(7 * circle, bulges), ArcRing(3.5 * circle + 1 / 3, bulges[::-1])],
+        },
+        strokes={
+            "MARK": [np.array([[-0.0, 1.5], [0.0, -1.5]]), ArcRing(5 * circle[:4], np.array([0.2, -0.1, 0.0, 0.4]))],
+            "NOTE": [np.array([[1e-9, 2.0], [123456.789, -0.0], [3.0, 4.0]])],
+        },
+        descriptions={},
+    )
+    for flavour in ("polyline", "lines-arcs"):
+        ours, theirs = tmp_path / f"ours-{flavour}.dxf", tmp_path / f"ezdxf-{flavour}.dxf"
+        dxf.write_dxf(ours, drawing, flavour=flavour)
+        with monkeypatch.context() as m:
+            m.setattr(dxf, "Marks", _EzdxfMarks)
+            dxf.write_dxf(theirs, drawing, flavour=flavour)
+        assert ours.read_bytes() == theirs.read_bytes(), flavour
+        doc = ezdxf.readfile(ours)
+        assert not doc.audit().has_errors
+        marks = doc.modelspace().query("POLYLINE")
+        assert [e.is_closed for e in marks] == [True, True, False, False, False]
+        assert [len(e.vertices) for e in marks][2:] == [2, 4, 3] and min(len(e.vertices) for e in marks[:2]) >= 7
+
+
 def test_caps_cover_the_region_and_keep_every_vertex():
     """A toothed-like ring with a square hole: the cap's triangles, all counter-clockwise, add up
     to the shoelace area and use every vertex (the walls meet the cap there); a vertex exactly

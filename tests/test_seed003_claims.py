@@ -10,7 +10,6 @@ import numpy as np
 import pytest
 import shapely
 from scipy.optimize import brentq, minimize_scalar
-from scipy.stats import linregress
 
 from gearcad.bodies import claims as C
 from gearcad.bodies import limits as LM
@@ -109,6 +108,8 @@ def test_instants_of_largest_centre_speed_by_central_differences():
 
 
 def test_eq4_regression_reproduced_independently(seed_tables):
+    from scipy.stats import linregress  # here: scipy.stats takes 0.8 s to import, in every test process
+
     rows = seed_tables["roller_bodies_003"]["largest_oval_amplitude_by_eye"]["rows"]
     fit = linregress(np.log([r[0] for r in rows]), np.log([r[1] for r in rows]))
     assert math.exp(fit.intercept) == pytest.approx(1.74, abs=0.005)

@@ -29,7 +29,7 @@ def helical_benchmark(
     from ..tolerances import DEFAULT
 
     if face_widths is None:
-        face_widths = (5.0, 10.0) if quick else (5.0, 10.0, 20.0)
+        face_widths = (5.0,) if quick else (5.0, 10.0, 20.0)
     if tolerances is None:
         tolerances = (0.02,) if quick else (0.04, 0.02, 0.01, 0.005)
     beta = math.radians(25)

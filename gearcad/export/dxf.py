@@ -54,6 +54,7 @@ from ..geometry import bulge as B
 from ..geometry.arcfit import ArcRing
 from .bounds import drawing_bounds
 from .drawing import Drawing
+from .dxf_marks import Marks
 
 __all__ = ["FLAVOURS", "CHORD_AREA", "MARK_CHORD_AREA", "write_dxf", "limit_sweep", "ring_area_with_arcs"]
 
@@ -316,6 +317,7 @@ def write_dxf(path: Path, drawing: Drawing, *, flavour: str = "polyline", cut_la
             if name in drawing.descriptions:
                 layer.description = drawing.descriptions[name]
         msp = doc.modelspace()
+        marks = Marks(doc)
         count = 0
         for layer, rings in drawing.closed.items():
             cut = layer == cut_layer
@@ -325,25 +327,24 @@ def write_dxf(path: Path, drawing: Drawing, *, flavour: str = "polyline", cut_la
             else:
                 rings = limit_sweep(list(rings), regions=cut, share=CHORD_AREA if cut else MARK_CHORD_AREA)
             for ring in rings:
-                count += _ring(msp, ring, layer, flavour if cut else "engrave")
+                count += _ring(msp, ring, layer, flavour if cut else "engrave", marks)
         for layer, strokes in drawing.strokes.items():
             for stroke in strokes:
                 if isinstance(stroke, ArcRing):  # an open path with arcs (dashes)
-                    rows = np.column_stack([stroke.vertices, stroke.bulges]).tolist()
-                    msp.add_polyline2d(rows, format="xyb", dxfattribs={"layer": layer})
+                    marks.add(msp, np.column_stack([stroke.vertices, stroke.bulges]).tolist(), layer)
                     count += len(stroke.vertices)
                     continue
-                msp.add_polyline2d(np.asarray(stroke, dtype=float).tolist(), format="xy", dxfattribs={"layer": layer})
+                marks.add(msp, np.asarray(stroke, dtype=float).tolist(), layer)
                 count += len(stroke)
         if any(drawing.closed.values()) or any(drawing.strokes.values()):
             _set_extents(doc, msp, drawing_bounds(drawing))
         for name in sorted(doc.entitydb.dxf_types_in_use()):  # before ezdxf adds them in set order
             doc.classes.add_class(name)
-        doc.saveas(path)
+        marks.save(path)
     return count
 
 
-def _ring(msp, ring, layer: str, flavour: str) -> int:
+def _ring(msp, ring, layer: str, flavour: str, marks: Marks) -> int:
     v, bulges = B.segments(ring)
     if flavour == "lines-arcs":
         n = len(v)
@@ -360,7 +361,7 @@ def _ring(msp, ring, layer: str, flavour: str) -> int:
     # (x, y, bulge) rows: the widths are 0 by default, and each column more is work per vertex
     points = np.column_stack([v, bulges]).tolist()
     if flavour == "engrave":
-        msp.add_polyline2d(points, format="xyb", close=True, dxfattribs={"layer": layer})
+        marks.add(msp, points, layer, close=True)
     else:
         msp.add_lwpolyline(points, format="xyb", close=True, dxfattribs={"layer": layer})
     return len(v)
