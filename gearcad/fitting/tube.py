@@ -176,6 +176,7 @@ def tube(s: Site, h: float, e: float, bounds) -> float:
         else:  # gear 1's, seen from gear 2: |w − I(φ)| and |w − C(φ)| move with φ only
             rbar = r0 + e * h
             rho = rho0 + sigma * h
+        rbar = np.maximum(rbar, 1e-12)  # (a vertex on gear 2's pivot: its turn does not move it)
         move = w * rho * h  # the most a vertex moves over the driver interval
         lip = (mine[3] - move) / rbar
         near = np.flatnonzero(lip < best)
