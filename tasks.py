@@ -199,10 +199,10 @@ def main(argv: list[str]) -> int:
     os.chdir(ROOT)
     if argv[0] == "build":
         count = len(list(Path("profiles").glob("*.toml")))
-        what = "the profiles given" if argv[1:] else f"the {count} profiles in profiles/ (about 10 s in all)"
+        what = "the profiles given" if argv[1:] else f"the {count} profiles in profiles/ (a minute or so in all)"
         _say(f"{LAUNCHER} build: {what}, a line as each is built")
         return subprocess.run([str(BIN / "gearcad"), "build", *argv[1:]], env=_bytecode_kept()).returncode
-    _say("running the test suite: pytest -q on every core (about 3 minutes on 2 cores; a dot per test)")
+    _say("running the test suite: pytest -q on every core (about 5 minutes on 2 cores; a dot per test)")
     return subprocess.run([str(PYTHON), "-m", "pytest", "-q", *argv[1:]], env=_bytecode_kept()).returncode
 
 
