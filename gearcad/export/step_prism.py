@@ -19,6 +19,7 @@ import numpy as np
 
 from ..geometry.arcfit import ArcRing
 from .step_brep import runs_of
+from .step_text import product_head
 
 __all__ = ["prism_text"]
 
@@ -149,15 +150,7 @@ def prism_text(name: str, rings: Sequence[ArcRing], thickness: float, timestamp:
         f"#{context + 5}=PRODUCT_RELATED_PRODUCT_CATEGORY('part',$,(#7));",
     ]
     head = [
-        "#1=APPLICATION_PROTOCOL_DEFINITION('international standard','automotive_design',2000,#2);",
-        "#2=APPLICATION_CONTEXT('core data for automotive mechanical design processes');",
-        "#3=SHAPE_DEFINITION_REPRESENTATION(#4,#10);",
-        "#4=PRODUCT_DEFINITION_SHAPE('','',#5);",
-        "#5=PRODUCT_DEFINITION('design','',#6,#9);",
-        "#6=PRODUCT_DEFINITION_FORMATION('','',#7);",
-        f"#7=PRODUCT('{name}','{name}','',(#8));",
-        "#8=PRODUCT_CONTEXT('',#2,'mechanical');",
-        "#9=PRODUCT_DEFINITION_CONTEXT('part definition',#2,'design');",
+        *product_head(name),
         f"#10=ADVANCED_BREP_SHAPE_REPRESENTATION('',(#11,#12),#{context});",
         f"#11=AXIS2_PLACEMENT_3D('',#{origin},#{up},#{x_axis});",
         "#12=MANIFOLD_SOLID_BREP('',#13);",

@@ -11,7 +11,7 @@ from __future__ import annotations
 import math
 import re
 
-__all__ = ["SHARED", "compact", "assemble"]
+__all__ = ["SHARED", "compact", "assemble", "product_head"]
 
 SHARED = frozenset(
     {
@@ -103,6 +103,22 @@ _LINE = re.compile(r"^#(\d+)=([A-Z_0-9]*)(.*);$", re.M)
 """A compacted file's entity: its number, its type (empty for a complex entity), the rest."""
 
 
+def product_head(name: str) -> list[str]:
+    """Entities #1–#9 of a file of one product ``name``, as OpenCASCADE writes them: the
+    protocol, the product and its definition, whose shape representation is #10."""
+    return [
+        "#1=APPLICATION_PROTOCOL_DEFINITION('international standard','automotive_design',2000,#2);",
+        "#2=APPLICATION_CONTEXT('core data for automotive mechanical design processes');",
+        "#3=SHAPE_DEFINITION_REPRESENTATION(#4,#10);",
+        "#4=PRODUCT_DEFINITION_SHAPE('','',#5);",
+        "#5=PRODUCT_DEFINITION('design','',#6,#9);",
+        "#6=PRODUCT_DEFINITION_FORMATION('','',#7);",
+        f"#7=PRODUCT('{name}','{name}','',(#8));",
+        "#8=PRODUCT_CONTEXT('',#2,'mechanical');",
+        "#9=PRODUCT_DEFINITION_CONTEXT('part definition',#2,'design');",
+    ]
+
+
 def assemble(parts: dict[str, str], placements: list[tuple[str, float, float, float]]) -> str:
     """The assembly file of the parts' files as written (``parts``: name → compacted STEP text
     of one product, one shape representation), each placed as ``placements`` says — (part, angle
@@ -113,15 +129,7 @@ def assemble(parts: dict[str, str], placements: list[tuple[str, float, float, fl
     A part whose file is an earlier one's but for its name refers to that one's geometry
     (:data:`SHARED`): its own vertices, edges, faces and product only."""
     lines: list[str] = [
-        "#1=APPLICATION_PROTOCOL_DEFINITION('international standard','automotive_design',2000,#2);",
-        "#2=APPLICATION_CONTEXT('core data for automotive mechanical design processes');",
-        "#3=SHAPE_DEFINITION_REPRESENTATION(#4,#10);",
-        "#4=PRODUCT_DEFINITION_SHAPE('','',#5);",
-        "#5=PRODUCT_DEFINITION('design','',#6,#9);",
-        "#6=PRODUCT_DEFINITION_FORMATION('','',#7);",
-        "#7=PRODUCT('assembly','assembly','',(#8));",
-        "#8=PRODUCT_CONTEXT('',#2,'mechanical');",
-        "#9=PRODUCT_DEFINITION_CONTEXT('part definition',#2,'design');",
+        *product_head("assembly"),
         "",  # #10, the assembly's shape representation: its items are the placements below
         "#11=AXIS2_PLACEMENT_3D('',#12,#13,#14);",
         "#12=CARTESIAN_POINT('',(0.,0.,0.));",
