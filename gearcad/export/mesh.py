@@ -27,6 +27,7 @@ __all__ = [
     "xml_name",
     "Solid",
     "extrude",
+    "stacked",
     "cap_triangles",
     "checked_solid",
     "write_stl",
@@ -102,6 +103,27 @@ def extrude(outline: Outline, thickness: float, *, name: str, chamfer: float = 0
     else:
         stack = [(0.0, rings), (thickness, rings)]
     return checked_solid(_prism(stack), name)
+
+
+def stacked(lower: Outline, upper: Outline, thickness: float, *, name: str, chamfer: float = 0.0) -> Solid:
+    """Two straight bands stacked: ``lower`` extruded from z = 0 to half the ``thickness``,
+    ``upper`` from there to the top, each chamfered (45°, ``chamfer`` mm) at its outer end only —
+    the first layer's and the top's edges — and the two joined by manifold3d's union (the
+    mid-plane's faces where one band stands out of the other, no wall crossing it)."""
+    half = thickness / 2
+    bands = []
+    for outline, ends in ((lower, (0.0, half)), (upper, (thickness, half))):
+        rings = [np.asarray(r, dtype=float) for r in outline.rings]
+        outer, inner = ends
+        if chamfer > 0:
+            check_chamfer(outline, thickness, chamfer, name=name)
+            insets = [inset_ring(r, chamfer) for r in rings]
+            step = chamfer if outer < inner else -chamfer
+            stack = [(outer, insets), (outer + step, rings), (inner, rings)]
+        else:
+            stack = [(outer, rings), (inner, rings)]
+        bands.append(_prism(sorted(stack, key=lambda level: level[0])))
+    return checked_solid(bands[0] + bands[1], name)
 
 
 def checked_solid(solid: m3d.Manifold, name: str) -> Solid:

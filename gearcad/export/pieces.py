@@ -36,14 +36,18 @@ class Made:
 
     @cached_property
     def solids(self) -> dict:
-        """Each part's solid: extruded, or lofted through its twisted sections."""
+        """Each part's solid: extruded, two stacked bands, or lofted through its twisted sections."""
+        from ..geometry.outline import mirrored
         from .loft import loft
-        from .mesh import extrude
+        from .mesh import extrude, stacked
 
         design, out = self.design, self.design.params.output
 
         def solid(part):
             twisted = design.sections.get(part.name)
+            if part.name in design.bands:
+                upper = mirrored(part.outline, design.bands[part.name])
+                return stacked(part.outline, upper, out.thickness, name=part.name, chamfer=out.chamfer)
             if twisted is None:
                 return extrude(part.outline, out.thickness, name=part.name, chamfer=out.chamfer)
             holes = part.outline.rings[1:]

@@ -15,7 +15,18 @@ import numpy as np
 import shapely
 
 from ..mechanisms import Design
-from .step_brep import StepSolid, flank_section, kinked, ring_area, runs_of, straight_solid, twisted_solid, volume
+from .step_brep import (
+    StepSolid,
+    flank_section,
+    kinked,
+    mirrored_ring,
+    ring_area,
+    runs_of,
+    stacked_solid,
+    straight_solid,
+    twisted_solid,
+    volume,
+)
 from .step_prism import prism_text
 from .step_text import assemble, compact
 
@@ -155,6 +166,12 @@ def write_part_step(design: Design, name: str, folder: Path) -> tuple[StepSolid 
     rings = design.made_rings(name)  # the part itself: no kerf
     out = design.params.output
     path = folder / f"{name}.step"
+    if name in design.bands:  # two stacked bands, the upper the lower turned over: joined unchamfered
+        upper = [mirrored_ring(r, design.bands[name]) for r in rings]
+        solid = stacked_solid(rings, upper, out.thickness, name=name)
+        counts = write_step(path, solid)
+        entry = {"bytes": path.stat().st_size, "kind": "step", "part": name, **counts, "bands": 2}
+        return solid, {**entry, "chamfer": 0.0} if out.chamfer else entry
     if name not in design.sections and (out.chamfer == 0 or any(kinked(r) for r in rings)):
         path.write_text(prism_text(name, rings, out.thickness, STEP_TIMESTAMP), encoding="latin-1", newline="\n")
         runs = [run[0] for ring in rings for run in runs_of(ring)]
@@ -181,9 +198,10 @@ def _same(design: Design, part) -> bytes | None:
     if part.name in design.sections:
         return None
     out = design.params.output
+    band = [design.bands[part.name]] if part.name in design.bands else []
     rings = design.made_rings(part.name)
     data = [np.asarray(r.vertices, dtype=float).tobytes() + np.asarray(r.bulges, dtype=float).tobytes() for r in rings]
-    return b"|".join([*data, np.array([out.thickness, out.chamfer]).tobytes()])
+    return b"|".join([*data, np.array([out.thickness, out.chamfer, *band]).tobytes()])
 
 
 def write_step_files(design: Design, folder: Path, made: object = None) -> dict[str, dict]:

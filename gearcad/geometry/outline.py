@@ -7,7 +7,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["Outline", "ring_area", "rotate", "place", "place_each", "arc_steps"]
+__all__ = ["Outline", "ring_area", "rotate", "place", "place_each", "arc_steps", "mirrored"]
 
 
 def arc_steps(radius: float, tolerance: float, sweep: float = 2 * np.pi) -> int:
@@ -83,3 +83,12 @@ class Outline:
         moved = angle != 0 or any(offset)
         rings = [place(r, angle, offset) if moved else r for r in self.rings]
         return shapely.Polygon(rings[0], rings[1:])
+
+
+def mirrored(outline: Outline, angle: float) -> Outline:
+    """The outline mirrored about the line through its pivot at ``angle`` (rad): the part turned
+    over about that line.  Each ring is reversed, so the outer ring stays counter-clockwise."""
+    c, s = np.cos(2 * angle), np.sin(2 * angle)
+    return Outline(
+        tuple(np.column_stack([c * r[:, 0] + s * r[:, 1], s * r[:, 0] - c * r[:, 1]])[::-1] for r in outline.rings)
+    )

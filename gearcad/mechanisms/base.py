@@ -166,6 +166,11 @@ class Design(Generic[D]):
     sections: dict[str, GearSections] = field(default_factory=dict)
     """Part name → its twisted sections (``teeth.helical.GearSections``): such a part's solid
     is lofted through them instead of extruded."""
+    bands: dict[str, float] = field(default_factory=dict)
+    """Part name → the angle u (rad, in the part's frame) of the line through its pivot about which
+    its upper half is its lower half mirrored: such a part's solid is two stacked straight bands,
+    the outline from z = 0 to half the thickness and its mirror image (the outline turned over) above
+    (:func:`mirrored_outline`).  Its plate holds the assembly as placed (printed in place)."""
     made: dict = field(default_factory=dict, compare=False)
     """Part name → its cut rings fitted without the kerf (the part itself, for its exact solid),
     made when STEP is written with ``output.kerf`` > 0; see :meth:`made_rings`."""

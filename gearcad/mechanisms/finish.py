@@ -121,6 +121,10 @@ class Draft(Generic[D]):
     tables: tuple[Table, ...] = ()
     sections: dict[str, GearSections] = field(default_factory=dict)
     """Part name → its twisted sections: such a part's solid is lofted through them."""
+    bands: dict[str, float] = field(default_factory=dict)
+    """Part name → the line (its angle, rad, in the part's frame, through its pivot) about which its
+    upper half is its lower half mirrored: two stacked straight tooth bands (:attr:`.Design.bands`).
+    A set so made cannot be put together from loose parts: its plate holds it assembled."""
     charts: Charts = field(default_factory=dict)
     """Chart name → the data it is drawn from (``chart_data``: the exporters compute nothing of the model)."""
     proofs: tuple = ()
@@ -209,7 +213,8 @@ def finish(draft: Draft[D], *, start: float | None = None) -> Design[D]:
         line += f", rolling gap {assembly.gap:.3g} mm (allowed {assembly.allowed_gap:.3g})"
     chosen = [f for f in TABLE if f.name in set(out.formats)]
     wholes = {w for f in chosen for w in f.wholes}
-    plates = layouts.plate_layout(parts, draft.placements, out, draft.sections) if "plate" in wholes else None
+    lay = layouts.in_place_layout if draft.bands else layouts.plate_layout
+    plates = lay(parts, draft.placements, out, draft.sections) if "plate" in wholes else None
     findings += _too_large(plates)
     return Design(
         params=draft.params,
@@ -228,6 +233,7 @@ def finish(draft: Draft[D], *, start: float | None = None) -> Design[D]:
         sheet=layouts.sheet_layout(parts, draft.placements, out) if "sheet" in wholes else (),
         plates=plates.plates if plates is not None else (),
         sections=draft.sections,
+        bands=draft.bands,
         made=_made_rings(made, out) if any(f.exact for f in chosen) and out.kerf > 0 else {},
         charts=draft.charts,
         placed=draft.placed,

@@ -24,7 +24,7 @@ import shapely
 from ..errors import DesignError
 from ..geometry.arcfit import ArcRing
 from ..geometry.bounds import ring_bounds
-from ..geometry.outline import rotate
+from ..geometry.outline import place, rotate
 from ..profiles.values import LARGEST_LENGTH
 from .parts import Part, Placement
 
@@ -38,6 +38,7 @@ __all__ = [
     "lay_out",
     "sheet_layout",
     "plate_layout",
+    "in_place_layout",
     "Plates",
 ]
 
@@ -344,3 +345,23 @@ def plate_layout(parts: Sequence[Part], placements: Sequence[Placement], output,
         bed=tuple(output.bed),
         margin=gap + extra,
     )
+
+
+def in_place_layout(parts: Sequence[Part], placements: Sequence[Placement], output, sections=None) -> Plates:
+    """The assembly on one bed as placed, printed in place (a set whose parts cannot be put
+    together loose: stacked tooth bands), its box centred on ``output.bed``.  A set whose box
+    with the margins (gap and skirt, as :func:`plate_layout`'s) exceeds the bed is on no plate:
+    :attr:`Plates.too_large` holds its box, named after its largest part."""
+    outlines = {p.name: p.outline.outer for p in parts}
+    bounds = [ring_bounds(place(outlines[pl.part], pl.angle, pl.offset)) for pl in placements]
+    lo = np.min([b[:2] for b in bounds], axis=0)
+    hi = np.max([b[2:] for b in bounds], axis=0)
+    margin = output.gap + max(0.0, SKIRT_MM - output.gap)
+    bed = tuple(output.bed)
+    largest = max(parts, key=lambda p: abs(p.outline.area)).name
+    box = Box(largest, 0.0, (float(lo[0]), float(lo[1]), float(hi[0]), float(hi[1])))
+    if box.width + 2 * margin > bed[0] or box.height + 2 * margin > bed[1]:
+        return Plates(too_large=(box,), bed=bed, margin=margin)
+    dx, dy = (float(v) for v in 0.5 * (np.asarray(bed) - lo - hi))
+    moved = tuple(Placement(pl.part, pl.angle, (pl.offset[0] + dx, pl.offset[1] + dy)) for pl in placements)
+    return Plates(plates=(moved,), bed=bed, margin=margin)

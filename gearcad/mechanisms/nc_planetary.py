@@ -140,13 +140,18 @@ def design(p: NcPlanetaryParams) -> Draft:
     pitch = gear_rack.pitch
     pose = NP.poses(sun, planet, np.array([0.0]))
     psi0, chi0 = float(pose.psi[0]), float(pose.chi[0])
-    # a sun tooth at its arc 0 (the contact), a planet space at its contact, the ring's hole
-    # (its teeth the ring's spaces) offset as the planet's features are at its far contact
-    planet_phase = float(frames[1].arc(np.array([psi0]))[0]) % pitch
+    # a sun tooth at its arc ``quarter`` (0: the contact), a planet space where it meets it (the
+    # planet's arc runs back), the ring's hole (its teeth the ring's spaces) offset as the planet's
+    # features are at its far contact.  Stacked bands: the teeth a quarter pitch off the set's
+    # symmetry line, so that the upper band (the lower one mirrored about it) has them half a
+    # pitch off the lower band's
+    bands = s.retention == "bands"
+    quarter = pitch / 4 if bands else 0.0
+    planet_phase = (float(frames[1].arc(np.array([psi0]))[0]) - quarter) % pitch
     offset = ((float(frames[1].arc(np.array([chi0 % TWO_PI]))[0]) - planet_phase) / pitch) % 1.0
     resize = "fewer teeth.count"
     cut = [
-        cut_teeth(frames[0], gear_rack, z, pitch / 2, tolerance=fine, resize=resize),
+        cut_teeth(frames[0], gear_rack, z, pitch / 2 + quarter, tolerance=fine, resize=resize),
         cut_teeth(frames[1], gear_rack, z, planet_phase, tolerance=fine, resize=resize),
         cut_teeth(frames[2], ring_rack, z_ring, (-offset * pitch) % pitch, tolerance=fine, resize=resize),
     ]
@@ -199,6 +204,11 @@ def design(p: NcPlanetaryParams) -> Draft:
         Contact(1 + k, 1 + big_n, module=module, nudge=False) for k in range(big_n)
     )
     motion = _motion(ps, placements)
+    # as assembled (θ = 0) the pitch curves are symmetric about the line O C₀ (the x axis) and, by
+    # the set's N-fold symmetry, about each line O Cₖ: the mirror image of the lower bands' proven
+    # motion, run backwards, is the upper bands' (each part's own line: 0 for sun and ring, −β₀
+    # in the planet's frame, the same for every planet)
+    mirror = {s.sun: 0.0, s.planet: -beta0, s.ring: 0.0} if bands else {}
     data = {
         "set": {
             "lobes": n,
@@ -241,4 +251,5 @@ def design(p: NcPlanetaryParams) -> Draft:
         motion=motion,
         proofs=proofs,
         where="teeth",
+        bands=mirror,
     )

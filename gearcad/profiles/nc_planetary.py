@@ -38,6 +38,11 @@ class PlanetarySetParams(ParamsModel):
     """The ring's name."""
     wall: number("a coefficient (× module)", ge=1.5, le=20) = 3.75
     """The ring's wall outside its tooth roots, × module."""
+    retention: Literal["bands", "none"] = "bands"
+    """How the planets are held axially: "bands" (default) makes every part two stacked straight tooth
+    bands, the upper one the lower one turned over (each tooth a quarter pitch off a symmetry line, so
+    the bands' teeth stand half a pitch apart and a planet cannot slide out of sun and ring), and the
+    plate holds the set assembled, printed in place; "none": one band, the parts laid apart."""
 
 
 class SetTeethParams(InternalTeethParams):
