@@ -105,12 +105,11 @@ def _motion(ps, placements) -> Motion:
     lobes = _cycle_lobes(ps)
     frames = min(240, 24 * lobes)
     theta = np.arange(frames) * lobes * ps.lobe / frames
-    angles, pivots = [], []
-    for t in theta:
-        held = ps.ring_held(float(t))
-        angles.append([held["sun"], *(held["turns"] - [pl.angle for pl in placements[1:-1]]), 0.0])
-        pivots.append([(0.0, 0.0), *held["centres"], (0.0, 0.0)])
-    return Motion(tuple(pl.part for pl in placements), np.array(angles), np.array(pivots))
+    sun, centres, turns = ps.ring_held_frames(theta)
+    placed = np.array([pl.angle for pl in placements[1:-1]])
+    angles = np.column_stack([sun, turns - placed, np.zeros(frames)])
+    origin = np.zeros((frames, 1, 2))
+    return Motion(tuple(pl.part for pl in placements), angles, np.concatenate([origin, centres, origin], axis=1))
 
 
 def design(p: NcPlanetaryParams) -> Draft:

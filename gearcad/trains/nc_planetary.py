@@ -157,6 +157,17 @@ def _pose(sun: Lobed, planet: Lobed, theta, psi):
     return beta, centre
 
 
+def _pose_scalar(sun: Lobed, planet: Lobed, theta: float, psi: float) -> tuple[float, float, float]:
+    """:func:`_pose` for one θ and ψ in plain floats (β, C_x, C_y): the same formulas, without
+    numpy's per-call cost (the integrator asks for it 2000 times)."""
+    r, dr, _ = sun._scalar(theta)
+    q, dq, _ = planet._scalar(psi)
+    beta = theta + math.atan2(r, dr) + math.pi - (psi + math.atan2(q, dq))
+    cb, sb = math.cos(beta), math.sin(beta)
+    qx, qy = q * math.cos(psi), q * math.sin(psi)
+    return beta, r * math.cos(theta) - (cb * qx - sb * qy), r * math.sin(theta) - (sb * qx + cb * qy)
+
+
 # ----------------------------------------------------------------------------- method 1
 
 
@@ -169,8 +180,7 @@ def by_sun_angle(sun: Lobed, planet: Lobed | None = None, steps: int = 2000) -> 
     n = sun.lobes
 
     def far(theta: float, psi: float) -> tuple[float, float, float]:
-        beta, centre = _pose(sun, planet, np.float64(theta), np.float64(psi))
-        beta, cx, cy = float(beta), float(centre[0]), float(centre[1])
+        beta, cx, cy = _pose_scalar(sun, planet, theta, psi)
         ux, uy = math.cos(theta), math.sin(theta)
         lam = theta - beta
 

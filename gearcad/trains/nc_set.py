@@ -94,16 +94,20 @@ class PlanetarySet:
     def ring_held(self, theta) -> dict:
         """The set with the ring held: the sun's turn, each planet's centre (N, 2) and turn, at the
         first planet's sun contact θ (scalar)."""
-        phi = float(self.ring_turn(theta))
-        pose = poses(self.sun, self.planet, np.array([theta]))
-        centres, turns = [], []
-        for k in range(self.planets):
-            a = TWO_PI * k / self.planets - phi
-            ca, sa = math.cos(a), math.sin(a)
-            cx, cy = pose.centre[0]
-            centres.append((ca * cx - sa * cy, sa * cx + ca * cy))
-            turns.append(float(pose.beta[0]) + a)
-        return {"sun": -phi, "centres": np.array(centres), "turns": np.array(turns)}
+        sun, centres, turns = self.ring_held_frames(np.array([float(theta)]))
+        return {"sun": float(sun[0]), "centres": centres[0], "turns": turns[0]}
+
+    def ring_held_frames(self, theta: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """:meth:`ring_held` at many θ at once: the sun's turns (f,), the planets' centres
+        (f, N, 2) and turns (f, N)."""
+        theta = np.asarray(theta, dtype=float)
+        phi = self.ring_turn(theta)
+        pose = poses(self.sun, self.planet, theta)
+        a = TWO_PI * np.arange(self.planets)[None, :] / self.planets - phi[:, None]
+        ca, sa = np.cos(a), np.sin(a)
+        cx, cy = pose.centre[:, :1], pose.centre[:, 1:]
+        centres = np.stack([ca * cx - sa * cy, sa * cx + ca * cy], axis=-1)
+        return -phi, centres, pose.beta[:, None] + a
 
 
 def planetary_set(sun: Lobed, planet: Lobed, planets: int, ring_lobes: int, samples: int = 128) -> PlanetarySet:
