@@ -64,13 +64,14 @@ def _rot(angle: float) -> np.ndarray:
 
 def _prove(name, fixed, moving_xy, place, arm, *, positions, module, tol, play) -> SetProof:
     """``fixed`` (a prepared polygon, its own frame) against ``moving_xy`` placed by
-    ``place(k, turn)`` (→ (n, 2) in the fixed part's frame) at each position, turned ``turn`` extra;
-    ``arm[k]``: the contact's distance from the turning part's pivot (nudge and play as arc there)."""
+    ``place(ks, turns)`` (→ (m, n, 2) in the fixed part's frame) at positions ``ks``, turned
+    ``turns`` extra; ``arm[k]``: the contact's distance from the turning part's pivot (nudge and
+    play as arc there)."""
     b = budget(tol)
     every = np.arange(positions)
 
-    def placed(at, turn):
-        return np.array([shapely.Polygon(place(k, t)) for k, t in zip(at, turn)], dtype=object)
+    def placed(at, turn):  # every position's polygon made by one call
+        return shapely.polygons(place(np.asarray(at), np.asarray(turn, dtype=float)))
 
     at = every[::2]
     nudge = b.nudge_arc(module=module, play=play) / arm[at]
@@ -162,11 +163,16 @@ def design(p: NcPlanetaryParams) -> Draft:
     poses = NP.poses(sun, planet, theta)
     phi_r = ps.ring_turn(theta)
 
-    def planet_in_sun(k, turn):  # the first planet at θ_k, turned ``turn`` more about its centre
-        return planet_xy @ _rot(float(poses.beta[k]) + turn) + poses.centre[k]
+    def turned(xy, angle):  # (n, 2) or (m, n, 2) points turned by angles (m,) about O: (m, n, 2)
+        c, s_ = np.cos(angle)[:, None], np.sin(angle)[:, None]
+        x, y = xy[..., 0], xy[..., 1]
+        return np.stack([x * c - y * s_, x * s_ + y * c], axis=-1)
 
-    def planet_in_ring(k, turn):  # …seen from the ring turned φ_r(θ_k) − turn about O
-        return planet_in_sun(k, 0.0) @ _rot(-(float(phi_r[k]) - turn))
+    def planet_in_sun(ks, turns):  # the first planet at θ_k, turned ``turn`` more about its centre
+        return turned(planet_xy, poses.beta[ks] + turns) + poses.centre[ks][:, None, :]
+
+    def planet_in_ring(ks, turns):  # …seen from the ring turned φ_r(θ_k) − turn about O
+        return turned(planet_in_sun(ks, np.zeros(len(ks))), -(phi_r[ks] - turns))
 
     sun_poly = shapely.Polygon(sun_xy)
     ring_poly = shapely.Polygon(rim, [hole])
