@@ -224,16 +224,25 @@ def stacked_solid(lower: Sequence[ArcRing], upper: Sequence[ArcRing], thickness:
     """Two straight bands: ``lower``'s rings extruded from z = 0 to half the ``thickness`` and
     ``upper``'s from there to the top, fused into one solid (OpenCASCADE's Boolean union, its
     coplanar faces merged); the volume is the bands' own, the rings' exact areas × half the
-    thickness each."""
+    thickness each.  The union is told that the two touch only where their mid-plane faces
+    partly coincide (OpenCASCADE's "glue" for shifted coinciding faces: 2.6 s for the square set's
+    ring, 4.3 s without)."""
+    from OCP.BOPAlgo import BOPAlgo_GlueShift
     from OCP.BRepAlgoAPI import BRepAlgoAPI_Fuse
     from OCP.BRepPrimAPI import BRepPrimAPI_MakePrism
     from OCP.gp import gp_Vec
+    from OCP.OCP.collections import List_TopoDS_Shape
     from OCP.ShapeUpgrade import ShapeUpgrade_UnifySameDomain
 
     half = thickness / 2
-    below = BRepPrimAPI_MakePrism(_face(lower), gp_Vec(0.0, 0.0, half)).Shape()
-    above = BRepPrimAPI_MakePrism(_face(upper, half), gp_Vec(0.0, 0.0, half)).Shape()
-    fuse = BRepAlgoAPI_Fuse(below, above)
+    below, above = List_TopoDS_Shape(), List_TopoDS_Shape()
+    below.Append(BRepPrimAPI_MakePrism(_face(lower), gp_Vec(0.0, 0.0, half)).Shape())
+    above.Append(BRepPrimAPI_MakePrism(_face(upper, half), gp_Vec(0.0, 0.0, half)).Shape())
+    fuse = BRepAlgoAPI_Fuse()
+    fuse.SetArguments(below)
+    fuse.SetTools(above)
+    fuse.SetGlue(BOPAlgo_GlueShift)
+    fuse.Build()
     if not fuse.IsDone():
         raise RuntimeError(f"STEP: OpenCASCADE could not join {name}'s two bands")
     unify = ShapeUpgrade_UnifySameDomain(fuse.Shape(), True, True, False)
