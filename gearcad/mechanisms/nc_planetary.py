@@ -214,6 +214,14 @@ def design(p: NcPlanetaryParams) -> Draft:
     # motion, run backwards, is the upper bands' (each part's own line: 0 for sun and ring, −β₀
     # in the planet's frame, the same for every planet)
     mirror = {s.sun: 0.0, s.planet: -beta0, s.ring: 0.0} if bands else {}
+    held = (
+        (
+            "retention: two stacked bands, the upper the lower turned over (its teeth half a pitch off: a planet "
+            "cannot slide out); the plate holds the set assembled, printed in place",
+        )
+        if bands
+        else ()
+    )
     data = {
         "set": {
             "lobes": n,
@@ -235,6 +243,7 @@ def design(p: NcPlanetaryParams) -> Draft:
             "planet_gap_tips_bound": gap_teeth,
         },
         "teeth": {"module": module, "sun": z, "planet": z, "ring": z_ring, "backlash": backlash},
+        "retention": {"kind": s.retention, "band_lines": mirror},
         "meshes": [proof.as_dict() for proof in proofs],
     }
     summary = (
@@ -257,4 +266,5 @@ def design(p: NcPlanetaryParams) -> Draft:
         proofs=proofs,
         where="teeth",
         bands=mirror,
+        details=held,
     )
