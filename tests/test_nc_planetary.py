@@ -378,7 +378,8 @@ def test_a_stacked_step_solid_is_one_valid_solid_of_both_bands():
     from OCP.TopAbs import TopAbs_SOLID
     from OCP.TopExp import TopExp_Explorer
 
-    from gearcad.export.step_brep import mirrored_ring, ring_area, stacked_solid, volume
+    from gearcad.export.step_brep import ring_area, volume
+    from gearcad.export.step_stacked import mirrored_ring, stacked_solid
     from gearcad.geometry.arcfit import ArcRing
 
     ring = ArcRing(np.array([[0.0, 0.0], [4.0, 0.0], [4.0, 2.0], [0.0, 2.0]]), np.array([0.0, 1.0, 0.0, 0.0]))

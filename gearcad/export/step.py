@@ -19,15 +19,14 @@ from .step_brep import (
     StepSolid,
     flank_section,
     kinked,
-    mirrored_ring,
     ring_area,
     runs_of,
-    stacked_solid,
     straight_solid,
     twisted_solid,
     volume,
 )
 from .step_prism import prism_text
+from .step_stacked import mirrored_ring, stacked_solid
 from .step_text import assemble, compact
 
 __all__ = [

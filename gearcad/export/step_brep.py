@@ -23,18 +23,7 @@ from ..geometry.arcfit import ArcRing
 from ..geometry.inset import inset_ring
 from .flank_fit import FlankFit, band_volume, fit_heights, fit_rings, greville, split_spans
 
-__all__ = [
-    "StepSolid",
-    "straight_solid",
-    "stacked_solid",
-    "mirrored_ring",
-    "twisted_solid",
-    "kinked",
-    "runs_of",
-    "ring_area",
-    "flank_section",
-    "volume",
-]
+__all__ = ["StepSolid", "straight_solid", "twisted_solid", "kinked", "runs_of", "ring_area", "flank_section", "volume"]
 
 _MERGE = 1e-9
 """Two arcs are one circle, two lines one line, where centres, radii and offsets agree this
@@ -207,47 +196,6 @@ def straight_solid(rings: Sequence[ArcRing], thickness: float, *, name: str, cha
     if chamfer > 0:  # the volume of OpenCASCADE's corners: integrated
         return StepSolid(name, _chamfered(shape, chamfer, (0.0, thickness)))
     return StepSolid(name, shape, thickness * sum(ring_area(r) for r in rings))
-
-
-def mirrored_ring(ring: ArcRing, angle: float) -> ArcRing:
-    """``ring`` mirrored about the line through the origin at ``angle`` (rad), its direction kept
-    (reversed after the mirror): segment j of the result is segment n − 2 − j of ``ring`` run
-    backwards, its bulge's sign flipped twice (by the mirror and by the reversal)."""
-    c, s = np.cos(2 * angle), np.sin(2 * angle)
-    v = np.asarray(ring.vertices, dtype=float)
-    mirrored = np.column_stack([c * v[:, 0] + s * v[:, 1], s * v[:, 0] - c * v[:, 1]])[::-1]
-    n = len(v)
-    return ArcRing(mirrored, np.asarray(ring.bulges, dtype=float)[(n - 2 - np.arange(n)) % n])
-
-
-def stacked_solid(lower: Sequence[ArcRing], upper: Sequence[ArcRing], thickness: float, *, name: str) -> StepSolid:
-    """Two straight bands: ``lower``'s rings extruded from z = 0 to half the ``thickness`` and
-    ``upper``'s from there to the top, fused into one solid (OpenCASCADE's Boolean union, its
-    coplanar faces merged); the volume is the bands' own, the rings' exact areas × half the
-    thickness each.  The union is told that the two touch only where their mid-plane faces
-    partly coincide (OpenCASCADE's "glue" for shifted coinciding faces: 2.6 s for the square set's
-    ring, 4.3 s without)."""
-    from OCP.BOPAlgo import BOPAlgo_GlueShift
-    from OCP.BRepAlgoAPI import BRepAlgoAPI_Fuse
-    from OCP.BRepPrimAPI import BRepPrimAPI_MakePrism
-    from OCP.gp import gp_Vec
-    from OCP.OCP.collections import List_TopoDS_Shape
-    from OCP.ShapeUpgrade import ShapeUpgrade_UnifySameDomain
-
-    half = thickness / 2
-    below, above = List_TopoDS_Shape(), List_TopoDS_Shape()
-    below.Append(BRepPrimAPI_MakePrism(_face(lower), gp_Vec(0.0, 0.0, half)).Shape())
-    above.Append(BRepPrimAPI_MakePrism(_face(upper, half), gp_Vec(0.0, 0.0, half)).Shape())
-    fuse = BRepAlgoAPI_Fuse()
-    fuse.SetArguments(below)
-    fuse.SetTools(above)
-    fuse.SetGlue(BOPAlgo_GlueShift)
-    fuse.Build()
-    if not fuse.IsDone():
-        raise RuntimeError(f"STEP: OpenCASCADE could not join {name}'s two bands")
-    unify = ShapeUpgrade_UnifySameDomain(fuse.Shape(), True, True, False)
-    unify.Build()
-    return StepSolid(name, unify.Shape(), half * sum(ring_area(r) for r in (*lower, *upper)))
 
 
 def ring_area(ring: ArcRing) -> float:
