@@ -236,7 +236,7 @@ def smallest_fit(first, cut, tol: float, *, limit: float, gain: float = 1.0, des
 def pair_bands(design: Design) -> tuple[Band, ...]:
     """The band of a toothed gear pair under its profile's process (none: the nominal play only)."""
     params, detail = design.params, design.detail
-    geometry = pair_geometry(design)
+    geometry = pair_geometry(design, written=True)  # what the files hold, as the cutter leaves it
     if geometry is None:
         return ()
     process = params.process

@@ -41,31 +41,29 @@ class Site:
     dk: float = 0.0
     arm: float = 0.0
     a: tuple | None = None
-    """Gear 1's window: (vertices, edge starts, edge ends, polygon)."""
+    """Gear 1's window: (vertices, edge starts, edge ends, the edges' R-tree, each vertex's
+    distance to gear 2's wide window)."""
     b: tuple | None = None
     """Gear 2's window at (φ, t0): the same."""
 
 
 def outline(narrow, wide) -> tuple:
-    """(the vertices of ``narrow``, the edge starts and ends of ``wide``): a gear's narrow
-    window's vertices, its wide window's edges."""
+    """(the vertices of ``narrow``, the edge starts and ends of ``wide``, an R-tree of those
+    edges): a gear's narrow window's vertices, its wide window's edges."""
     rings = shapely.get_rings(shapely.get_parts(wide))
     ends, ring = shapely.get_coordinates(rings, return_index=True)
     same = ring[1:] == ring[:-1]
-    return shapely.get_coordinates(narrow), ends[:-1][same], ends[1:][same]
+    p, q = ends[:-1][same], ends[1:][same]
+    return shapely.get_coordinates(narrow), p, q, shapely.STRtree(shapely.linestrings(np.stack([p, q], 1)))
 
 
-def nearest(xy: np.ndarray, p: np.ndarray, q: np.ndarray) -> np.ndarray:
-    """Each point's distance to the nearest of the segments [p, q] (the distance to the
-    polygon they bound, for points outside it)."""
-    seg = q - p
-    length = np.maximum(np.hypot(*seg.T), 1e-300)
-    ux, uy = seg[:, 0] / length, seg[:, 1] / length
-    rx = xy[:, 0][:, None] - p[None, :, 0]
-    ry = xy[:, 1][:, None] - p[None, :, 1]
-    ahead = rx * ux + ry * uy
-    beyond = np.maximum(ahead - length, 0.0) + np.maximum(-ahead, 0.0)
-    return np.min(np.hypot(rx * uy - ry * ux, beyond), axis=1)
+def nearest(xy: np.ndarray, edges: shapely.STRtree) -> np.ndarray:
+    """Each point's distance to the nearest of the segments in the R-tree ``edges`` (the
+    distance to the polygon they bound, for points outside it)."""
+    which, dist = edges.query_nearest(shapely.points(xy), return_distance=True, all_matches=False)
+    out = np.empty(len(xy))
+    out[which[0]] = dist
+    return out
 
 
 def _one_sided_min(b: np.ndarray, c: np.ndarray, a) -> np.ndarray:
@@ -178,31 +176,35 @@ def tube(s: Site, h: float, e: float, bounds) -> float:
             rho = rho0 + sigma * h
         rbar = np.maximum(rbar, 1e-12)  # (a vertex on gear 2's pivot: its turn does not move it)
         move = w * rho * h  # the most a vertex moves over the driver interval
-        lip = (mine[3] - move) / rbar
+        lip = (mine[4] - move) / rbar
         near = np.flatnonzero(lip < best)
         if not len(near):
             continue
-        p, q = other[1], other[2]
+        # the (vertex, edge) pairs the segment's bound leaves open: the edge within the vertex's
+        # reach, best·r̄ + its move (an R-tree query, not every pair)
+        reach = best * rbar[near] + move[near] if math.isfinite(best) else np.full(len(near), np.inf)
+        reach = reach * (1 + 1e-9) + 1e-12  # GEOS's distance and ours may differ in the last bits
+        vi, ei = other[3].query(shapely.points(xy[near]), predicate="dwithin", distance=reach)
+        if not len(vi):
+            continue
+        p, q = other[1][ei], other[2][ei]
         seg = q - p
         length = np.maximum(np.hypot(*seg.T), 1e-300)
         unit = seg / length[:, None]
         normal = np.column_stack([-unit[:, 1], unit[:, 0]])
-        rx = xy[near, 0][:, None] - p[None, :, 0]  # (near vertices, edges)
-        ry = xy[near, 1][:, None] - p[None, :, 1]
-        side = rx * normal[None, :, 0] + ry * normal[None, :, 1]
-        ahead = rx * unit[None, :, 0] + ry * unit[None, :, 1]
-        beyond = np.maximum(ahead - length[None], 0.0) + np.maximum(-ahead, 0.0)
-        dseg = np.hypot(side, beyond)
-        rn, rb = rho[near][:, None], rbar[near][:, None]
-        lip_pair = (dseg - move[near][:, None]) / rb
-        vi, ei = np.nonzero(lip_pair < best)  # the pairs the segment's bound leaves open
-        if not len(vi):
-            best = min(best, float(np.min(lip_pair)))
-            continue
-        side, ahead = side[vi, ei], ahead[vi, ei]
-        normal, unit, length = normal[ei], unit[ei], length[ei]
         v = xy[near][vi]
-        rn, rb = rn[vi, 0], rb[vi, 0]
+        rx, ry = v[:, 0] - p[:, 0], v[:, 1] - p[:, 1]
+        side = rx * normal[:, 0] + ry * normal[:, 1]
+        ahead = rx * unit[:, 0] + ry * unit[:, 1]
+        beyond = np.maximum(ahead - length, 0.0) + np.maximum(-ahead, 0.0)
+        dseg = np.hypot(side, beyond)
+        rn, rb = rho[near][vi], rbar[near][vi]
+        lip_pair = (dseg - move[near][vi]) / rb
+        open_ = lip_pair < best
+        if not np.any(open_):
+            continue
+        vi, side, ahead, lip_pair = vi[open_], side[open_], ahead[open_], lip_pair[open_]
+        p, normal, unit, length, v, rn, rb = (x[open_] for x in (p, normal, unit, length, v, rn, rb))
         n_line = np.where(side[:, None] < 0, -1.0, 1.0) * normal
         past = np.where(ahead > length, ahead - length, -ahead)
         n_end = np.where((ahead > length)[:, None], 1.0, -1.0) * unit
@@ -224,7 +226,7 @@ def tube(s: Site, h: float, e: float, bounds) -> float:
         # segment's nearer end along it; and, exact at (c, t0), the distance across the direction
         # from its nearest point on the segment to the vertex (past a polygon's corner neither of
         # the first two holds for long)
-        foot = p[ei] + np.clip(ahead, 0.0, length)[:, None] * unit
+        foot = p + np.clip(ahead, 0.0, length)[:, None] * unit
         gap = np.maximum(np.hypot(*(v - foot).T), 1e-300)
         n_near = (v - foot) / gap[:, None]
         derivs = (sign * omega * jxi, sign * jxc, accel, -xc, -omega * (xc if moving else xi))
@@ -239,7 +241,7 @@ def tube(s: Site, h: float, e: float, bounds) -> float:
             # order) from the segment, where they do not cross (a vertex that slides past the
             # segment's end within a few µm)
             o = open_
-            ends = (p[ei][o], p[ei][o] + length[o, None] * unit[o])
+            ends = (p[o], p[o] + length[o, None] * unit[o])
             ways = [
                 _parting(v[o], v[o] + w_ * h * derivs[0][o] + 0.5 * h * h * accel[o], *ends, n_near[o], foot[o])
                 for w_ in (1.0, -1.0)
@@ -253,7 +255,6 @@ def tube(s: Site, h: float, e: float, bounds) -> float:
                 best,
             )
             pair[o] = np.maximum(pair[o], more)
-        pair = np.maximum(pair, lip_pair[vi, ei])
-        best = min(best, float(np.min(lip_pair[lip_pair >= best], initial=best)))
+        pair = np.maximum(pair, lip_pair)
         best = min(best, float(np.min(pair)))
     return best
