@@ -34,7 +34,7 @@ play is then known to half a micrometre — between the proven lower bound and t
 measured lies the truth — not only shown to keep the margin (issue 33: the report within 1 µm
 of the written files); the certificate's ``slack`` says how near it came."""
 TIGHTEN = 8
-TIGHT_BUDGET = 3
+TIGHT_BUDGET = 1
 
 BEYOND = 0.5
 """Gear 1's window for the bound reaches this many modules beyond gear 2's (:data:`~.play._WINDOW`):
@@ -106,7 +106,7 @@ def prove_play(g: PairGeometry, offsets, spread: float, tol: float, *, reach: fl
     geos, plays = [g], []
     sites, signed = _sites(g, offsets, spread, tol, reach)
     plays.append(signed)
-    tubes: dict[int, tuple[float, float]] = {}  # site id -> (h, Δ) last computed
+    tubes: dict[int, tuple[float, float, float]] = {}  # site id -> (h, slope, Δ) last computed
     jammed = 0
     while True:
         order = sorted(range(len(sites)), key=lambda i: sites[i].phi)
@@ -114,17 +114,21 @@ def prove_play(g: PairGeometry, offsets, spread: float, tol: float, *, reach: fl
         gap = (np.roll(phi, -1) - phi) % g.cycle  # to the next
         half = 0.5 * np.maximum(gap, np.roll(gap, 1))  # the wider half-interval either side
         table = g.ratio(phi - half, phi + half)
+        t0 = np.array([sites[i].t0 for i in order])
+        slope = _drift(phi, t0, np.array([sites[i].cap for i in order]), g.cycle)
         bound = np.empty(len(order))
         delta = np.empty(len(order))
         for j, i in enumerate(order):
-            h = float(half[j])
-            if tubes.get(i, (None,))[0] != h:
-                tubes[i] = (h, tube(sites[i], h, e, tuple(float(t[j]) for t in table)))
-            delta[j] = tubes[i][1]
+            h, s = float(half[j]), float(slope[j])
+            if tubes.get(i, (None,))[:2] != (h, s):
+                tubes[i] = (h, s, tube(sites[i], h, e, tuple(float(t[j]) for t in table), s))
+            delta[j] = tubes[i][2]
             arm = min(sites[i].arm, g.center_distance / (1 + float(table[0][j])))
             bound[j] = 2 * delta[j] * arm if delta[j] >= 0 else -math.inf
-        t0 = np.array([sites[i].t0 for i in order])
-        joined = np.abs(np.roll(t0, -1) - t0) <= np.maximum(delta, 0) + np.maximum(np.roll(delta, -1), 0)
+        # neighbours' free turns meet half way between them (each sheared box's middle there)
+        ahead = t0 + slope * gap / 2
+        behind = np.roll(t0, -1) - np.roll(slope, -1) * gap / 2
+        joined = np.abs(behind - ahead) <= np.maximum(delta, 0) + np.maximum(np.roll(delta, -1), 0)
         measured = np.array([sites[i].play for i in order])
         least = float(np.min(measured))
         if least < margin:  # it jams, proven by a measured position: pin the least down a little
@@ -164,7 +168,7 @@ def prove_play(g: PairGeometry, offsets, spread: float, tol: float, *, reach: fl
                 for _ in range(6):
                     h /= 2
                     near = tuple(float(t[0]) for t in g.ratio(np.array([phi[j] - h]), np.array([phi[j] + h])))
-                    if 2 * tube(sites[i], h, e, near) * min(sites[i].arm, arm) >= margin:
+                    if 2 * tube(sites[i], h, e, near, float(slope[j])) * min(sites[i].arm, arm) >= margin:
                         break
                 need = int(min(16, math.ceil(float(half[j]) / h)))
                 for gj in (j, (j - 1) % len(order)):
@@ -181,6 +185,19 @@ def prove_play(g: PairGeometry, offsets, spread: float, tol: float, *, reach: fl
         sites += more
         geos.append(sub)
         plays.append(signed)
+
+
+def _drift(phi: np.ndarray, t0: np.ndarray, cap: np.ndarray, cycle: float) -> np.ndarray:
+    """How fast the middle of gear 2's free turn drifts with the driver at each position (rad per
+    rad), from its neighbours either side (0 where one of them is jammed): the slope each bound's
+    box is sheared by (:func:`~.tube.tube`; any slope is sound, this one keeps the box on the free
+    turn)."""
+    if len(phi) < 3:
+        return np.zeros(len(phi))
+    span = (np.roll(phi, -1) - np.roll(phi, 1)) % cycle
+    slope = (np.roll(t0, -1) - np.roll(t0, 1)) / np.maximum(span, 1e-300)
+    free = np.isfinite(cap) & np.roll(np.isfinite(cap), 1) & np.roll(np.isfinite(cap), -1)
+    return np.where(free & (span > 0), slope, 0.0)
 
 
 def _bitten(g: PairGeometry, offsets, spread: float, tol: float, *, reach: float, margin: float, budget: int):

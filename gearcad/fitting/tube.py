@@ -146,10 +146,17 @@ def _safe_turn(d, f0, derivs, terms, h: float, best: float) -> np.ndarray:
     return np.min(np.max(safe, axis=0), axis=0)
 
 
-def tube(s: Site, h: float, e: float, bounds) -> float:
-    """The half-width Δ (rad) of gear 2's turn about ``s.t0`` proven free at every driver angle
-    within ``h`` of ``s.phi`` (module docstring; −inf: none), gear 2's pivot ``e`` mm from gear 1's;
-    ``bounds``: over the interval, the largest k, |I'|/E', |k'|, |k''| and |I''|/E'."""
+def tube(s: Site, h: float, e: float, bounds, slope: float = 0.0) -> float:
+    """The half-width Δ (rad) of gear 2's turn about ``s.t0 + slope·(φ − s.phi)`` proven free at
+    every driver angle φ within ``h`` of ``s.phi`` (module docstring; −inf: none), gear 2's pivot
+    ``e`` mm from gear 1's; ``bounds``: over the interval, the largest k, |I'|/E', |k'|, |k''| and
+    |I''|/E'.
+
+    ``slope``: the box is sheared to follow the free turn's middle as it drifts with the driver
+    (any slope gives a proof; the drift's own, from the neighbours, the widest Δ).  In u = φ − c,
+    y = t − t0 − slope·u the vertex's derivatives are ∂u = ∂φ + s·∂t, ∂uu = ∂φφ + 2s·∂φt + s²·∂tt,
+    ∂uy = ∂φt + s·∂tt, ∂yy = ∂tt, and its third derivatives' bounds grow alike (|s| for s); its
+    turn over the box reaches |s|·h + Δ."""
     if s.a is None:
         return -math.inf
     kmax, unit_speed, dk, ddk, unit_accel = bounds
@@ -164,18 +171,19 @@ def tube(s: Site, h: float, e: float, bounds) -> float:
     omega = 1.0 + s.k
     cap = s.cap
     best = cap
+    a = abs(slope)
     for mine, other, moving in ((s.b, s.a, True), (s.a, s.b, False)):
         xy = mine[0]
         r0 = np.hypot(*(xy - centre).T)
         rho0 = np.hypot(*(xy - instant).T)
         if moving:  # gear 2's vertices: |X − C| is fixed; ρ grows with the motion itself
             rbar = r0
-            rho = (rho0 + r0 * cap + sigma * h) / (1 - w * h)
+            rho = (rho0 + r0 * (cap + a * h) + sigma * h) / (1 - w * h)
         else:  # gear 1's, seen from gear 2: |w − I(φ)| and |w − C(φ)| move with φ only
             rbar = r0 + e * h
             rho = rho0 + sigma * h
         rbar = np.maximum(rbar, 1e-12)  # (a vertex on gear 2's pivot: its turn does not move it)
-        move = w * rho * h  # the most a vertex moves over the driver interval
+        move = (w * rho + rbar * a) * h  # the most a vertex moves over the driver interval (sheared)
         lip = (mine[4] - move) / rbar
         near = np.flatnonzero(lip < best)
         if not len(near):
@@ -220,6 +228,10 @@ def tube(s: Site, h: float, e: float, bounds) -> float:
         m_ppt = (dk + w * w) * big + w * sigma
         m_ptt = w * big
         m_ttt = rb
+        if a:  # the sheared box's derivatives (the docstring)
+            m_ppp = m_ppp + a * (3 * m_ppt + a * (3 * m_ptt + a * m_ttt))
+            m_ppt = m_ppt + a * (2 * m_ptt + a * m_ttt)
+            m_ptt = m_ptt + a * m_ttt
         # linear functionals of the vertex's place, each a lower bound on its distance to the
         # segment where positive (the segment lies behind the line across the functional's
         # direction): the distance to the segment's line; how far the vertex lies past the
@@ -229,7 +241,10 @@ def tube(s: Site, h: float, e: float, bounds) -> float:
         foot = p + np.clip(ahead, 0.0, length)[:, None] * unit
         gap = np.maximum(np.hypot(*(v - foot).T), 1e-300)
         n_near = (v - foot) / gap[:, None]
-        derivs = (sign * omega * jxi, sign * jxc, accel, -xc, -omega * (xc if moving else xi))
+        v_t, v_tt, v_pt = sign * jxc, -xc, -omega * (xc if moving else xi)
+        v_p = sign * omega * jxi + slope * v_t
+        accel = accel + slope * (2 * v_pt + slope * v_tt)
+        derivs = (v_p, v_t, accel, v_tt, v_pt + slope * v_tt)
         terms = (m_ppp, m_ppt, m_ptt, m_ttt)
         pair = _safe_turn(
             np.stack([n_line, n_end, n_near]), np.stack([np.abs(side), past, gap]), derivs, terms, h, best
@@ -240,10 +255,16 @@ def tube(s: Site, h: float, e: float, bounds) -> float:
             # direction that parts the vertex's path over the interval (its chord, to second
             # order) from the segment, where they do not cross (a vertex that slides past the
             # segment's end within a few µm)
+            # and two for each way gear 2 turns: its chord over the turn sought (a vertex that
+            # the turn carries along an edge and past its end)
             o = open_
             ends = (p[o], p[o] + length[o, None] * unit[o])
+            y = best if math.isfinite(best) else cap
             ways = [
                 _parting(v[o], v[o] + w_ * h * derivs[0][o] + 0.5 * h * h * accel[o], *ends, n_near[o], foot[o])
+                for w_ in (1.0, -1.0)
+            ] + [
+                _parting(v[o], v[o] + w_ * y * v_t[o] + 0.5 * y * y * v_tt[o], *ends, n_near[o], foot[o])
                 for w_ in (1.0, -1.0)
             ]
             more = _safe_turn(

@@ -181,6 +181,15 @@ def prove(parts: dict[str, Part], draft: Draft) -> Assembly:
         b.allowed_depth if depths else None,
         gap=assembly_gap(parts, placements, rolling) if rolling else None,
         allowed_gap=b.allowed_depth if rolling else None,
+        proven=bool(toothed) and _bands_proven(draft),
+    )
+
+
+def _bands_proven(draft: Draft) -> bool:
+    """Whether every band of the draft's meshes is proven to fit (:attr:`Assembly.proven`)."""
+    bands = draft.data.get("bands") or []
+    return bool(bands) and all(
+        b.get("certificate") == "theorem" and b.get("proven") and b.get("verdict") == "fits" for b in bands
     )
 
 
@@ -217,6 +226,8 @@ def finish(draft: Draft[D], *, start: float | None = None) -> Design[D]:
         line += f", nudged {assembly.nudged:.3g} mm²"
     if assembly.gap is not None:
         line += f", rolling gap {assembly.gap:.3g} mm (allowed {assembly.allowed_gap:.3g})"
+    if assembly.proven:
+        line += "; no deeper between positions (every mesh's band proven)"
     chosen = [f for f in TABLE if f.name in set(out.formats)]
     wholes = {w for f in chosen for w in f.wholes}
     plates = layouts.plate_layout(parts, draft.placements, out, draft.sections) if "plate" in wholes else None
