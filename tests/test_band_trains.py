@@ -300,3 +300,25 @@ def test_a_train_mesh_is_proven_and_no_more_optimistic_than_a_dense_sweep(laser_
         dense = mesh_band(g, edge=edge, spread=spread, tol=tol, name=name, backlash=p.train.backlash)
         assert band["certified_min"] <= dense.band[0] + 1e-6, (name, band["certified_min"], dense.band[0])
         assert band["certified_min"] >= 2 * tol
+
+
+def test_the_compound_rings_outer_mesh_is_proven_over_its_outer_teeth():
+    """compound_ring's gear1/ring meets the ring's 40 outer teeth (not its 30 inner ones): its
+    outline repeats by an outer tooth, so the mesh is proven over one pitch; under a laser the
+    certified least is never above the least band_mesh (another engine) finds at 96 positions
+    all round, and within 3 µm of it."""
+    from gearcad.fitting.band_trains import _repeats, _shape
+
+    from .conftest import COARSE, profile
+
+    p = profile("compound_ring", {**COARSE, "process.kind": "laser", "train.backlash": 0.2})
+    draft = carrier_train.design(p)
+    assert _repeats(_shape(draft.parts[1]).exterior, 40) and not _repeats(_shape(draft.parts[1]).exterior, 30)
+    name, g, *_ = train_meshes(draft, 96)[0]
+    assert name == "gear1/ring" and g.pair is not None
+    band = mesh_bands(draft)[0].band
+    edge, spread, tol = p.process.edge(p.output.chamfer), p.process.center_spread(), p.output.tolerance
+    dense = mesh_band(g, edge=edge, spread=spread, tol=tol, name=name, backlash=0.2).band[0]
+    cert = band.certificate
+    assert cert.kind == "theorem" and cert.proven
+    assert dense - 0.003 <= cert.lower <= dense + 1e-6, (cert.lower, dense)

@@ -96,7 +96,7 @@ def train_meshes(draft, positions: int = 12) -> list[tuple[str, MeshGeometry, bo
         tile = lambda v: np.tile(v, (positions, 1))  # noqa: E731
         material = (math.atan2(*(contact - c1)[::-1]) - a1) / (TWO_PI / z)
         teeth = (np.floor(material) if first_ring else np.round(material)).astype(int) % z
-        z2 = p.inner_teeth if k + 1 == p.compound else p.teeth[k + 1]
+        z2 = p.teeth[k + 1]  # the compound gear meets the gear before it with its outer teeth
         ends = [(shapes[k], one, r_from, z), (shapes[k + 1], two, r_to, z2)]
         geometry = MeshGeometry(
             shapes=(shapes[k], shapes[k + 1]),
