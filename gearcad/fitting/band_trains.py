@@ -12,7 +12,9 @@ parallel at its pitch radius ρ, and as the contact moves an arc δs along the b
 turns δs/ρ, from the assembled phase.  Its axle is fixed on the frame, so the tooth force, along
 the line of action through the pitch point, makes α with the velocity both pitch points share:
 the working pressure angle is α on both flanks; the contact ratio follows the body's curvature.
-The positions step the body evenly over a turn.
+The positions step the body evenly over a turn; the tight case's least play is proven between
+positions as a pair's is, for the roller's moving axle (:mod:`.moving`), and a train mesh's as a
+pair's about fixed centres (:func:`fixed_pair`).
 """
 
 from __future__ import annotations
