@@ -45,6 +45,13 @@ class Site:
     distance to gear 2's wide window)."""
     b: tuple | None = None
     """Gear 2's window at (φ, t0): the same."""
+    pivot: np.ndarray | None = None
+    """A general motion's (:mod:`.moving`): gear 2's pivot C at φ in gear 1's frame (mm); None: a
+    gear pair's, E'(cos φ, sin φ)."""
+    instant: np.ndarray | None = None
+    """With ``pivot``: the instant centre I there (mm)."""
+    turning: np.ndarray | None = None
+    """With ``pivot``: I' there (mm/rad)."""
 
 
 def outline(narrow, wide) -> tuple:
@@ -150,7 +157,10 @@ def tube(s: Site, h: float, e: float, bounds, slope: float = 0.0) -> float:
     """The half-width Δ (rad) of gear 2's turn about ``s.t0 + slope·(φ − s.phi)`` proven free at
     every driver angle φ within ``h`` of ``s.phi`` (module docstring; −inf: none), gear 2's pivot
     ``e`` mm from gear 1's; ``bounds``: over the interval, the largest k, |I'|/E', |k'|, |k''| and
-    |I''|/E'.
+    |I''|/E'.  A site of a general motion (its ``pivot`` given, :mod:`.moving`) carries C, I and
+    I' itself, ``e`` is not used, and ``bounds`` are the largest |ω| − 1, |I'|, |ω'|, |ω''|, |I''|
+    (mm) and sixth the pivot's largest speed |C'| (a gear pair's: E'; it bounds how far gear 1's
+    vertices move from gear 2's pivot).
 
     ``slope``: the box is sheared to follow the free turn's middle as it drifts with the driver
     (any slope gives a proof; the drift's own, from the neighbours, the widest Δ).  In u = φ − c,
@@ -159,15 +169,20 @@ def tube(s: Site, h: float, e: float, bounds, slope: float = 0.0) -> float:
     turn over the box reaches |s|·h + Δ."""
     if s.a is None:
         return -math.inf
-    kmax, unit_speed, dk, ddk, unit_accel = bounds
-    w, sigma, sigma2 = 1.0 + kmax, e * unit_speed, e * unit_accel
+    kmax, unit_speed, dk, ddk, unit_accel, *more = bounds
+    w = 1.0 + kmax
     if w * h >= 0.5:
         return -math.inf
-    cosp, sinp = math.cos(s.phi), math.sin(s.phi)
-    centre = e * np.array([cosp, sinp])
-    u, du = s.k / (1 + s.k), s.dk / (1 + s.k) ** 2
-    instant = u * centre
-    turning = e * np.array([du * cosp - u * sinp, du * sinp + u * cosp])  # I'(c)
+    if s.pivot is None:
+        sigma, sigma2, pivot_speed = e * unit_speed, e * unit_accel, e
+        cosp, sinp = math.cos(s.phi), math.sin(s.phi)
+        centre = e * np.array([cosp, sinp])
+        u, du = s.k / (1 + s.k), s.dk / (1 + s.k) ** 2
+        instant = u * centre
+        turning = e * np.array([du * cosp - u * sinp, du * sinp + u * cosp])  # I'(c)
+    else:
+        sigma, sigma2, pivot_speed = unit_speed, unit_accel, more[0]
+        centre, instant, turning = s.pivot, s.instant, s.turning
     omega = 1.0 + s.k
     cap = s.cap
     best = cap
@@ -180,7 +195,7 @@ def tube(s: Site, h: float, e: float, bounds, slope: float = 0.0) -> float:
             rbar = r0
             rho = (rho0 + r0 * (cap + a * h) + sigma * h) / (1 - w * h)
         else:  # gear 1's, seen from gear 2: |w − I(φ)| and |w − C(φ)| move with φ only
-            rbar = r0 + e * h
+            rbar = r0 + pivot_speed * h
             rho = rho0 + sigma * h
         rbar = np.maximum(rbar, 1e-12)  # (a vertex on gear 2's pivot: its turn does not move it)
         move = (w * rho + rbar * a) * h  # the most a vertex moves over the driver interval (sheared)
