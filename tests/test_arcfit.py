@@ -115,3 +115,38 @@ def test_reach_ahead_and_the_chained_walk_measure_what_every_vertex_would(arcs):
             while i < n:
                 assert walked[i] == reach[i]
                 i += reach[i]
+
+
+def _lobed(lobes: int, per_lobe: int, e: float = 0.02) -> np.ndarray:
+    """r = 10·(1 + e·cos(lobes·θ)) sampled ``per_lobe`` times a lobe: its own vertices turned by
+    2π/lobes."""
+    t = np.linspace(0, 2 * math.pi, lobes * per_lobe, endpoint=False)
+    r = 10 * (1 + e * np.cos(lobes * t))
+    return np.column_stack([r * np.cos(t), r * np.sin(t)])
+
+
+def test_a_ring_drawn_lobe_by_lobe_is_found_to_repeat_and_its_arcs_repeat_too():
+    """A 7-lobed curve sampled 300 times a lobe repeats by 2π/7 (not by more: 2π/14 moves a
+    crest onto a trough); moved off its own turn by 1e-6 mm at one vertex it repeats no more.
+    Fitted with ``repeats`` its arcs are one lobe's, repeated: each lobe's arc ends are the first
+    lobe's turned by 2π/7 (to 1e-12 mm), the bulges alike, and every point of the arcs within
+    the tolerance of the curve (its closed form r(θ), along the radius: within 1 % of the normal
+    distance at this slope, r′/r ≤ 0.14)."""
+    from gearcad.geometry.outline import rotate, turn_repeats
+
+    ring = _lobed(7, 300)
+    assert turn_repeats(ring) == 7
+    bent = ring.copy()
+    bent[5] += 1e-6
+    assert turn_repeats(bent) == 1
+    tol = 0.002
+    arcs = fit_arcs(ring, tol, repeats=7)
+    n = len(arcs.vertices)
+    assert n % 7 == 0
+    m = n // 7
+    assert np.max(np.abs(rotate(arcs.vertices[:m], 2 * math.pi / 7) - arcs.vertices[m : 2 * m])) < 1e-12
+    assert np.array_equal(arcs.bulges[:m], arcs.bulges[m : 2 * m])
+    pts = arc_points(arcs, tol / 50)
+    theta = np.arctan2(pts[:, 1], pts[:, 0])
+    off = np.abs(np.hypot(pts[:, 0], pts[:, 1]) - 10 * (1 + 0.02 * np.cos(7 * theta)))
+    assert off.max() <= 1.01 * tol

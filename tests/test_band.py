@@ -7,6 +7,7 @@ import json
 import math
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 import gearcad
@@ -140,3 +141,21 @@ def test_each_remedy_a_jam_names_fits_as_printed(sets):
         fixed = gearcad.design(gearcad.load_profile(path, {**given, key: float(value)}))
         assert not [f for f in fixed.findings if f.code == "jams"], (key, value)
         assert fixed.report()["bands"][0]["verdict"] == "fits"
+
+
+def test_a_spur_pair_is_proven_over_one_pitch_and_no_tooth_is_tighter(spur):
+    """A spur pair's outlines repeat by a tooth as written (arcs fitted to one tooth, repeated),
+    so its band is proven over one driver pitch (2π/20): and its proven least is no more than
+    the play measured on the same written outlines at 60 driver angles spread over a whole turn
+    (each a different tooth pair, at a different place within its pitch: 360°·k·(1/60 + 1/1000))."""
+    from gearcad.fitting.pair_geometry import pair_geometry
+    from gearcad.fitting.play import play_between
+
+    g = pair_geometry(spur, written=True)
+    assert g.cycle == pytest.approx(2 * math.pi / 20, rel=1e-12)
+    b = _band(spur, center_distance_tolerance=0.1)
+    assert b.certificate.proven and b.certificate.kind == "theorem"
+    phi = 2 * math.pi * np.arange(60) * (1 / 60 + 1 / 1000)
+    edge = spur.params.process.model_copy(update={"center_distance_tolerance": 0.1}).edge(spur.params.output.chamfer)
+    play, _ = play_between(g.at(phi), (edge[2], edge[2]), -0.1, spur.params.output.tolerance, reach=2.0)
+    assert b.least <= float(np.nanmin(play)) + 1e-9

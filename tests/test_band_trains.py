@@ -148,10 +148,22 @@ def test_each_roller_rolls_on_the_body_from_its_assembled_place(rollers):
         assert 1.2 < contact.ratio.min() <= contact.ratio.max() < 2.0
 
 
-def test_the_body_reports_a_band_per_roller(rollers):
-    bands = mesh_bands(rollers)
+@pytest.fixture(scope="module")
+def roller_bands(rollers):
+    return mesh_bands(rollers)
+
+
+def test_the_body_reports_a_band_per_roller_proven(roller_bands):
+    """Each roller's band is proven (the roller's axle moves along the body: :mod:`.moving`);
+    with no process the outlines moved in by the tolerance are proven apart: the least play is
+    at least −4·tol/cos α, the margin exact parts keep."""
+    bands = roller_bands
     assert [b.band.mesh for b in bands] == ["body/roller 1", "body/roller 2", "body/roller 3"]
     assert all(b.band.fits and not b.internal for b in bands)  # no process: the drawn play
+    for b in bands:
+        cert = b.band.certificate
+        assert cert.kind == "theorem" and cert.proven
+        assert cert.lower == pytest.approx(-4 * 0.01 / math.cos(ALPHA)) and b.band.band[0] >= cert.lower
 
 
 def test_the_built_pages_and_reports_carry_every_mesh(built):
@@ -276,15 +288,62 @@ def test_fdm_tips_in_roots_no_backlash_frees_them():
     assert "the tips reach the mate's roots" in _jams(band, False, "train.backlash", -0.425)
 
 
-def test_the_rollers_share_one_band_found_at_their_own_turns(rollers):
-    """The three rollers meet the body alike a third of a turn apart: roller 2's band, measured on
-    its own, is roller 1's, its worst place 120° of the body earlier."""
+def test_the_rollers_share_one_band_found_at_their_own_turns(rollers, roller_bands):
+    """The three rollers meet the body alike a third of a turn apart: about roller 1's tightest
+    place roller 2's play, measured on its own 120° of the body earlier, is roller 1's; and its
+    band is roller 1's, its worst place 120° earlier."""
     found = roller_meshes(rollers)
-    shared = mesh_bands(rollers)
-    own = mesh_band(found[1][1], edge=(0.0, 0.0, 0.0), spread=0.0, tol=0.01, name="body/roller 2")
-    assert shared[1].band.band == pytest.approx(own.band, abs=1e-6)
-    assert shared[1].band.nominal == pytest.approx(own.nominal, abs=1e-6)
+    shared = roller_bands
+    turns = shared[0].band.worst_phi + np.linspace(-0.01, 0.01, 5)
+    one, two = found[0][1].pair, found[1][1].pair
+    smaller = (-0.01, -0.01)
+    play1 = mesh_play(one.at(turns).mesh, smaller, 0.0, 0.01, reach=1.0)
+    play2 = mesh_play(two.at(turns - 2 * math.pi / 3).mesh, smaller, 0.0, 0.01, reach=1.0)
+    assert play2 == pytest.approx(play1, abs=1e-6)
+    assert shared[1].band.band == shared[0].band.band and shared[1].band.certificate == shared[0].band.certificate
     assert shared[1].band.worst_phi == pytest.approx((shared[0].band.worst_phi - 2 * math.pi / 3) % (2 * math.pi))
+
+
+def test_a_rollers_instant_centre_is_its_pitch_point(rollers):
+    """The roller rolls on the body's pitch curve: the instant centre of its motion in the
+    body's frame, from the placements' stencils, is the pitch point; with the axle moved s
+    towards the body it is s/(1 + ρκ) in from it along the normal (I = C + J·C'/ω, C on the
+    parallel at ρ − s), and |ω| = (1/ρ + κ)·ds/dτ."""
+    from gearcad.fitting.moving import local
+
+    g = roller_meshes(rollers, positions=6)[0][1].pair
+    frame, rho = rollers.detail.pitch, g.arm
+    m = g.mesh
+    s = frame.arc_at(-m.phi1)
+    kappa = frame.curvature(s)
+    _, omega, _, instant, _ = local(g.place, m.phi1, 0.0)
+    assert np.allclose(instant, m.contact, atol=1e-6)
+    speed = ((frame.arc_at(-(m.phi1 - 1e-5)) - frame.arc_at(-(m.phi1 + 1e-5))) % frame.perimeter) / 2e-5
+    assert np.allclose(np.abs(omega), (1 / rho + kappa) * speed, rtol=1e-6)
+    _, _, _, moved, _ = local(g.place, m.phi1, 0.3)
+    assert np.allclose(moved, m.contact + (0.3 / (1 + rho * kappa))[:, None] * m.tighter, atol=1e-6)
+
+
+def test_a_rollers_bound_between_positions_is_never_above_a_dense_sweep(rollers, roller_bands):
+    """The proof's bound over an interval about a measured position (:func:`.tube.tube` for the
+    roller's moving pivot) is never above the least play a dense sweep (41 positions an interval)
+    measures there, and within 4 µm of it: both parts 0.01 mm smaller, the axle 0.05 mm towards
+    the body (the play about 7 µm), five intervals 0.006 rad of the body wide about its tightest
+    place."""
+    from gearcad.fitting.moving import MovingMeasures
+    from gearcad.fitting.tube import tube
+
+    g = roller_meshes(rollers, positions=6)[0][1].pair
+    measures, smaller, spread, h = MovingMeasures(), (-0.01, -0.01), 0.05, 0.003
+    centres = roller_bands[0].band.worst_phi + 2 * h * np.arange(-2, 3)
+    sites, _ = measures.sites(g.at(centres), smaller, spread, 0.01, 1.0)
+    ratio = measures.ratio(g, spread)
+    dense = centres[:, None] + np.linspace(-h, h, 41)[None, :]
+    plays = mesh_play(g.at(dense.ravel()).mesh, smaller, spread, 0.01, reach=1.0).reshape(dense.shape)
+    for site, c, least in zip(sites, centres, plays.min(axis=1)):
+        bounds = tuple(float(b[0]) for b in ratio(np.array([c - h]), np.array([c + h])))
+        proven = 2 * tube(site, h, 0.0, bounds) * g.arm
+        assert least - 0.004 <= proven <= least + 1e-6, (c, proven, least)
 
 
 def test_a_train_mesh_is_proven_and_no_more_optimistic_than_a_dense_sweep(laser_train):
@@ -300,3 +359,25 @@ def test_a_train_mesh_is_proven_and_no_more_optimistic_than_a_dense_sweep(laser_
         dense = mesh_band(g, edge=edge, spread=spread, tol=tol, name=name, backlash=p.train.backlash)
         assert band["certified_min"] <= dense.band[0] + 1e-6, (name, band["certified_min"], dense.band[0])
         assert band["certified_min"] >= 2 * tol
+
+
+def test_the_compound_rings_outer_mesh_is_proven_over_its_outer_teeth():
+    """compound_ring's gear1/ring meets the ring's 40 outer teeth (not its 30 inner ones): its
+    outline repeats by an outer tooth, so the mesh is proven over one pitch; under a laser the
+    certified least is never above the least band_mesh (another engine) finds at 96 positions
+    all round, and within 3 µm of it."""
+    from gearcad.fitting.band_trains import _repeats, _shape
+
+    from .conftest import COARSE, profile
+
+    p = profile("compound_ring", {**COARSE, "process.kind": "laser", "train.backlash": 0.2})
+    draft = carrier_train.design(p)
+    assert _repeats(_shape(draft.parts[1]).exterior, 40) and not _repeats(_shape(draft.parts[1]).exterior, 30)
+    name, g, *_ = train_meshes(draft, 96)[0]
+    assert name == "gear1/ring" and g.pair is not None
+    band = mesh_bands(draft)[0].band
+    edge, spread, tol = p.process.edge(p.output.chamfer), p.process.center_spread(), p.output.tolerance
+    dense = mesh_band(g, edge=edge, spread=spread, tol=tol, name=name, backlash=0.2).band[0]
+    cert = band.certificate
+    assert cert.kind == "theorem" and cert.proven
+    assert dense - 0.003 <= cert.lower <= dense + 1e-6, (cert.lower, dense)

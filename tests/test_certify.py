@@ -111,3 +111,26 @@ def test_the_band_takes_the_certificate_output_certificate_names():
     proven = pair_band(g, **kw, certificate="theorem").as_dict()
     assert proven["certificate"] == "theorem" and proven["proven"] and proven["verdict"] == "fits"
     assert proven["certified_min"] <= proven["min"]
+
+
+def test_the_assembly_says_its_depth_is_proven_only_where_every_band_is(built):
+    """report.json's ``assembly.depth_proven``: true where every mesh's band is proven to fit
+    (the example gear pairs, the trains whose meshes repeat by a tooth), false where any band is
+    sampled or estimated (a noncircular planetary set's meshes use the estimate); and the check's
+    assembly line says so only then."""
+    import json
+
+    from tests.conftest import EXAMPLES
+
+    seen = set()
+    for path in sorted(EXAMPLES.glob("*.toml")):
+        report = json.loads((built / path.stem / "report.json").read_text(encoding="utf-8"))
+        bands = report.get("bands", [])
+        every = bool(bands) and all(
+            b.get("certificate") == "theorem" and b.get("proven") and b["verdict"] == "fits" for b in bands
+        )
+        assert report["assembly"].get("depth_proven", False) == (every and report["assembly"]["max_depth"] is not None)
+        seen.add(report["assembly"].get("depth_proven", False))
+    for name in ("spur_pair", "elliptic_focus", "walker"):
+        assert json.loads((built / name / "report.json").read_text(encoding="utf-8"))["assembly"]["depth_proven"]
+    assert seen == {True, False}

@@ -246,7 +246,10 @@ def _each_steps_play_read_back(out, data):
     for p, mine in zip(plays, found):
         assert p.play[0] - 2e-6 <= mine <= p.play[1] + 2e-6, (p.value, p.play, mine)
         assert p.play[1] - p.play[0] <= 1e-4
-        assert p.feeler[0] == pytest.approx(p.play[0] * math.cos(alpha), rel=0.03)
+        # the gauge's gap at the marked tooth's flanks is the play across the normal: within 3 %, or
+        # 2.5 µm where the play itself is a few µm (the gap is taken at one place on the marked
+        # flanks; the contact that stops the turn may lie elsewhere on the tooth)
+        assert p.feeler[0] == pytest.approx(p.play[0] * math.cos(alpha), rel=0.03, abs=0.0025)
     for a, b in zip(plays, plays[1:]):
         assert a.play[0] - b.play[0] == pytest.approx(per_step, rel=0.02)
     if len(plays) < len(data.plays):  # the first that binds: the closed form leaves it no play

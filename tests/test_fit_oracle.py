@@ -9,10 +9,11 @@ defaults are built here at a coarse tolerance (the check compares the report wit
 the same build, at any tolerance); they cost a build each, so they run with
 ``GEARCAD_ORACLE=all`` only.
 
-The report's least play is the band's least measured play (``bands[].min``), refined where the
-pair is tight; ``certified_min`` beside it is the lower bound the verdict rests on.  Cases still
-marked ``xfail(strict=True)`` are those not yet confirmed within 1 µm (the truth measured by a
-dense sweep: 1440–3840 driver angles and golden sections to 1e-7 rad).
+The report's least play is the band's least measured play (``bands[].min``) on the outlines as
+written and cut (``fitting/written.py``), pinned down until the proven lower bound beside it
+(``certified_min``, what the verdict rests on) is within half a micrometre where the budget
+allows.  Cases still marked ``xfail(strict=True)`` are those not yet confirmed within 1 µm (the
+truth measured by a dense sweep: 1440–3840 driver angles and golden sections to 1e-7 rad).
 """
 
 from __future__ import annotations

@@ -58,9 +58,9 @@ class MeshGeometry:
     teeth: np.ndarray
     """(n,) gear 1's tooth at the contact (index from its first)."""
     pair: object | None = None
-    """The same mesh as a :class:`~.play.PairGeometry` about fixed centres (a carrier train's: what
-    the proven certificate measures; its gear 1 the one that is not a ring), or None (a roller's
-    axle moves along the body)."""
+    """What the proven certificate measures: the same mesh as a :class:`~.play.PairGeometry` about
+    fixed centres (a carrier train's; its gear 1 the one that is not a ring), or as a
+    :class:`~.moving.MovingMesh` (a roller's, its axle moving along the body); None: neither."""
 
     def at(self, keep: np.ndarray) -> MeshGeometry:
         """The same mesh at the positions ``keep`` (a boolean mask) only."""
@@ -102,11 +102,13 @@ def mesh_play(
     reach: float,
     steps: int = 8,
     pieces: tuple[np.ndarray, np.ndarray] | None = None,
+    halves: list | None = None,
 ) -> np.ndarray:
     """Free play at each position (mm on gear 2's pitch curve); NaN where the parts overlap as
     placed.  ``offsets`` grow gear 1 and gear 2 (mm, scalars or per position), ``shift`` moves
     gear 2's pivot along ``g.tighter`` (mm; negative: the other way), ``reach`` bounds the play
-    sought; ``pieces`` the parts cut about the contact (:func:`clip`; default: cut here).
+    sought; ``pieces`` the parts cut about the contact (:func:`clip`; default: cut here);
+    ``halves`` (a list): the free turn each way (rad, 0 where they overlap) is appended to it.
 
     Each way, gear 2 is turned towards gear 1 until they touch (:func:`_turn_to_touch`); ``steps``
     bring the gap under a millionth of a module."""
@@ -148,7 +150,11 @@ def mesh_play(
     start = distances(w1, placed, lines1, edges2.lines(shapely.get_coordinates(placed)))
     total, settled = np.zeros_like(g.phi1), 1e-6 * g.module
     for sign in (1.0, -1.0):
-        total[live] += _turn_to_touch(lambda turn, at=None: gap(sign * turn, at), start, far, limit, steps, settled)
+        turned = np.zeros_like(g.phi1)
+        turned[live] = _turn_to_touch(lambda turn, at=None: gap(sign * turn, at), start, far, limit, steps, settled)
+        total += turned
+        if halves is not None:
+            halves.append(turned)
     return np.where(free, total * arm, np.nan)
 
 

@@ -12,7 +12,9 @@ parallel at its pitch radius ρ, and as the contact moves an arc δs along the b
 turns δs/ρ, from the assembled phase.  Its axle is fixed on the frame, so the tooth force, along
 the line of action through the pitch point, makes α with the velocity both pitch points share:
 the working pressure angle is α on both flanks; the contact ratio follows the body's curvature.
-The positions step the body evenly over a turn.
+The positions step the body evenly over a turn; the tight case's least play is proven between
+positions as a pair's is, for the roller's moving axle (:mod:`.moving`), and a train mesh's as a
+pair's about fixed centres (:func:`fixed_pair`).
 """
 
 from __future__ import annotations
@@ -31,6 +33,7 @@ from .band import Band, pair_band
 from .band_mesh import MeshGeometry, mesh_band
 from .certify import PER_TOOTH
 from .fit import least_said, process_block
+from .moving import MovingMesh, moving_band
 from .play import PairGeometry
 
 __all__ = ["MeshBand", "mesh_bands", "radial_room", "with_mesh_bands", "train_meshes", "roller_meshes"]
@@ -96,7 +99,7 @@ def train_meshes(draft, positions: int = 12) -> list[tuple[str, MeshGeometry, bo
         tile = lambda v: np.tile(v, (positions, 1))  # noqa: E731
         material = (math.atan2(*(contact - c1)[::-1]) - a1) / (TWO_PI / z)
         teeth = (np.floor(material) if first_ring else np.round(material)).astype(int) % z
-        z2 = p.inner_teeth if k + 1 == p.compound else p.teeth[k + 1]
+        z2 = p.teeth[k + 1]  # the compound gear meets the gear before it with its outer teeth
         ends = [(shapes[k], one, r_from, z), (shapes[k + 1], two, r_to, z2)]
         geometry = MeshGeometry(
             shapes=(shapes[k], shapes[k + 1]),
@@ -185,41 +188,69 @@ def _repeats(ring, teeth: int) -> bool:
 
 def roller_meshes(draft, positions: int = 36) -> list[tuple[str, MeshGeometry, bool, ContactData]]:
     """Each roller against a toothed body: (name, geometry in the body's frame, False, contact);
-    none when the body has no teeth."""
+    none when the body has no teeth.  Each geometry's ``pair`` is the roller's
+    :class:`~.moving.MovingMesh` (what the proof measures, at any turn of the body)."""
     p, detail = draft.params, draft.detail
     frame = getattr(detail, "pitch", None)
     if frame is None:
         return []
     teeth = draft.data["teeth"]
     m, z, alpha = teeth["module"], teeth["body_teeth"], p.pressure_angle
-    rho, length = detail.roller_radius * p.scale, frame.perimeter
+    rho = detail.roller_radius * p.scale
     shapes = (_shape(draft.parts[0]), _shape(draft.parts[1]))
+    z_r = teeth["roller_teeth"]
+    # a body's turn is the whole cycle where the roller is its own vertices turned by a tooth
+    # (after it the roller has turned z_b/z_r turns); otherwise until the same roller tooth returns
+    turns = 1 if _repeats(shapes[1].exterior, z_r) else z_r // math.gcd(z, z_r)
+    cycle = TWO_PI * turns
     out = []
     for k, placed in enumerate(draft.placements[1:]):
         start = TWO_PI * k / 3  # τ runs clockwise, the body's arc s counter-clockwise (u = −τ)
-        s0 = frame.arc_at(np.array([-start]))
-        _, _, n0 = frame.frame(s0)
-        phase = math.atan2(-n0[0, 1], -n0[0, 0]) - placed.angle  # the roller's own angle at the contact
+        place = _roller_place(frame, shapes, placed, start, rho, module=m, teeth=z, alpha=alpha)
         turn = TWO_PI * np.arange(positions) / positions
+        geometry = place(turn)
+        moving = MovingMesh(mesh=geometry, place=place, cycle=cycle, passes=z * turns, arm=rho)
+        geometry = replace(geometry, pair=moving)
         s = frame.arc_at(-(start + turn))
-        back = (s0 - s) % length  # the arc the contact has run along the body
-        point, _, normal = frame.frame(s)
+        ratio = contact_ratio(frame.curvature(s), np.full(positions, 1 / rho), (m, m), alpha, m)
+        flat = np.full(positions, alpha)
+        out.append((f"body/roller {k + 1}", geometry, False, ContactData(turn, ratio, flat, flat)))
+    return out
+
+
+def _roller_place(frame, shapes, placed, start: float, rho: float, *, module: float, teeth: int, alpha: float):
+    """place(τ) -> the roller that starts at the body's turn ``start`` (rad) as a
+    :class:`~.band_mesh.MeshGeometry` at the body's turns τ: its axle ρ out along the normal of
+    the body's pitch curve at the contact, turned from its assembled angle by the arc the contact
+    has run along the body over ρ (not wrapped: continuous in τ)."""
+    length = frame.perimeter
+
+    def arc(u: np.ndarray) -> np.ndarray:  # the body's arc at its curve parameter u, unwrapped
+        return frame.arc_at(u) + length * np.floor(u / TWO_PI)
+
+    s0 = float(arc(np.array([-start]))[0])
+    _, _, n0 = frame.frame(np.array([s0 % length]))
+    phase = math.atan2(-n0[0, 1], -n0[0, 0]) - placed.angle  # the roller's own angle at the contact
+
+    def place(turn: np.ndarray) -> MeshGeometry:
+        turn = np.asarray(turn, dtype=float)
+        s = arc(-(start + turn))
+        back = s0 - s  # the arc the contact has run along the body
+        point, _, normal = frame.frame(s % length)
         centre = point + rho * normal  # the body's pitch curve is the axle's path moved in by ρ
-        geometry = MeshGeometry(
+        return MeshGeometry(
             shapes=shapes,
             phi1=turn,
             centre2=centre,
             angle2=np.arctan2(-normal[:, 1], -normal[:, 0]) - (phase + back / rho),
             contact=point,
             tighter=-normal,
-            module=m,
+            module=module,
             pressure_angle=alpha,
-            teeth=np.round(s / (math.pi * m)).astype(int) % z,
+            teeth=np.round((s % length) / (math.pi * module)).astype(int) % teeth,
         )
-        ratio = contact_ratio(frame.curvature(s), np.full(positions, 1 / rho), (m, m), alpha, m)
-        flat = np.full(positions, alpha)
-        out.append((f"body/roller {k + 1}", geometry, False, ContactData(turn, ratio, flat, flat)))
-    return out
+
+    return place
 
 
 def mesh_bands(draft) -> tuple[MeshBand, ...]:
@@ -234,6 +265,9 @@ def mesh_bands(draft) -> tuple[MeshBand, ...]:
     tol, backlash = params.output.tolerance, params.backlash
 
     def band(name, g, inside=False):
+        if isinstance(g.pair, MovingMesh):  # a roller: its axle moves along the body
+            kw = {"certificate": params.output.certificate}
+            return moving_band(g.pair, edge=edge, spread=spread, tol=tol, backlash=backlash, name=name, **kw)
         if g.pair is not None:  # about fixed centres: the least play certified as a pair's is
             kw = {"internal": inside, "certificate": params.output.certificate}
             return pair_band(g.pair, edge=edge, spread=spread, tol=tol, backlash=backlash, name=name, **kw)

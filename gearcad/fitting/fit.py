@@ -198,7 +198,9 @@ def smallest_fit(first, cut, tol: float, *, limit: float, gain: float = 1.0, des
     between them crosses the margin, a tenth of the bracket off either end, the fit's excess
     halved for each short cut since it (the Illinois rule: a jam's play, the shrink that frees
     it, grows more slowly with the backlash than a free pair's, so the plain line falls short
-    again and again).
+    again and again).  The search ends when a fit and a jam lie within two resolutions of each
+    other: the play may jump there (the laser focus pair: −0.3 µm at 0.3035 mm, +52 µm at
+    0.3071 mm, a tip passing a neck), and halving the bracket further only spends cuts.
     No cut at ``limit`` mm or more (the teeth would be slivers).  Returns the smallest cut that
     fits, else the last."""
     tries = [first]
@@ -209,7 +211,7 @@ def smallest_fit(first, cut, tol: float, *, limit: float, gain: float = 1.0, des
         short = max(jams, key=lambda t: t[0]) if jams else None
         if best is not None:
             resolution = max(tol, 0.01 * best[0])
-            if best[1] <= resolution or (short is not None and best[0] - short[0] <= resolution):
+            if best[1] <= resolution or (short is not None and best[0] - short[0] <= 2 * resolution):
                 break
         if short is None:  # fits by too much: take the excess off (the play grows at least as fast)
             guess = best[0] - best[1]
@@ -236,7 +238,7 @@ def smallest_fit(first, cut, tol: float, *, limit: float, gain: float = 1.0, des
 def pair_bands(design: Design) -> tuple[Band, ...]:
     """The band of a toothed gear pair under its profile's process (none: the nominal play only)."""
     params, detail = design.params, design.detail
-    geometry = pair_geometry(design)
+    geometry = pair_geometry(design, written=True)  # what the files hold, as the cutter leaves it
     if geometry is None:
         return ()
     process = params.process

@@ -6,18 +6,22 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..geometry.outline import turn_repeats
 from ..mechanisms.base import Design
 from ..mechanisms.registry import MECHANISMS
 from .certify import PER_TOOTH
 from .play import PairGeometry
+from .written import written_rings
 
 __all__ = ["pair_geometry", "follower_speed"]
 
 
-def pair_geometry(design: Design, positions: int | None = None) -> PairGeometry | None:
+def pair_geometry(design: Design, positions: int | None = None, *, written: bool = False) -> PairGeometry | None:
     """A toothed gear pair's geometry as the band measures it, at ``positions`` driver angles over
     one cycle (default: one per driver tooth, 12 to 48), and at any others the certificate asks
-    for; ``None`` for any other design."""
+    for; ``None`` for any other design.  ``written``: the outlines as the files write them and
+    the cutter leaves them (:func:`~.written.written_rings`, what the band measures), else the
+    thinned outlines the mesh proof holds."""
     detail = design.detail
     teeth = getattr(detail, "teeth", None)
     if MECHANISMS[design.mechanism].play != "pair" or teeth is None:
@@ -25,9 +29,10 @@ def pair_geometry(design: Design, positions: int | None = None) -> PairGeometry 
     pair = detail.pitch.pair
     positions = positions or min(48, max(12, teeth.plan.teeth[0]))
     first = teeth.gears[0]
-    rings = tuple(g.outline.outer for g in teeth.gears)
+    rings = written_rings(design) if written else tuple(g.outline.outer for g in teeth.gears)
     alpha = design.params.teeth.pressure_angle
-    ratio = follower_speed(pair.angle_map.slope, pair.cycle)
+    cycle = _one_pitch(pair, rings, teeth.plan.teeth) or pair.cycle
+    ratio = follower_speed(pair.angle_map.slope, cycle)
 
     def at(phi1: np.ndarray) -> PairGeometry:
         arc = teeth.frames[0].arc(phi1 % (2 * np.pi))
@@ -43,16 +48,33 @@ def pair_geometry(design: Design, positions: int | None = None) -> PairGeometry 
             at=at,
             ratio=ratio,
             slope=pair.angle_map.slope,
-            cycle=pair.cycle,
+            cycle=cycle,
             first=start,
         )
 
+    if cycle < pair.cycle:  # one pitch is the whole cycle: 12 positions on it, to start from too
+        start = np.linspace(0.0, cycle, 12, endpoint=False)
+        return at(start)
     frame = teeth.frames[0]
     turns = max(1, round(pair.cycle / (2 * np.pi)))
     perimeter = float(frame.arc(np.array([2 * np.pi]))[0])
     s = np.linspace(0.0, perimeter * turns, PER_TOOTH * first.teeth * turns, endpoint=False)
     start = frame.angle(s % perimeter) + 2 * np.pi * np.floor(s / perimeter)
     return at(np.linspace(0.0, pair.cycle, positions, endpoint=False))
+
+
+def _one_pitch(pair, rings, teeth) -> float | None:
+    """One pitch of the driver (rad) where that is the pair's whole cycle: a constant ratio
+    k = z1/z2 and each outline its own vertices turned by a tooth (:func:`turn_repeats`; the
+    arcs of a gear drawn tooth by tooth are fitted so), so that the pair at φ + 2π/z1 is the pair
+    at φ, each gear a tooth on; None otherwise."""
+    k = pair.angle_map.slope(np.linspace(0.0, pair.cycle, 64, endpoint=False))
+    z1, z2 = teeth
+    if np.ptp(k) > 1e-12 * abs(k[0]) or abs(k[0] * z2 / z1 - 1) > 1e-9:
+        return None
+    if any(turn_repeats(ring) % z for ring, z in zip(rings, teeth)):
+        return None
+    return 2 * np.pi / z1
 
 
 def follower_speed(slope, cycle: float, samples: int = 8192):

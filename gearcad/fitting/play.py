@@ -64,8 +64,14 @@ def _windows(ring: np.ndarray, centres: np.ndarray, radius: float, offset, tol: 
     to ``radius``; ``ring`` its outer ring, or its polygon (a ring gear's, with its toothed hole)."""
     gear = ring if isinstance(ring, shapely.Geometry) else shapely.Polygon(ring)
     largest = float(np.max(np.abs(offset)))
-    discs = shapely.buffer(shapely.points(centres), radius + largest + radius / 6, quad_segs=16)
-    pieces = shapely.intersection(gear, discs)
+    grown = radius + largest + radius / 6
+    discs = shapely.buffer(shapely.points(centres), grown, quad_segs=16)
+    # the gear cut to each disc's box first (GEOS's fast rectangle clip; ~3× quicker than the
+    # overlay of the whole gear), then to the disc; a clip that is not valid is not used
+    lo, hi = centres - grown, centres + grown
+    boxed = np.array([shapely.clip_by_rect(gear, *a, *b) for a, b in zip(lo.tolist(), hi.tolist())])
+    boxed = np.where(shapely.is_valid(boxed), boxed, gear)
+    pieces = shapely.intersection(boxed, discs)
     if largest:
         steps = max(2, int(math.ceil(math.pi / 4 / math.acos(max(1 - tol / largest, -1.0)))))
         pieces = shapely.buffer(pieces, offset, quad_segs=steps)

@@ -41,31 +41,36 @@ class Site:
     dk: float = 0.0
     arm: float = 0.0
     a: tuple | None = None
-    """Gear 1's window: (vertices, edge starts, edge ends, polygon)."""
+    """Gear 1's window: (vertices, edge starts, edge ends, the edges' R-tree, each vertex's
+    distance to gear 2's wide window)."""
     b: tuple | None = None
     """Gear 2's window at (φ, t0): the same."""
+    pivot: np.ndarray | None = None
+    """A general motion's (:mod:`.moving`): gear 2's pivot C at φ in gear 1's frame (mm); None: a
+    gear pair's, E'(cos φ, sin φ)."""
+    instant: np.ndarray | None = None
+    """With ``pivot``: the instant centre I there (mm)."""
+    turning: np.ndarray | None = None
+    """With ``pivot``: I' there (mm/rad)."""
 
 
 def outline(narrow, wide) -> tuple:
-    """(the vertices of ``narrow``, the edge starts and ends of ``wide``): a gear's narrow
-    window's vertices, its wide window's edges."""
+    """(the vertices of ``narrow``, the edge starts and ends of ``wide``, an R-tree of those
+    edges): a gear's narrow window's vertices, its wide window's edges."""
     rings = shapely.get_rings(shapely.get_parts(wide))
     ends, ring = shapely.get_coordinates(rings, return_index=True)
     same = ring[1:] == ring[:-1]
-    return shapely.get_coordinates(narrow), ends[:-1][same], ends[1:][same]
+    p, q = ends[:-1][same], ends[1:][same]
+    return shapely.get_coordinates(narrow), p, q, shapely.STRtree(shapely.linestrings(np.stack([p, q], 1)))
 
 
-def nearest(xy: np.ndarray, p: np.ndarray, q: np.ndarray) -> np.ndarray:
-    """Each point's distance to the nearest of the segments [p, q] (the distance to the
-    polygon they bound, for points outside it)."""
-    seg = q - p
-    length = np.maximum(np.hypot(*seg.T), 1e-300)
-    ux, uy = seg[:, 0] / length, seg[:, 1] / length
-    rx = xy[:, 0][:, None] - p[None, :, 0]
-    ry = xy[:, 1][:, None] - p[None, :, 1]
-    ahead = rx * ux + ry * uy
-    beyond = np.maximum(ahead - length, 0.0) + np.maximum(-ahead, 0.0)
-    return np.min(np.hypot(rx * uy - ry * ux, beyond), axis=1)
+def nearest(xy: np.ndarray, edges: shapely.STRtree) -> np.ndarray:
+    """Each point's distance to the nearest of the segments in the R-tree ``edges`` (the
+    distance to the polygon they bound, for points outside it)."""
+    which, dist = edges.query_nearest(shapely.points(xy), return_distance=True, all_matches=False)
+    out = np.empty(len(xy))
+    out[which[0]] = dist
+    return out
 
 
 def _one_sided_min(b: np.ndarray, c: np.ndarray, a) -> np.ndarray:
@@ -148,61 +153,81 @@ def _safe_turn(d, f0, derivs, terms, h: float, best: float) -> np.ndarray:
     return np.min(np.max(safe, axis=0), axis=0)
 
 
-def tube(s: Site, h: float, e: float, bounds) -> float:
-    """The half-width Δ (rad) of gear 2's turn about ``s.t0`` proven free at every driver angle
-    within ``h`` of ``s.phi`` (module docstring; −inf: none), gear 2's pivot ``e`` mm from gear 1's;
-    ``bounds``: over the interval, the largest k, |I'|/E', |k'|, |k''| and |I''|/E'."""
+def tube(s: Site, h: float, e: float, bounds, slope: float = 0.0) -> float:
+    """The half-width Δ (rad) of gear 2's turn about ``s.t0 + slope·(φ − s.phi)`` proven free at
+    every driver angle φ within ``h`` of ``s.phi`` (module docstring; −inf: none), gear 2's pivot
+    ``e`` mm from gear 1's; ``bounds``: over the interval, the largest k, |I'|/E', |k'|, |k''| and
+    |I''|/E'.  A site of a general motion (its ``pivot`` given, :mod:`.moving`) carries C, I and
+    I' itself, ``e`` is not used, and ``bounds`` are the largest |ω| − 1, |I'|, |ω'|, |ω''|, |I''|
+    (mm) and sixth the pivot's largest speed |C'| (a gear pair's: E'; it bounds how far gear 1's
+    vertices move from gear 2's pivot).
+
+    ``slope``: the box is sheared to follow the free turn's middle as it drifts with the driver
+    (any slope gives a proof; the drift's own, from the neighbours, the widest Δ).  In u = φ − c,
+    y = t − t0 − slope·u the vertex's derivatives are ∂u = ∂φ + s·∂t, ∂uu = ∂φφ + 2s·∂φt + s²·∂tt,
+    ∂uy = ∂φt + s·∂tt, ∂yy = ∂tt, and its third derivatives' bounds grow alike (|s| for s); its
+    turn over the box reaches |s|·h + Δ."""
     if s.a is None:
         return -math.inf
-    kmax, unit_speed, dk, ddk, unit_accel = bounds
-    w, sigma, sigma2 = 1.0 + kmax, e * unit_speed, e * unit_accel
+    kmax, unit_speed, dk, ddk, unit_accel, *more = bounds
+    w = 1.0 + kmax
     if w * h >= 0.5:
         return -math.inf
-    cosp, sinp = math.cos(s.phi), math.sin(s.phi)
-    centre = e * np.array([cosp, sinp])
-    u, du = s.k / (1 + s.k), s.dk / (1 + s.k) ** 2
-    instant = u * centre
-    turning = e * np.array([du * cosp - u * sinp, du * sinp + u * cosp])  # I'(c)
+    if s.pivot is None:
+        sigma, sigma2, pivot_speed = e * unit_speed, e * unit_accel, e
+        cosp, sinp = math.cos(s.phi), math.sin(s.phi)
+        centre = e * np.array([cosp, sinp])
+        u, du = s.k / (1 + s.k), s.dk / (1 + s.k) ** 2
+        instant = u * centre
+        turning = e * np.array([du * cosp - u * sinp, du * sinp + u * cosp])  # I'(c)
+    else:
+        sigma, sigma2, pivot_speed = unit_speed, unit_accel, more[0]
+        centre, instant, turning = s.pivot, s.instant, s.turning
     omega = 1.0 + s.k
     cap = s.cap
     best = cap
+    a = abs(slope)
     for mine, other, moving in ((s.b, s.a, True), (s.a, s.b, False)):
         xy = mine[0]
         r0 = np.hypot(*(xy - centre).T)
         rho0 = np.hypot(*(xy - instant).T)
         if moving:  # gear 2's vertices: |X − C| is fixed; ρ grows with the motion itself
             rbar = r0
-            rho = (rho0 + r0 * cap + sigma * h) / (1 - w * h)
+            rho = (rho0 + r0 * (cap + a * h) + sigma * h) / (1 - w * h)
         else:  # gear 1's, seen from gear 2: |w − I(φ)| and |w − C(φ)| move with φ only
-            rbar = r0 + e * h
+            rbar = r0 + pivot_speed * h
             rho = rho0 + sigma * h
         rbar = np.maximum(rbar, 1e-12)  # (a vertex on gear 2's pivot: its turn does not move it)
-        move = w * rho * h  # the most a vertex moves over the driver interval
-        lip = (mine[3] - move) / rbar
+        move = (w * rho + rbar * a) * h  # the most a vertex moves over the driver interval (sheared)
+        lip = (mine[4] - move) / rbar
         near = np.flatnonzero(lip < best)
         if not len(near):
             continue
-        p, q = other[1], other[2]
+        # the (vertex, edge) pairs the segment's bound leaves open: the edge within the vertex's
+        # reach, best·r̄ + its move (an R-tree query, not every pair)
+        reach = best * rbar[near] + move[near] if math.isfinite(best) else np.full(len(near), np.inf)
+        reach = reach * (1 + 1e-9) + 1e-12  # GEOS's distance and ours may differ in the last bits
+        vi, ei = other[3].query(shapely.points(xy[near]), predicate="dwithin", distance=reach)
+        if not len(vi):
+            continue
+        p, q = other[1][ei], other[2][ei]
         seg = q - p
         length = np.maximum(np.hypot(*seg.T), 1e-300)
         unit = seg / length[:, None]
         normal = np.column_stack([-unit[:, 1], unit[:, 0]])
-        rx = xy[near, 0][:, None] - p[None, :, 0]  # (near vertices, edges)
-        ry = xy[near, 1][:, None] - p[None, :, 1]
-        side = rx * normal[None, :, 0] + ry * normal[None, :, 1]
-        ahead = rx * unit[None, :, 0] + ry * unit[None, :, 1]
-        beyond = np.maximum(ahead - length[None], 0.0) + np.maximum(-ahead, 0.0)
-        dseg = np.hypot(side, beyond)
-        rn, rb = rho[near][:, None], rbar[near][:, None]
-        lip_pair = (dseg - move[near][:, None]) / rb
-        vi, ei = np.nonzero(lip_pair < best)  # the pairs the segment's bound leaves open
-        if not len(vi):
-            best = min(best, float(np.min(lip_pair)))
-            continue
-        side, ahead = side[vi, ei], ahead[vi, ei]
-        normal, unit, length = normal[ei], unit[ei], length[ei]
         v = xy[near][vi]
-        rn, rb = rn[vi, 0], rb[vi, 0]
+        rx, ry = v[:, 0] - p[:, 0], v[:, 1] - p[:, 1]
+        side = rx * normal[:, 0] + ry * normal[:, 1]
+        ahead = rx * unit[:, 0] + ry * unit[:, 1]
+        beyond = np.maximum(ahead - length, 0.0) + np.maximum(-ahead, 0.0)
+        dseg = np.hypot(side, beyond)
+        rn, rb = rho[near][vi], rbar[near][vi]
+        lip_pair = (dseg - move[near][vi]) / rb
+        open_ = lip_pair < best
+        if not np.any(open_):
+            continue
+        vi, side, ahead, lip_pair = vi[open_], side[open_], ahead[open_], lip_pair[open_]
+        p, normal, unit, length, v, rn, rb = (x[open_] for x in (p, normal, unit, length, v, rn, rb))
         n_line = np.where(side[:, None] < 0, -1.0, 1.0) * normal
         past = np.where(ahead > length, ahead - length, -ahead)
         n_end = np.where((ahead > length)[:, None], 1.0, -1.0) * unit
@@ -218,16 +243,23 @@ def tube(s: Site, h: float, e: float, bounds) -> float:
         m_ppt = (dk + w * w) * big + w * sigma
         m_ptt = w * big
         m_ttt = rb
+        if a:  # the sheared box's derivatives (the docstring)
+            m_ppp = m_ppp + a * (3 * m_ppt + a * (3 * m_ptt + a * m_ttt))
+            m_ppt = m_ppt + a * (2 * m_ptt + a * m_ttt)
+            m_ptt = m_ptt + a * m_ttt
         # linear functionals of the vertex's place, each a lower bound on its distance to the
         # segment where positive (the segment lies behind the line across the functional's
         # direction): the distance to the segment's line; how far the vertex lies past the
         # segment's nearer end along it; and, exact at (c, t0), the distance across the direction
         # from its nearest point on the segment to the vertex (past a polygon's corner neither of
         # the first two holds for long)
-        foot = p[ei] + np.clip(ahead, 0.0, length)[:, None] * unit
+        foot = p + np.clip(ahead, 0.0, length)[:, None] * unit
         gap = np.maximum(np.hypot(*(v - foot).T), 1e-300)
         n_near = (v - foot) / gap[:, None]
-        derivs = (sign * omega * jxi, sign * jxc, accel, -xc, -omega * (xc if moving else xi))
+        v_t, v_tt, v_pt = sign * jxc, -xc, -omega * (xc if moving else xi)
+        v_p = sign * omega * jxi + slope * v_t
+        accel = accel + slope * (2 * v_pt + slope * v_tt)
+        derivs = (v_p, v_t, accel, v_tt, v_pt + slope * v_tt)
         terms = (m_ppp, m_ppt, m_ptt, m_ttt)
         pair = _safe_turn(
             np.stack([n_line, n_end, n_near]), np.stack([np.abs(side), past, gap]), derivs, terms, h, best
@@ -238,10 +270,16 @@ def tube(s: Site, h: float, e: float, bounds) -> float:
             # direction that parts the vertex's path over the interval (its chord, to second
             # order) from the segment, where they do not cross (a vertex that slides past the
             # segment's end within a few µm)
+            # and two for each way gear 2 turns: its chord over the turn sought (a vertex that
+            # the turn carries along an edge and past its end)
             o = open_
-            ends = (p[ei][o], p[ei][o] + length[o, None] * unit[o])
+            ends = (p[o], p[o] + length[o, None] * unit[o])
+            y = best if math.isfinite(best) else cap
             ways = [
                 _parting(v[o], v[o] + w_ * h * derivs[0][o] + 0.5 * h * h * accel[o], *ends, n_near[o], foot[o])
+                for w_ in (1.0, -1.0)
+            ] + [
+                _parting(v[o], v[o] + w_ * y * v_t[o] + 0.5 * y * y * v_tt[o], *ends, n_near[o], foot[o])
                 for w_ in (1.0, -1.0)
             ]
             more = _safe_turn(
@@ -253,7 +291,6 @@ def tube(s: Site, h: float, e: float, bounds) -> float:
                 best,
             )
             pair[o] = np.maximum(pair[o], more)
-        pair = np.maximum(pair, lip_pair[vi, ei])
-        best = min(best, float(np.min(lip_pair[lip_pair >= best], initial=best)))
+        pair = np.maximum(pair, lip_pair)
         best = min(best, float(np.min(pair)))
     return best

@@ -235,19 +235,26 @@ def _walk(pts: np.ndarray, n: int, tol: float, arcs: bool) -> np.ndarray:
     return np.sort(np.concatenate(chosen))  # each block's runs start where the last one ended: no repeats
 
 
-def fit_arcs(ring: np.ndarray, tolerance: float) -> ArcRing:
+def fit_arcs(ring: np.ndarray, tolerance: float, repeats: int = 1) -> ArcRing:
     """Fit arcs and lines to a closed ring (open (n, 2) array) within ``tolerance`` mm.
 
     The ring's vertices must lie on the curve it stands for, with its chords within a small
     fraction of ``tolerance`` of that curve (sample it at a quarter of the tolerance).
+    ``repeats``: the ring is its own vertices turned by 2π/repeats (a gear drawn tooth by tooth,
+    :func:`~.outline.turn_repeats`); one turn's share is fitted and its arcs repeated on the
+    ring's own vertices, so the written outline repeats by a tooth as exactly as the ring does
+    (its mesh is then one pitch long, not a whole cycle).
     """
     pts, _ = _rolled(ring)
     n = len(ring)
-    chosen = _walk(pts, n, tolerance, arcs=True)
-    ends = np.append(chosen[1:], n)
+    span = n // repeats if repeats > 1 and n % repeats == 0 else n
+    chosen = _walk(pts[: span + 1], span, tolerance, arcs=True)
+    ends = np.append(chosen[1:], span)
     _, bulges = _runs_fit(pts, chosen, ends - chosen, tolerance, arcs=True)
     bulges = np.where(ends - chosen == 1, 0.0, bulges)
-    return ArcRing(pts[chosen], bulges)
+    copies = n // span
+    at = (chosen[None, :] + span * np.arange(copies)[:, None]).ravel()
+    return ArcRing(pts[at], np.tile(bulges, copies))
 
 
 def decimate(ring: np.ndarray, tolerance: float) -> np.ndarray:

@@ -7,7 +7,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["Outline", "ring_area", "rotate", "place", "place_each", "arc_steps", "mirrored"]
+__all__ = ["Outline", "ring_area", "rotate", "place", "place_each", "arc_steps", "mirrored", "turn_repeats"]
 
 
 def arc_steps(radius: float, tolerance: float, sweep: float = 2 * np.pi) -> int:
@@ -29,6 +29,21 @@ def rotate(points: np.ndarray, angle: float, center=(0.0, 0.0)) -> np.ndarray:
     c, s = np.cos(angle), np.sin(angle)
     p = np.asarray(points, dtype=float) - center
     return np.column_stack([c * p[:, 0] - s * p[:, 1], s * p[:, 0] + c * p[:, 1]]) + center
+
+
+def turn_repeats(ring: np.ndarray, within: float = 1e-9) -> int:
+    """The most times d that the open ring is its own vertices turned by 2π/d about the origin
+    (vertex i onto vertex i + n/d, to ``within`` of its size), each turn's share at least 8
+    vertices: a toothed gear's outline drawn tooth by tooth gives its tooth count; 1 for a ring
+    that does not repeat."""
+    xy = np.asarray(ring, dtype=float)
+    n = len(xy)
+    size = float(np.max(np.abs(xy))) if n else 0.0
+    for d in sorted((d for d in range(2, n // 8 + 1) if n % d == 0), reverse=True):
+        turned = rotate(xy, 2 * np.pi / d)
+        if float(np.max(np.abs(turned - np.roll(xy, -(n // d), axis=0)))) <= within * size:
+            return d
+    return 1
 
 
 def place(points: np.ndarray, angle: float = 0.0, offset=(0.0, 0.0)) -> np.ndarray:

@@ -74,6 +74,10 @@ class Assembly:
     gap: float | None = None
     """Widest gap of the rolling contacts as assembled, mm (None where none rolls)."""
     allowed_gap: float | None = None
+    proven: bool = False
+    """Whether the depth holds between the positions measured too: every mesh's band proven to fit
+    (the theorem keeps the made worst case free at every driver angle, docs/fit.md; the drawn
+    outlines lie inside it, so they bite no deeper than the allowance anywhere)."""
 
     @property
     def fits(self) -> bool:
@@ -90,6 +94,7 @@ class Assembly:
             "positions": self.positions,
             "max_depth": self.depth,
             "allowed_depth": self.allowed_depth,
+            "depth_proven": self.proven,
             **({"gap": self.gap, "allowed_gap": self.allowed_gap} if self.gap is not None else {}),
             "fits": self.fits,
         }

@@ -22,7 +22,7 @@ from ..tolerances import budget
 from . import layouts
 from .base import Assembly, Design, Motion, Table, assembly_depth, assembly_gap, assembly_overlap
 from .chart_data import Blocks, Charts
-from .parts import BoreSpec, Part, Placement, cut_paths, make_part
+from .parts import Blank, BoreSpec, CutSpec, Part, Placement, cut_paths, make_part
 from .registry import MECHANISMS
 
 if TYPE_CHECKING:
@@ -46,6 +46,19 @@ class PartSpec:
     hole: np.ndarray | None = None
     caps: tuple[np.ndarray, ...] = ()
     """Other outer rings of the solid's end faces the chamfer must fit (a twisted gear's end sections)."""
+
+    def blank(self, output: CutSpec) -> Blank:
+        """The part made from this spec (:func:`~.parts.make_part`), before its cut paths."""
+        return make_part(
+            self.name,
+            self.outer,
+            output=output,
+            bore=self.bore,
+            wall=self.wall,
+            marks=self.marks,
+            hole=self.hole,
+            caps=self.caps,
+        )
 
 
 TOUCHES = ("mesh", "rolling", "apart")
@@ -172,6 +185,15 @@ def prove(parts: dict[str, Part], draft: Draft) -> Assembly:
         b.allowed_depth if depths else None,
         gap=assembly_gap(parts, placements, rolling) if rolling else None,
         allowed_gap=b.allowed_depth if rolling else None,
+        proven=bool(toothed) and _bands_proven(draft),
+    )
+
+
+def _bands_proven(draft: Draft) -> bool:
+    """Whether every band of the draft's meshes is proven to fit (:attr:`Assembly.proven`)."""
+    bands = draft.data.get("bands") or []
+    return bool(bands) and all(
+        b.get("certificate") == "theorem" and b.get("proven") and b.get("verdict") == "fits" for b in bands
     )
 
 
@@ -194,10 +216,7 @@ def finish(draft: Draft[D], *, start: float | None = None) -> Design[D]:
     sheet and plate laid out (``start``: when the design began, for its ``seconds``)."""
     start = time.perf_counter() if start is None else start
     out = draft.params.output
-    made = tuple(
-        make_part(s.name, s.outer, output=out, bore=s.bore, wall=s.wall, marks=s.marks, hole=s.hole, caps=s.caps)
-        for s in draft.parts
-    )
+    made = tuple(s.blank(out) for s in draft.parts)
     router = getattr(getattr(draft.params, "process", None), "kind", None) == "cnc"
     parts = cut_paths(made, out, router=router)
     marks = _hook(draft, "marks")  # a gear pair's dots where its teeth meet
@@ -211,6 +230,8 @@ def finish(draft: Draft[D], *, start: float | None = None) -> Design[D]:
         line += f", nudged {assembly.nudged:.3g} mm²"
     if assembly.gap is not None:
         line += f", rolling gap {assembly.gap:.3g} mm (allowed {assembly.allowed_gap:.3g})"
+    if assembly.proven:
+        line += "; no deeper between positions (every mesh's band proven)"
     chosen = [f for f in TABLE if f.name in set(out.formats)]
     wholes = {w for f in chosen for w in f.wholes}
     lay = layouts.in_place_layout if draft.bands else layouts.plate_layout

@@ -17,7 +17,7 @@ from ..errors import DesignError
 from ..geometry.arcfit import ArcRing, arc_points, decimate, fit_arcs
 from ..geometry.inset import check_chamfer
 from ..geometry.kerf import kerf_fault, kerf_path
-from ..geometry.outline import Outline, ring_area
+from ..geometry.outline import Outline, ring_area, turn_repeats
 from ..geometry.rings import bore_ring
 from ..geometry.verify import is_simple, max_distance, thin
 from ..threads import side_by_side
@@ -178,8 +178,9 @@ def _cut_ring(ring: np.ndarray, tolerance: float, fine_tol: float, *, flat: bool
     if not flat and radii.max() - radii.min() <= fine_tol:
         return _circle_arcs((radii.max() + radii.min()) / 2, clockwise=ring_area(ring) < 0)
     if not flat:
+        repeats = turn_repeats(ring)  # a gear drawn tooth by tooth: its arcs repeat by a tooth too
         for attempt in range(3):
-            arcs = fit_arcs(ring, budget / 2**attempt)
+            arcs = fit_arcs(ring, budget / 2**attempt, repeats)
             # an independent re-check of the fit: the arcs flattened finely must not cross, and
             # points on them (at most half the fine tolerance apart in sag) stay within the budget
             if (

@@ -1,0 +1,57 @@
+"""A gear pair's outlines as the files write them, for its band: each gear made as the finishing
+line makes it (:func:`~..mechanisms.parts.make_part`, :func:`~..mechanisms.parts.cut_paths`:
+the cut path offset half the cutter into the waste and fitted with arcs), its outer path's arcs
+flattened to a sagitta of a quarter of the tolerance (at most :data:`SAGITTA`), and — where a
+cutter of width w ran along it — the part that cutter leaves: the path's region shrunk by w/2
+(a round beam or tool cannot cut a concave corner sharper than its radius: the part's roots
+come out rounded by w/2).
+
+The band and its proof then measure what is written and made, not the thinned outlines the mesh
+proof holds (which differ from the written arcs by up to 1.5 tolerances each; at a 73° working
+pressure angle that is up to 10 tolerances of play).  The flattening's chords lie within a
+quarter of the tolerance of the arcs, which the band's margin of two tolerances holds even
+where the contact is steep (2·(tol/4)/cos 73° ≈ 1.7·tol)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import shapely
+
+from ..geometry.arcfit import arc_points
+from ..mechanisms.parts import cut_paths
+from ..tolerances import budget
+
+__all__ = ["written_rings", "SAGITTA"]
+
+SAGITTA = 0.00025
+"""The most (mm) the flattened outline strays from the written arcs: a quarter of the default
+tolerance, and no more at a coarser one — the band reports the files' least play to within a
+micrometre at any tolerance (issue 33's independent check)."""
+
+
+def written_rings(design) -> tuple[np.ndarray, np.ndarray]:
+    """The outer outlines (mm, pivot at the origin, counter-clockwise) of a pair's two gears (the
+    first two parts) as written and cut: see the module's docstring.  ``design``: a draft (its
+    parts made here as the finishing line will make them) or a finished design (its own)."""
+    out = design.params.output
+    parts = getattr(design, "part_list", None)
+    if parts is None:
+        process = getattr(design.params, "process", None)
+        blanks = tuple(s.blank(out) for s in design.parts[:2])
+        parts = cut_paths(blanks, out, router=getattr(process, "kind", None) == "cnc")
+    sagitta = min(budget(out.tolerance).fine, SAGITTA)
+    return tuple(_made(arc_points(p.cut[0], sagitta), out.kerf / 2, sagitta) for p in parts[:2])
+
+
+def _made(path: np.ndarray, radius: float, sagitta: float) -> np.ndarray:
+    """The part a cutter of ``radius`` (mm) leaves running along ``path`` (0: the path itself)."""
+    if radius <= 0:
+        return path
+    steps = max(2, math.ceil(math.pi / 4 / math.acos(1 - sagitta / radius)))
+    part = shapely.Polygon(path).buffer(-radius, quad_segs=steps)
+    if part.geom_type != "Polygon":  # cut_paths refuses a cutter that splits a part
+        part = max(part.geoms, key=lambda g: g.area)
+    ring = shapely.geometry.polygon.orient(part, 1.0).exterior.coords
+    return np.asarray(ring)[:-1]
