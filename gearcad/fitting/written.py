@@ -23,7 +23,7 @@ from ..geometry.arcfit import arc_points
 from ..mechanisms.parts import cut_paths
 from ..tolerances import budget
 
-__all__ = ["written_rings", "SAGITTA"]
+__all__ = ["written_rings", "written_shapes", "SAGITTA"]
 
 SAGITTA = 0.00025
 """The most (mm) the flattened outline strays from the written arcs: a quarter of the default
@@ -35,23 +35,29 @@ def written_rings(design) -> tuple[np.ndarray, np.ndarray]:
     """The outer outlines (mm, pivot at the origin, counter-clockwise) of a pair's two gears (the
     first two parts) as written and cut: see the module's docstring.  ``design``: a draft (its
     parts made here as the finishing line will make them) or a finished design (its own)."""
+    return tuple(np.asarray(shape.exterior.coords)[:-1] for shape in written_shapes(design, 2))
+
+
+def written_shapes(design, count: int | None = None) -> tuple[shapely.Polygon, ...]:
+    """The first ``count`` parts (all: None) as written and cut, each a polygon with its holes (a
+    ring gear's toothed hole, a bore): see the module's docstring."""
     out = design.params.output
     parts = getattr(design, "part_list", None)
     if parts is None:
         process = getattr(design.params, "process", None)
-        blanks = tuple(s.blank(out) for s in design.parts[:2])
+        blanks = tuple(s.blank(out) for s in design.parts[:count])
         parts = cut_paths(blanks, out, router=getattr(process, "kind", None) == "cnc")
     sagitta = min(budget(out.tolerance).fine, SAGITTA)
-    return tuple(_made(arc_points(p.cut[0], sagitta), out.kerf / 2, sagitta) for p in parts[:2])
+    return tuple(_made([arc_points(r, sagitta) for r in p.cut], out.kerf / 2, sagitta) for p in parts[:count])
 
 
-def _made(path: np.ndarray, radius: float, sagitta: float) -> np.ndarray:
-    """The part a cutter of ``radius`` (mm) leaves running along ``path`` (0: the path itself)."""
-    if radius <= 0:
-        return path
-    steps = max(2, math.ceil(math.pi / 4 / math.acos(1 - sagitta / radius)))
-    part = shapely.Polygon(path).buffer(-radius, quad_segs=steps)
-    if part.geom_type != "Polygon":  # cut_paths refuses a cutter that splits a part
-        part = max(part.geoms, key=lambda g: g.area)
-    ring = shapely.geometry.polygon.orient(part, 1.0).exterior.coords
-    return np.asarray(ring)[:-1]
+def _made(paths: list[np.ndarray], radius: float, sagitta: float) -> shapely.Polygon:
+    """The part a cutter of ``radius`` (mm) leaves running along ``paths`` (its outer path, then
+    its holes'; 0: the paths themselves), its outer ring counter-clockwise."""
+    part = shapely.Polygon(paths[0], paths[1:])
+    if radius > 0:
+        steps = max(2, math.ceil(math.pi / 4 / math.acos(1 - sagitta / radius)))
+        part = part.buffer(-radius, quad_segs=steps)
+        if part.geom_type != "Polygon":  # cut_paths refuses a cutter that splits a part
+            part = max(part.geoms, key=lambda g: g.area)
+    return shapely.geometry.polygon.orient(part, 1.0)
