@@ -35,7 +35,6 @@ from .certify import PER_TOOTH
 from .fit import least_said, process_block
 from .moving import MovingMesh, moving_band
 from .play import PairGeometry
-from .written import written_shapes
 
 __all__ = ["MeshBand", "mesh_bands", "radial_room", "with_mesh_bands", "train_meshes", "roller_meshes"]
 
@@ -73,13 +72,17 @@ def _rotate(points: np.ndarray, angle: np.ndarray) -> np.ndarray:
     return np.column_stack([c * points[:, 0] - s * points[:, 1], s * points[:, 0] + c * points[:, 1]])
 
 
+def _shape(spec) -> shapely.Polygon:
+    return shapely.Polygon(spec.outer, None if spec.hole is None else [spec.hole])
+
+
 def train_meshes(draft, positions: int = 12) -> list[tuple[str, MeshGeometry, bool, ContactData]]:
     """Each mesh of a carrier train: (name, geometry in gear k's frame, internal, contact)."""
     from ..mechanisms.carrier_train import layout
 
     p = draft.params
     sides, alpha = layout(p).sides, p.pressure_angle
-    shapes = written_shapes(draft)  # what the files hold, as the cutter leaves it
+    shapes = [_shape(s) for s in draft.parts]
     out = []
     for k, (kind, (r_from, r_to)) in enumerate(zip(p.meshes, sides)):
         inside = kind == "internal"
@@ -194,7 +197,7 @@ def roller_meshes(draft, positions: int = 36) -> list[tuple[str, MeshGeometry, b
     teeth = draft.data["teeth"]
     m, z, alpha = teeth["module"], teeth["body_teeth"], p.pressure_angle
     rho = detail.roller_radius * p.scale
-    shapes = written_shapes(draft, 2)
+    shapes = (_shape(draft.parts[0]), _shape(draft.parts[1]))
     z_r = teeth["roller_teeth"]
     # a body's turn is the whole cycle where the roller is its own vertices turned by a tooth
     # (after it the roller has turned z_b/z_r turns); otherwise until the same roller tooth returns
