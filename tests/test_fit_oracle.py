@@ -31,7 +31,7 @@ from .conftest import EXAMPLES, QUICK
 
 ALL = os.environ.get("GEARCAD_ORACLE", "") == "all"
 MICRON = 1e-3
-SAMPLED = "issue 33: sampled band"
+SLACK = "issue 33: the least measured play misses a dip between positions (the slack not closed)"
 
 
 def _reported(report: dict, mesh: str) -> float:
@@ -92,10 +92,13 @@ def test_the_least_play_of_the_written_files_is_the_reported_one(built, name, ki
     )
 
 
-LASER = [  # (profile, D-flat bore: diameter, flat), as issue 33 cut them
-    pytest.param("elliptic_focus", 3.0, 1.2, marks=pytest.mark.xfail(strict=True, reason=SAMPLED)),
-    pytest.param("walker", 6.0, 2.5, marks=pytest.mark.xfail(strict=True, reason=SAMPLED)),
-    pytest.param("spur_pair", 6.0, 2.5, marks=pytest.mark.xfail(strict=True, reason=SAMPLED)),
+LASER = [  # (profile, D-flat bore: diameter, flat), as issue 33 cut them; the spur pair agrees (its
+    # band proven over one pitch, its least pinned to 0.4 µm); the noncircular two's least measured
+    # play misses a dip between positions that the certified bound lies under (focus: files 54.74 µm
+    # at 41.15°, report 67.55 µm; walker: 21.81 against 25.33 µm), the slack phase's budget too short
+    pytest.param("elliptic_focus", 3.0, 1.2, marks=pytest.mark.xfail(strict=True, reason=SLACK)),
+    pytest.param("walker", 6.0, 2.5, marks=pytest.mark.xfail(strict=True, reason=SLACK)),
+    pytest.param("spur_pair", 6.0, 2.5),
 ]
 PAIRS = {  # gear 1, gear 2, driver, grid positions over the mesh's cycle (the walker's: four pinion turns)
     "elliptic_focus": ("driver", "follower", "driver", 1440),

@@ -188,6 +188,9 @@ class MovingMeasures(Measures):
     """How :func:`~.prove.prove_play` measures a :class:`MovingMesh` and bounds it between
     positions (the module docstring)."""
 
+    tighten = 0.0
+    """(A body's rollers: hundreds of positions already; the least is not pinned down further.)"""
+
     def __init__(self):
         self._ratios: dict[float, Callable] = {}
         self._signed: dict[tuple, dict[float, float]] = {}

@@ -85,6 +85,9 @@ class Measures:
     (:class:`~.play.PairGeometry`, :data:`PAIRS`); a mesh under a general motion has its own
     (:class:`.moving.MovingMeasures`)."""
 
+    tighten: float = TIGHT_BUDGET
+    """Once proven, how many times the first positions more may pin the least down (:data:`SLACK`)."""
+
     def sites(self, g, offsets, spread: float, tol: float, reach: float) -> tuple[list[Site], np.ndarray]:
         """The signed play at ``g``'s positions and the :class:`~.tube.Site` of each."""
         return _sites(g, offsets, spread, tol, reach)
@@ -184,7 +187,7 @@ def prove_play(
             weak = bound < margin
             if not weak.any() and joined.all():  # proven: then the least pinned down, lowest first
                 loose = np.flatnonzero(bound < least - SLACK)
-                weak[loose[np.argsort(bound[loose])][:TIGHTEN]] = len(sites) < n0 + TIGHT_BUDGET * n0
+                weak[loose[np.argsort(bound[loose])][:TIGHTEN]] = len(sites) < n0 + measures.tighten * n0
             split = weak | np.roll(weak, -1) | ~joined  # the gaps either side of a weak position
         split &= gap > narrowest
         certified = float(np.min(np.where(joined, bound, -math.inf))) if least >= margin else least
