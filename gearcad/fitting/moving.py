@@ -39,6 +39,7 @@ from ..threads import side_by_side
 from .band import Band, _margin, band_of
 from .band_mesh import _WINDOW, MeshGeometry, _windows, clip, mesh_play, signed_mesh_play
 from .certify import certify
+from .pair_geometry import interval_maxima
 from .prove import BEYOND, Measures, prove_play
 from .tube import Site, nearest, outline
 
@@ -165,21 +166,11 @@ def bounds(place, cycle: float, shift: float, samples: int = SAMPLES):
         np.hypot(*bend[inner].T),
         np.hypot(*speed[inner].T),
     ]
-    steps = [float(np.max(np.abs(np.diff(a)))) for a in series]
-    tables = [a[:-1] for a in series]
+    maxima = interval_maxima(series, step)
 
     def ratio(lo, hi) -> tuple[np.ndarray, ...]:
-        lo, hi = np.atleast_1d(np.asarray(lo, dtype=float)), np.atleast_1d(np.asarray(hi, dtype=float))
-        first = np.floor(lo / step).astype(int)
-        last = np.ceil(hi / step).astype(int)
-        out = [np.empty(len(lo)) for _ in tables]
-        for i, (f, g) in enumerate(zip(first.tolist(), last.tolist())):
-            idx = np.arange(f, max(g, f) + 1) % samples
-            for o, t in zip(out, tables):
-                o[i] = t[idx].max()
-        out = [o + s for o, s in zip(out, steps)]
-        out[0] = out[0] - 1.0  # the tube takes the largest "k", |ω| = 1 + k
-        return tuple(out)
+        largest, *rest = maxima(lo, hi)
+        return (largest - 1.0, *rest)  # the tube takes the largest "k", |ω| = 1 + k
 
     return ratio
 

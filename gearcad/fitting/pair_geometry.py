@@ -13,7 +13,7 @@ from .certify import PER_TOOTH
 from .play import PairGeometry
 from .written import written_rings
 
-__all__ = ["pair_geometry", "follower_speed"]
+__all__ = ["pair_geometry", "follower_speed", "interval_maxima"]
 
 
 def pair_geometry(design: Design, positions: int | None = None, *, written: bool = False) -> PairGeometry | None:
@@ -94,10 +94,16 @@ def follower_speed(slope, cycle: float, samples: int = 8192):
     dk = np.gradient(k, grid)
     ddk = np.abs(np.gradient(dk, grid))
     dk = np.abs(dk)
-    series = (k, speed, dk, ddk, accel)
+    return interval_maxima((k, speed, dk, ddk, accel), cycle / samples)
+
+
+def interval_maxima(series, step: float):
+    """(lo, hi) -> each of ``series`` (arrays sampled every ``step`` rad over a cycle, the last
+    sample the first again) at its largest over each interval [lo, hi] (either end may pass the
+    cycle), raised by the largest step between neighbours (what falls between two samples)."""
     steps = [float(np.max(np.abs(np.diff(a)))) for a in series]
     tables = [a[:-1] for a in series]
-    step = cycle / samples
+    samples = len(tables[0])
 
     def ratio(lo, hi) -> tuple[np.ndarray, ...]:
         lo, hi = np.atleast_1d(np.asarray(lo, dtype=float)), np.atleast_1d(np.asarray(hi, dtype=float))
