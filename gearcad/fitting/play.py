@@ -21,6 +21,12 @@ from ..geometry.outline import place_each
 
 __all__ = ["PairGeometry", "measure", "play_along", "play_between", "signed_play"]
 
+JOIN_SAGITTA = 0.00025
+"""The most (mm) an offset's round join (a tip's corner grown by the process) falls short of the
+true offset, at any tolerance: at 0.01 mm the joins drawn at the tolerance took up to 10 µm off
+the laser focus pair's tips, where the contact is steep (73°), and the band read 64.4 µm where
+the files have 54.7."""
+
 _WINDOW = 3.0
 """Radius of the window about the contact, modules: contact stays within about one pitch."""
 
@@ -73,7 +79,8 @@ def _windows(ring: np.ndarray, centres: np.ndarray, radius: float, offset, tol: 
     boxed = np.where(shapely.is_valid(boxed), boxed, gear)
     pieces = shapely.intersection(boxed, discs)
     if largest:
-        steps = max(2, int(math.ceil(math.pi / 4 / math.acos(max(1 - tol / largest, -1.0)))))
+        joins = min(tol, JOIN_SAGITTA)  # a tip's rounded corner within this of the true offset
+        steps = max(2, int(math.ceil(math.pi / 4 / math.acos(max(1 - joins / largest, -1.0)))))
         pieces = shapely.buffer(pieces, offset, quad_segs=steps)
     return shapely.intersection(pieces, shapely.buffer(shapely.points(centres), radius, quad_segs=16))
 

@@ -29,7 +29,7 @@ more to say how far short it falls (the verdict is settled)."""
 SLACK = 0.0005
 """Once the margin is proven, the positions whose bound lies more than this (mm) under the least
 measured play have their intervals halved too, :data:`TIGHTEN` of the lowest bounds at a time,
-while the positions measured stay under (1 + :data:`TIGHT_BUDGET`) times the first: the least
+for up to :data:`TIGHT_BUDGET` times the first positions more than it took: the least
 play is then known to half a micrometre — between the proven lower bound and the least
 measured lies the truth — not only shown to keep the margin (issue 33: the report within 1 µm
 of the written files); the certificate's ``slack`` says how near it came."""
@@ -156,6 +156,7 @@ def prove_play(
     plays.append(signed)
     tubes: dict[int, tuple[float, float, float]] = {}  # site id -> (h, slope, Δ) last computed
     jammed = 0
+    settled = None  # how many positions were measured when the margin was first proven
     while True:
         order = sorted(range(len(sites)), key=lambda i: sites[i].phi)
         phi = np.array([sites[i].phi for i in order])
@@ -186,8 +187,9 @@ def prove_play(
         else:
             weak = bound < margin
             if not weak.any() and joined.all():  # proven: then the least pinned down, lowest first
+                settled = len(sites) if settled is None else settled
                 loose = np.flatnonzero(bound < least - SLACK)
-                weak[loose[np.argsort(bound[loose])][:TIGHTEN]] = len(sites) < n0 + measures.tighten * n0
+                weak[loose[np.argsort(bound[loose])][:TIGHTEN]] = len(sites) < settled + measures.tighten * n0
             split = weak | np.roll(weak, -1) | ~joined  # the gaps either side of a weak position
         split &= gap > narrowest
         certified = float(np.min(np.where(joined, bound, -math.inf))) if least >= margin else least

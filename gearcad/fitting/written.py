@@ -9,8 +9,10 @@ come out rounded by w/2).
 The band and its proof then measure what is written and made, not the thinned outlines the mesh
 proof holds (which differ from the written arcs by up to 1.5 tolerances each; at a 73° working
 pressure angle that is up to 10 tolerances of play).  The flattening's chords lie within a
-quarter of the tolerance of the arcs, which the band's margin of two tolerances holds even
-where the contact is steep (2·(tol/4)/cos 73° ≈ 1.7·tol)."""
+quarter of the tolerance of the arcs (either side: the points between an arc's ends stand half
+the sagitta outside it, so a steep contact's play carries no bias from inscribed chords), which
+the band's margin of two tolerances holds even where the contact is steep (2·(tol/4)/cos 73° ≈
+1.7·tol)."""
 
 from __future__ import annotations
 
@@ -48,7 +50,9 @@ def written_shapes(design, count: int | None = None) -> tuple[shapely.Polygon, .
         blanks = tuple(s.blank(out) for s in design.parts[:count])
         parts = cut_paths(blanks, out, router=getattr(process, "kind", None) == "cnc")
     sagitta = min(budget(out.tolerance).fine, SAGITTA)
-    return tuple(_made([arc_points(r, sagitta) for r in p.cut], out.kerf / 2, sagitta) for p in parts[:count])
+    return tuple(
+        _made([arc_points(r, sagitta, balanced=True) for r in p.cut], out.kerf / 2, sagitta) for p in parts[:count]
+    )
 
 
 def _made(paths: list[np.ndarray], radius: float, sagitta: float) -> shapely.Polygon:

@@ -271,8 +271,11 @@ def decimate_indices(ring: np.ndarray, tolerance: float) -> np.ndarray:
     return (_walk(pts, n, tolerance, arcs=False) + start) % n
 
 
-def arc_points(arcs: ArcRing, tolerance: float) -> np.ndarray:
-    """The ring back as points, each arc flattened to within ``tolerance``: (m, 2) open ring."""
+def arc_points(arcs: ArcRing, tolerance: float, balanced: bool = False) -> np.ndarray:
+    """The ring back as points, each arc flattened to within ``tolerance``: (m, 2) open ring.
+    ``balanced``: an arc's points between its ends stand half its chords' sagitta outside it, so
+    the chords stray either side (by at most ¾ of it) rather than all inside: no bias in a play
+    measured on them (a convex tip's inscribed chords made it smaller by up to the sagitta)."""
     v, bulges = B.segments(arcs)
     a, b = v, np.roll(v, -1, axis=0)
     sweep = B.sweep(bulges)
@@ -286,5 +289,9 @@ def arc_points(arcs: ArcRing, tolerance: float) -> np.ndarray:
     owner = np.repeat(np.arange(len(v)), steps)
     j = np.arange(len(owner)) - np.repeat(np.cumsum(steps) - steps, steps)  # 0 … steps − 1
     t = start[owner] + sweep[owner] * j / steps[owner]
-    on_arc = centre[owner] + radius[owner, None] * np.column_stack([np.cos(t), np.sin(t)])
+    reach = radius
+    if balanced:
+        with np.errstate(invalid="ignore"):
+            reach = np.where(curved, radius * (1 + (1 - np.cos(sweep / (2 * steps))) / 2), radius)
+    on_arc = centre[owner] + reach[owner, None] * np.column_stack([np.cos(t), np.sin(t)])
     return np.where((j == 0)[:, None], v[owner], on_arc)
