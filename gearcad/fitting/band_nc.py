@@ -9,7 +9,9 @@ frame, gear 2's pivot, turn and the pitch point there.
   (:mod:`gearcad.pitch.internal`); in the pinion's frame the ring's pivot is −E·u, u = (cos φ1,
   sin φ1), its turn φ1 − φ2, the pitch point r1(φ1)·u.  Both turn the same way.  A centre error
   takes play from an internal mesh with the centres *farther* apart (:mod:`.band_mesh`): the
-  ring's pivot moves along −u.  The cycle is n2/gcd(n1, n2) pinion turns.
+  ring's pivot moves along −u.  The pitch curves repeat after a pinion lobe (2π/n1: the ring
+  turns a ring lobe); where each toothed outline is its own vertices turned by its lobe that is
+  the cycle, else n2/gcd(n1, n2) pinion turns (every tooth pair met).
 * The planetary set, sun held (:mod:`gearcad.trains.nc_set`): at the sun angle θ the first planet
   is turned β(θ) about its centre C(θ), the ring φ_r(θ) about O.  Sun–planet in the sun's frame:
   the planet's pivot C, its turn β, the pitch point S(θ); its centre moved towards O takes play.
@@ -20,10 +22,12 @@ frame, gear 2's pivot, turn and the pitch point there.
   The planets float (no carrier): the process's centre tolerance is applied to each mesh alone,
   the worst a ring out of centre by it can do to one planet's either mesh.
 
-The tight case's least play is certified between driver positions as
-:func:`~.certify.certify_play` certifies a gear pair's — the same bound, constants and refining
-(:func:`certify`; ``certify_play`` measures a :class:`~.play.PairGeometry`, which places gear 2's
-pivot beyond the contact, so cannot hold a ring).
+Each mesh is gear 2 moved rigidly in gear 1's frame by one parameter (the driver angle): a
+:class:`~.moving.MovingMesh` (pivot C(φ), turn A(φ), gear 2's pitch radius at the contact changing
+along the cycle), its tight case's least play proven between positions by
+:func:`~.moving.moving_band` (``output.certificate = "theorem"``, the default; "estimate": the slope
+bound of :func:`~.certify.certify`), where each toothed outline repeats by its lobe (checked: then
+the mesh a cycle on is the mesh turned, as the proof wraps it); the slope estimate otherwise.
 """
 
 from __future__ import annotations
@@ -41,11 +45,12 @@ from ..teeth.frame import arc_frame
 from ..threads import side_by_side
 from .band import band_of
 from .band_mesh import MeshGeometry, clip, mesh_play, signed_mesh_play
-from .band_trains import MeshBand, radial_room, with_mesh_bands
+from .band_trains import MeshBand, _repeats, radial_room, with_mesh_bands
 from .certify import certify
 from .fit import smallest_fit
 from .made import made, sliver
 from .mesh_fit import closed_form, with_backlash
+from .moving import MovingMesh, moving_band
 
 __all__ = ["NcMesh", "certify", "nc_meshes", "nc_bands", "nc_fit", "nc_with_bands"]
 
@@ -60,7 +65,9 @@ play about a pitch wide, nc_internal.toml: 0.150 mm against 0.20 mm either side)
 @dataclass(frozen=True)
 class NcMesh:
     """One mesh: its name, its geometry at any driver angle, the driver angles to start from,
-    its cycle (rad), whether it is internal, and its contact along the first positions."""
+    its cycle (rad), whether it is internal, its contact along the first positions, and gear 1's
+    teeth past the contact a cycle; ``repeats``: the mesh a cycle on is this one turned (each
+    outline its own vertices turned by its lobe: the proof wraps there, :func:`moving`)."""
 
     name: str
     at: object
@@ -71,6 +78,14 @@ class NcMesh:
     contact: ContactData
     module: float
     """The teeth's module (mm; the geometry's may be larger, :func:`_window`)."""
+    passes: int
+    repeats: bool
+
+
+def moving(mesh: NcMesh) -> MovingMesh:
+    """The mesh as the proof measures it: gear 2's placement in gear 1's frame at any driver angle,
+    its pitch radius at the contact taken at its least over each interval (``arm`` None)."""
+    return MovingMesh(mesh=mesh.at(mesh.first), place=mesh.at, cycle=mesh.cycle, passes=mesh.passes, arm=None)
 
 
 def _turned(xy: np.ndarray, angle) -> np.ndarray:
@@ -150,8 +165,11 @@ def internal_meshes(draft) -> list[NcMesh]:
 
     dense = at(np.linspace(0.0, pair.cycle, 96 * max(1, round(pair.cycle / TWO_PI)), endpoint=False))
     wide = _window(curve.r, pair.ring.r, dense.centre2, dense.angle2, dense.contact, m)  # at() reads it from here on
-    turns = max(1, round(pair.cycle / TWO_PI))
-    s = np.arange(INSIDE_PER_TOOTH * z1 * turns) * frame.perimeter / (INSIDE_PER_TOOTH * z1)
+    n1, n2 = pair.lobes
+    repeats = _repeats(shapes[0].exterior, n1) and _repeats(shapes[1].interiors[0], n2)
+    cycle = TWO_PI / n1 if repeats else pair.cycle
+    passes = round(z1 * cycle / TWO_PI)
+    s = np.arange(INSIDE_PER_TOOTH * passes) * frame.perimeter / (INSIDE_PER_TOOTH * z1)
     first = frame.angle(s % frame.perimeter) + TWO_PI * np.floor(s / frame.perimeter)
     phi2 = pair.angle_map(first)
     k1 = curvature(curve, np.mod(first, TWO_PI))
@@ -160,7 +178,7 @@ def internal_meshes(draft) -> list[NcMesh]:
     mu = np.arctan2(curve.dr(np.mod(first, TWO_PI)), curve.r(np.mod(first, TWO_PI)))
     contact = ContactData(first, ratio, alpha - mu, alpha + mu)
     name = f"{draft.parts[0].name}/{draft.parts[1].name}"
-    return [NcMesh(name, at, first, pair.cycle, True, contact, m)]
+    return [NcMesh(name, at, first, cycle, True, contact, m, passes, True)]
 
 
 def planetary_meshes(draft) -> list[NcMesh]:
@@ -234,17 +252,26 @@ def planetary_meshes(draft) -> list[NcMesh]:
         ContactData(first, contact_ratio(k_far, k_ring, (m, m), alpha, m), alpha - mu2, alpha + mu2),
     )
     names = (f"{p.set.sun}/{p.set.planet}", f"{p.set.planet}/{p.set.ring}")
+    n = sun.lobes
+    repeats = [_repeats(shapes[k].exterior, n) for k in (0, 1)] + [_repeats(shapes[2].interiors[0], ps.ring_lobes)]
     return [
-        NcMesh(names[0], sun_planet, first, lobe, False, contacts[0], m),
-        NcMesh(names[1], planet_ring, first, lobe, True, contacts[1], m),
+        NcMesh(names[0], sun_planet, first, lobe, False, contacts[0], m, z // n, repeats[0] and repeats[1]),
+        NcMesh(names[1], planet_ring, first, lobe, True, contacts[1], m, z // n, repeats[1] and repeats[2]),
     ]
 
 
 def _band(mesh: NcMesh, params, *, quick: bool = False):
-    """The certified band of one mesh under the profile's process; ``quick``: the tight case
-    alone at the first positions, not certified between them (the backlash search's look)."""
+    """The certified band of one mesh under the profile's process (proven, :func:`moving`);
+    ``quick``: the tight case alone at the first positions, not certified between them (the
+    backlash search's look)."""
     process, tol = params.process, params.output.tolerance
     edge, spread = process.edge(params.output.chamfer), process.center_spread()
+    if not quick and mesh.repeats:
+        kind = params.output.certificate
+        found = moving_band(
+            moving(mesh), edge=edge, spread=spread, tol=tol, backlash=params.backlash, name=mesh.name, certificate=kind
+        )
+        return MeshBand(found, mesh.internal, mesh.contact)
     g0 = mesh.at(mesh.first)
     alpha = g0.pressure_angle
     grow = max(abs(x) for x in edge)

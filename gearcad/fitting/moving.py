@@ -78,9 +78,10 @@ class MovingMesh:
     passes: int
     """Tooth passes a cycle (gear 1's teeth past the contact): the proof starts from ``per_pass``
     positions each, evenly over the cycle."""
-    arm: float
+    arm: float | None
     """Gear 2's pitch radius at the contact (mm; a roller's, the same everywhere): the play is the
-    free turn times it."""
+    free turn times it.  None: it changes along the cycle (a noncircular mesh), the distance from
+    gear 2's pivot to the pitch point, at its least over each interval (:func:`bounds`)."""
 
     per_pass: float = PER_PASS
     """Positions a tooth pass the proof starts from."""
@@ -145,11 +146,13 @@ def local(place, tau: np.ndarray, shift: float) -> tuple[np.ndarray, ...]:
 def bounds(place, cycle: float, shift: float, samples: int = SAMPLES):
     """ratio(lo, hi) -> per interval [lo, hi] (rad; either end may pass the cycle) the largest
     |ω| − 1, |I'|, |ω'|, |ω''|, |I''| and |C'| (what :func:`~.tube.tube` takes for a general
-    motion), from ``samples`` even parameters over the cycle, each raised by the largest step
-    between neighbours."""
+    motion) and the least distance from gear 2's pivot (unshifted) to the pitch point (the arm
+    the free turn is measured with), from ``samples`` even parameters over the cycle, each raised
+    (the arm lowered) by the largest step between neighbours."""
     step = cycle / samples
     tau = np.arange(-3, samples + 4) * step  # three more each side: the differences' ends
-    centre, angle = _pose(place(tau), shift)
+    placed = place(tau)
+    centre, angle = _pose(placed, shift)
     omega = np.gradient(np.unwrap(angle), step)
     domega = np.gradient(omega, step)
     ddomega = np.gradient(domega, step)
@@ -165,12 +168,13 @@ def bounds(place, cycle: float, shift: float, samples: int = SAMPLES):
         np.abs(ddomega[inner]),
         np.hypot(*bend[inner].T),
         np.hypot(*speed[inner].T),
+        -np.hypot(*(placed.contact - placed.centre2)[inner].T),
     ]
     maxima = interval_maxima(series, step)
 
     def ratio(lo, hi) -> tuple[np.ndarray, ...]:
-        largest, *rest = maxima(lo, hi)
-        return (largest - 1.0, *rest)  # the tube takes the largest "k", |ω| = 1 + k
+        largest, *rest, arm = maxima(lo, hi)
+        return (largest - 1.0, *rest, -arm)  # the tube takes the largest "k", |ω| = 1 + k
 
     return ratio
 
@@ -234,7 +238,7 @@ class MovingMeasures(Measures):
                 continue
             s = sites[i]
             s.t0, s.cap, s.k, s.dk = float(t0[i]), float(cap[i]), float(omega[j] - 1.0), float(domega[j])
-            s.arm = g.arm
+            s.arm = g.arm if g.arm is not None else float(np.hypot(*(m.contact[i] - m.centre2[i])))
             s.pivot, s.instant, s.turning = centre[j], instant[j], turning[j]
             a, b = outline(narrow1[j], wide1[j]), outline(narrow2[j], wide2[j])
             s.a, s.b = (*a, nearest(a[0], b[3])), (*b, nearest(b[0], a[3]))
@@ -248,8 +252,8 @@ class MovingMeasures(Measures):
     def extent(self, g: MovingMesh, spread: float) -> float:
         return 0.0  # (a general motion's site carries its pivot: the tube does not take it)
 
-    def arm(self, g: MovingMesh, kmax: float) -> float:
-        return g.arm
+    def arm(self, g: MovingMesh, bounds: tuple) -> float:
+        return g.arm if g.arm is not None else bounds[6]
 
     def joined(self, parts: list[MovingMesh]) -> MovingMesh:
         fields = ("phi1", "centre2", "angle2", "contact", "tighter", "teeth")

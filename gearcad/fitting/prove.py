@@ -104,9 +104,10 @@ class Measures:
         """What :func:`~.tube.tube` takes as ``e``: gear 2's pivot's distance from gear 1's (mm)."""
         return g.center_distance + spread
 
-    def arm(self, g, kmax: float) -> float:
-        """Gear 2's least radius at the contact over an interval whose largest k is ``kmax`` (mm)."""
-        return g.center_distance / (1 + kmax)
+    def arm(self, g, bounds: tuple) -> float:
+        """Gear 2's least radius at the contact over an interval, from :meth:`ratio`'s ``bounds``
+        there (mm; a pair's: E/(1 + k) at the largest k)."""
+        return g.center_distance / (1 + bounds[0])
 
     def joined(self, parts: list):
         """The geometries measured, one after another."""
@@ -171,10 +172,11 @@ def prove_play(
         delta = np.full(len(order), -math.inf)
         for j, i in enumerate(order if least >= margin else ()):  # (a measured jam settles it: no bound)
             h, s = float(half[j]), float(slope[j])
+            row = tuple(float(t[j]) for t in table)
             if tubes.get(i, (None,))[:2] != (h, s):
-                tubes[i] = (h, s, tube(sites[i], h, e, tuple(float(t[j]) for t in table), s))
+                tubes[i] = (h, s, tube(sites[i], h, e, row, s))
             delta[j] = tubes[i][2]
-            arm = min(sites[i].arm, measures.arm(g, float(table[0][j])))
+            arm = min(sites[i].arm, measures.arm(g, row))
             bound[j] = 2 * delta[j] * arm if delta[j] >= 0 else -math.inf
         # neighbours' free turns meet half way between them (each sheared box's middle there)
         ahead = t0 + slope * gap / 2
@@ -214,7 +216,7 @@ def prove_play(
         if least >= margin:
             for j in np.flatnonzero(bound < margin):
                 i, h = order[j], float(half[j])
-                arm = measures.arm(g, float(table[0][j]))
+                arm = measures.arm(g, tuple(float(t[j]) for t in table))
                 for _ in range(6):
                     h /= 2
                     near = tuple(float(t[0]) for t in ratio(np.array([phi[j] - h]), np.array([phi[j] + h])))
