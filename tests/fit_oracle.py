@@ -741,3 +741,28 @@ def process_offsets(report: dict, internal: bool = False) -> tuple[float, float,
 
 def report(folder: Path) -> dict:
     return json.loads((folder / "report.json").read_text(encoding="utf-8"))
+
+
+def turns_free(fixed, pieces: np.ndarray, place, limit: float, steps: int = 13) -> tuple[np.ndarray, np.ndarray]:
+    """How far each of ``pieces`` (polygons in their own coordinates, one a position, free of
+    ``fixed`` at turn 0) turns each way before it meets ``fixed`` (rad, counter-clockwise and
+    clockwise, to ``limit``/2**``steps``): ``place(which, xy, turn)`` puts the points ``xy`` of
+    the pieces ``which`` at their positions, turned ``turn`` more.  Bisection on whether the
+    placed piece meets the prepared ``fixed`` (shapely, exact on the polygons); ``limit`` must turn
+    no point farther than a tooth is thick (then the first touch is the only one before it)."""
+    shapely.prepare(fixed)
+    coords, which = shapely.get_coordinates(pieces, return_index=True)
+
+    def meets(turn: np.ndarray) -> np.ndarray:
+        return shapely.intersects(fixed, shapely.set_coordinates(pieces.copy(), place(which, coords, turn[which])))
+
+    out = []
+    for sense in (1.0, -1.0):
+        lo, hi = np.zeros(len(pieces)), np.full(len(pieces), limit)
+        assert meets(sense * hi).all() and not meets(lo).any()
+        for _ in range(steps):
+            mid = 0.5 * (lo + hi)
+            hit = meets(sense * mid)
+            lo, hi = np.where(hit, lo, mid), np.where(hit, mid, hi)
+        out.append(lo)
+    return out[0], out[1]

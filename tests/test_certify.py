@@ -115,9 +115,9 @@ def test_the_band_takes_the_certificate_output_certificate_names():
 
 def test_the_assembly_says_its_depth_is_proven_only_where_every_band_is(built):
     """report.json's ``assembly.depth_proven``: true where every mesh's band is proven to fit
-    (the example gear pairs, the trains whose meshes repeat by a tooth), false where any band is
-    sampled or estimated (a noncircular planetary set's meshes use the estimate); and the check's
-    assembly line says so only then."""
+    (the example gear pairs, the trains whose meshes repeat by a tooth, the noncircular internal
+    pair and planetary sets), false where any band is sampled or estimated, or there is none (the
+    rolling wheel); and the check's assembly line says so only then."""
     import json
 
     from tests.conftest import EXAMPLES

@@ -144,3 +144,43 @@ def test_bad_counts_are_refused_in_one_line():
         ProfileError, match=r"teeth.count = 31: the ring's 31·3/2 teeth must be whole: give a multiple of 2"
     ):
         _params({"curve": "oval", "a": 20.0, "b": 16.0}, 3, 31)
+
+
+def test_the_example_pairs_least_play_is_proven_under_an_independent_sweep(built):
+    """report.json's band of the example pair (no process: the parts as drawn) is proven by the
+    theorem, and its certified least play lies under the least play an independent sweep measures
+    at 120 even pinion angles over the cycle (a pinion lobe, the ring then a lobe on: both
+    outlines repeat by their lobes; 2.7 times the positions the proof starts from): the pinion turned
+    −φ about O, the ring −φ2(φ) about (−E, 0) by the angle map, the ring turned each way about its
+    pivot by bisection on whether it meets the pinion (shapely; in the ring's frame the pinion
+    turned back, cut only within the ring's least radius, where it cannot touch), times the ring's
+    pitch radius r1 + E at the contact.  At the band's tightest place the sweep's measure is the
+    band's own least to 1 µm; the bound keeps the margin (the parts may bite 4·tol/cos α)."""
+    import json
+
+    import shapely
+
+    from .conftest import drafted
+    from .fit_oracle import _turn, turns_free
+
+    (band,) = json.loads((built / "nc_internal" / "report.json").read_text())["bands"]
+    draft = drafted("nc_internal", nc_internal.design)[1]
+    pair = draft.detail
+    e = pair.center_distance
+    pinion, ring = (shapely.Polygon(p.outer, None if p.hole is None else [p.hole]) for p in draft.parts)
+    assert band["mesh"] == "pinion/ring" and pair.lobes == (2, 3)
+
+    def sweep(phi):
+        phi2 = pair.angle_map(phi)
+        pivot = _turn(np.column_stack([e + 0 * phi, 0 * phi]), phi2)  # the pinion's pivot in the ring's frame
+        inside = shapely.buffer(shapely.points(_turn(-pivot, phi - phi2)), np.hypot(*ring.interiors[0].xy).min() - 0.01)
+        pieces = shapely.difference(pinion, inside)
+        up, down = turns_free(ring, pieces, lambda k, xy, t: _turn(_turn(xy, phi2[k] - phi[k]) + pivot[k], t), 0.01)
+        return (up + down) * (pair.pinion.r(np.mod(phi, 2 * math.pi)) + e)
+
+    plays = sweep(np.arange(120) * math.pi / 120)
+    assert band["certificate"] == "theorem" and band["proven"] and band["verdict"] == "fits"
+    assert -4 * 0.01 / math.cos(math.radians(20)) <= band["certified_min"] <= float(plays.min()) + 1e-6
+    assert band["certified_min"] <= band["min"] and sweep(np.array([band["worst_phi"]]))[0] == pytest.approx(
+        band["min"], abs=1e-3
+    )
