@@ -20,10 +20,10 @@ frame, gear 2's pivot, turn and the pitch point there.
   and every planet is the first turned by 2π/N: the cycle is one sun lobe, the first planet's
   meshes are all.  The planets float (no carrier): the process's centre tolerance is applied to
   each mesh alone, the worst a ring out of centre by it can do to one planet's either mesh — gear
-  2 moved along the pitch curves' common normal at the contact, into the mesh (a shift s by v
-  takes 2·tan α·(v·N) from the play: most along N; a shift across N only turns gear 2, and, along
-  the line of centres, moved its free turn off the rolling angle: nc_square under a laser,
-  the ring's measured from a flank at 0.34 rad, "jammed" where 0.036 mm was free).
+  2 moved along the pitch curves' common normal at the contact, into the mesh (a shift v takes
+  2·tan α·(v·N) from the play to first order: most along N; across N it only turns gear 2, and
+  along the line of centres it moved the free turn off the rolling angle: nc_square under a
+  laser, the ring measured from a flank at 0.34 rad, "jammed" where 0.036 mm was free).
 
 Each mesh is gear 2 moved rigidly in gear 1's frame by one parameter (the driver angle): a
 :class:`~.moving.MovingMesh` (pivot C(φ), turn A(φ), gear 2's pitch radius at the contact changing
@@ -59,7 +59,8 @@ __all__ = ["NcMesh", "certify", "nc_meshes", "nc_bands", "nc_fit", "nc_with_band
 
 TWO_PI = 2 * math.pi
 INSIDE_PER_TOOTH = 4
-"""Positions a driver tooth an internal mesh's certificate starts from: the tooth pair that
+"""Positions a driver tooth the slope estimate and the fit search's quick look start from (the
+proof starts from :class:`~.moving.MovingMesh`'s own): the tooth pair that
 closes the play may stand far from the pitch point for part of a tooth's passage (a dip of the
 play about a pitch wide, nc_internal.toml: 0.150 mm against 0.20 mm either side); two a tooth
 (:data:`~.certify.PER_TOOTH`) can straddle it, unseen by the slopes either side."""
