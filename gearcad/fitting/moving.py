@@ -65,6 +65,11 @@ ROUNDING = 1e-6
 a radian at steps δ errs by (νδ)²/6 of it, far under the largest step between neighbours (νδ)
 wherever the series changes; this covers one that does not (a pivot on a circle: |C'| = E is
 2.4e-8 under at 8192 steps a half turn)."""
+NEAREST = 0.3
+"""Modules within which each window vertex's distance to the mate's edges is measured (beyond, the
+bound takes that as its distance: a lower bound, which only picks the vertices it looks at; the
+noncircular sets' planet–ring windows hold a whole planet, and the full search took a third of
+their proof's CPU)."""
 STENCIL = 1e-3
 """The step (rad) of the five-point stencils that give the motion's derivatives at a position."""
 
@@ -247,7 +252,8 @@ class MovingMeasures(Measures):
             s.arm = g.arm if g.arm is not None else float(np.hypot(*(m.contact[i] - m.centre2[i])))
             s.pivot, s.instant, s.turning = centre[j], instant[j], turning[j]
             a, b = outline(narrow1[j], wide1[j]), outline(narrow2[j], wide2[j])
-            s.a, s.b = (*a, nearest(a[0], b[3])), (*b, nearest(b[0], a[3]))
+            near = NEAREST * m.module  # (farther from the mate than that, a vertex takes that as its distance)
+            s.a, s.b = (*a, nearest(a[0], b[3], near)), (*b, nearest(b[0], a[3], near))
         return sites, signed
 
     def ratio(self, g: MovingMesh, spread: float):

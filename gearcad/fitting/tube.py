@@ -64,11 +64,13 @@ def outline(narrow, wide) -> tuple:
     return shapely.get_coordinates(narrow), p, q, shapely.STRtree(shapely.linestrings(np.stack([p, q], 1)))
 
 
-def nearest(xy: np.ndarray, edges: shapely.STRtree) -> np.ndarray:
+def nearest(xy: np.ndarray, edges: shapely.STRtree, within: float | None = None) -> np.ndarray:
     """Each point's distance to the nearest of the segments in the R-tree ``edges`` (the
-    distance to the polygon they bound, for points outside it)."""
-    which, dist = edges.query_nearest(shapely.points(xy), return_distance=True, all_matches=False)
-    out = np.empty(len(xy))
+    distance to the polygon they bound, for points outside it); ``within``: only that near, a
+    point with none so near given ``within`` (a lower bound: all :func:`tube` asks of it)."""
+    kw = {} if within is None else {"max_distance": within}
+    which, dist = edges.query_nearest(shapely.points(xy), return_distance=True, all_matches=False, **kw)
+    out = np.full(len(xy), np.inf if within is None else within)
     out[which[0]] = dist
     return out
 
