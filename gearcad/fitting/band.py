@@ -106,22 +106,23 @@ def pair_band(
     reach = backlash + 4 * max(abs(e) for e in edge) / math.cos(alpha) + 2 * spread * math.tan(alpha) + 0.5 * g.module
     margin = _margin(edge, spread, tol, alpha)
     certify = g.at is not None and g.ratio is not None
+    grown = [(e - g.cut, e - g.cut) for e in edge]  # the rings grown so (cut paths: less the cutter)
     bounded = prove_play if certificate == "theorem" else certify_play
     if edge[0] == edge[1] == edge[2] and not spread:  # no stack (no process): one case, not three alike
         if certify:
-            found = bounded(g, (edge[0], edge[0]), 0.0, tol, reach=reach, margin=margin)
+            found = bounded(g, grown[0], 0.0, tol, reach=reach, margin=margin)
             return _band_certified(name, found, None, None, edge=edge, spread=spread, tol=tol, alpha=alpha)
-        nominal = tight = wide = signed_play(g, (edge[0], edge[0]), 0.0, tol, reach=reach)
+        nominal = tight = wide = signed_play(g, grown[0], 0.0, tol, reach=reach)
     else:
         with side_by_side() as pool:  # GEOS releases the GIL: the cases side by side
             if certify:
-                tight_job = pool.submit(bounded, g, (edge[2], edge[2]), closer, tol, reach=reach, margin=margin)
+                tight_job = pool.submit(bounded, g, grown[2], closer, tol, reach=reach, margin=margin)
             else:
-                tight_job = pool.submit(signed_play, g, (edge[2], edge[2]), closer, tol, reach=reach)
+                tight_job = pool.submit(signed_play, g, grown[2], closer, tol, reach=reach)
             jobs = [
-                pool.submit(play_between, g, (edge[0], edge[0]), 0.0, tol, reach=reach),
+                pool.submit(play_between, g, grown[0], 0.0, tol, reach=reach),
                 tight_job,
-                pool.submit(play_between, g, (edge[1], edge[1]), -closer, tol, reach=reach),
+                pool.submit(play_between, g, grown[1], -closer, tol, reach=reach),
             ]
             (nominal, _), tight, (wide, _) = (job.result() for job in jobs)
         if certify:
