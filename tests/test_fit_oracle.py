@@ -9,11 +9,11 @@ defaults are built here at a coarse tolerance (the check compares the report wit
 the same build, at any tolerance); they cost a build each, so they run with
 ``GEARCAD_ORACLE=all`` only.
 
-The report's least play is the band's least measured play (``bands[].min``) on the outlines as
-written and cut (``fitting/written.py``), pinned down until the proven lower bound beside it
-(``certified_min``, what the verdict rests on) is within half a micrometre where the budget
-allows.  Cases still marked ``xfail(strict=True)`` are those not yet confirmed within 1 µm (the
-truth measured by a dense sweep: 1440–3840 driver angles and golden sections to 1e-7 rad).
+The report's least play is the band's least measured play (``bands[].min``) on the paths as
+written, less the cutter (``fitting/written.py``), followed down from its lowest minima between
+positions by golden sections (``prove.pinned``); the proven lower bound beside it
+(``certified_min``) is what the verdict rests on.  The truth here: a dense sweep of 720–3840
+driver angles and golden sections to 1e-7 rad.
 """
 
 from __future__ import annotations
@@ -31,7 +31,6 @@ from .conftest import EXAMPLES, QUICK
 
 ALL = os.environ.get("GEARCAD_ORACLE", "") == "all"
 MICRON = 1e-3
-SLACK = "issue 33: the report 3–4 µm above the files at a steep contact (the certified bound below)"
 
 
 def _reported(report: dict, mesh: str) -> float:
@@ -92,14 +91,9 @@ def test_the_least_play_of_the_written_files_is_the_reported_one(built, name, ki
     )
 
 
-LASER = [  # (profile, D-flat bore: diameter, flat), as issue 33 cut them; the spur pair agrees (its
-    # band proven over one pitch, its least pinned to 0.4 µm); the noncircular two's report is 3–4 µm
-    # above their files (focus: files 54.32 µm at 36.96°, report 58.02 µm, proven 47.4; walker:
-    # 20.73 against 23.74 µm), the certified bound under both: the band's made outlines (the cut
-    # path closed by the nominal kerf, then grown) and the files' (the path inset by the narrowest
-    # kerf) still differ at these steep contacts
-    pytest.param("elliptic_focus", 3.0, 1.2, marks=pytest.mark.xfail(strict=True, reason=SLACK)),
-    pytest.param("walker", 6.0, 2.5, marks=pytest.mark.xfail(strict=True, reason=SLACK)),
+LASER = [  # (profile, D-flat bore: diameter, flat), as issue 33 cut them
+    pytest.param("elliptic_focus", 3.0, 1.2),
+    pytest.param("walker", 6.0, 2.5),
     pytest.param("spur_pair", 6.0, 2.5),
 ]
 PAIRS = {  # gear 1, gear 2, driver, grid positions over the mesh's cycle (the walker's: four pinion turns)

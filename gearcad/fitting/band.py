@@ -15,14 +15,15 @@ Only a window of each gear around the contact (three modules) is offset and inte
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from collections.abc import Callable
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
 from ..threads import side_by_side
 from .certify import Certificate, certify_play
 from .play import PairGeometry, play_between, signed_play
-from .prove import prove_play
+from .prove import pinned, prove_play
 
 __all__ = ["Band", "band_of", "pair_band"]
 
@@ -50,6 +51,14 @@ class Band:
     """Gear 1's turn at the least play (rad) where the driver is gear 2 (``worst_phi`` is the driver's)."""
     mate_phi: float | None = None
     """Gear 2's turn at the least play (rad), as the band measured it."""
+    pin: Callable[[], Band] | None = field(default=None, compare=False, repr=False)
+    """The same band with its least measured play followed down from the lowest minima between
+    positions (:func:`~.prove.pinned`): what a search for the backlash skips, and the design it
+    chooses reports (:meth:`pinned`)."""
+
+    def pinned(self) -> Band:
+        """This band with its least pinned down (:attr:`pin`), else itself."""
+        return self if self.pin is None else self.pin()
 
     @property
     def least(self) -> float:
@@ -106,29 +115,60 @@ def pair_band(
     reach = backlash + 4 * max(abs(e) for e in edge) / math.cos(alpha) + 2 * spread * math.tan(alpha) + 0.5 * g.module
     margin = _margin(edge, spread, tol, alpha)
     certify = g.at is not None and g.ratio is not None
+    grown = [(e - g.cut, e - g.cut) for e in edge]  # the rings grown so (cut paths: less the cutter)
     bounded = prove_play if certificate == "theorem" else certify_play
     if edge[0] == edge[1] == edge[2] and not spread:  # no stack (no process): one case, not three alike
         if certify:
-            found = bounded(g, (edge[0], edge[0]), 0.0, tol, reach=reach, margin=margin)
-            return _band_certified(name, found, None, None, edge=edge, spread=spread, tol=tol, alpha=alpha)
-        nominal = tight = wide = signed_play(g, (edge[0], edge[0]), 0.0, tol, reach=reach)
+            found = bounded(g, grown[0], 0.0, tol, reach=reach, margin=margin)
+            band = _band_certified(name, found, None, None, edge=edge, spread=spread, tol=tol, alpha=alpha)
+            return _pinnable(band, found, grown[0], 0.0, tol, reach)
+        nominal = tight = wide = signed_play(g, grown[0], 0.0, tol, reach=reach)
     else:
         with side_by_side() as pool:  # GEOS releases the GIL: the cases side by side
             if certify:
-                tight_job = pool.submit(bounded, g, (edge[2], edge[2]), closer, tol, reach=reach, margin=margin)
+                tight_job = pool.submit(bounded, g, grown[2], closer, tol, reach=reach, margin=margin)
             else:
-                tight_job = pool.submit(signed_play, g, (edge[2], edge[2]), closer, tol, reach=reach)
+                tight_job = pool.submit(signed_play, g, grown[2], closer, tol, reach=reach)
             jobs = [
-                pool.submit(play_between, g, (edge[0], edge[0]), 0.0, tol, reach=reach),
+                pool.submit(play_between, g, grown[0], 0.0, tol, reach=reach),
                 tight_job,
-                pool.submit(play_between, g, (edge[1], edge[1]), -closer, tol, reach=reach),
+                pool.submit(play_between, g, grown[1], -closer, tol, reach=reach),
             ]
             (nominal, _), tight, (wide, _) = (job.result() for job in jobs)
         if certify:
-            return _band_certified(name, tight, nominal, wide, edge=edge, spread=spread, tol=tol, alpha=alpha)
+            band = _band_certified(name, tight, nominal, wide, edge=edge, spread=spread, tol=tol, alpha=alpha)
+            return _pinnable(band, tight, grown[2], closer, tol, reach)
     return band_of(
         name, (nominal, tight, wide), g.teeth, g.phi1, edge=edge, spread=spread, tol=tol, alpha=alpha, phi2=g.phi2
     )
+
+
+def _pinnable(band: Band, found, offsets, spread: float, tol: float, reach: float) -> Band:
+    """``band`` with its :attr:`~Band.pin`: where its tight case is proven to keep the margin,
+    the golden sections of :func:`~.prove.pinned` about its lowest minima, the least, where it
+    falls, and the positions and slack of the certificate taken from them where lower."""
+    g, tight, cert = found
+    if cert is None or cert.kind != "theorem" or not cert.proven or band.band[0] < band.margin:
+        return band
+
+    def pin() -> Band:
+        sub, play = pinned(g, tight, offsets, spread, tol, reach)
+        cert2 = replace(cert, positions=cert.positions + len(play))
+        k = int(np.argmin(play)) if len(play) else -1
+        if k < 0 or play[k] >= band.band[0]:
+            return replace(band, certificate=cert2, pin=None)
+        low = float(play[k])
+        return replace(
+            band,
+            band=(low, band.band[1]),
+            worst_tooth=int(sub.teeth[k]),
+            worst_phi=float(sub.phi1[k] % g.cycle),
+            mate_phi=float(sub.phi2[k]),
+            certificate=replace(cert2, slack=low - cert.lower),
+            pin=None,
+        )
+
+    return replace(band, pin=pin)
 
 
 def _margin(edge, spread: float, tol: float, alpha: float) -> float:

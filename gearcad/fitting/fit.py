@@ -253,12 +253,16 @@ def pair_bands(design: Design) -> tuple[Band, ...]:
         name=names,
         certificate=params.output.certificate,
     )
-    return (_as_driver(band, design),)
+    return (_as_driver(band, design, pin=True),)
 
 
-def _as_driver(band: Band, design: Design) -> Band:
+def _as_driver(band: Band, design: Design, *, pin: bool = False) -> Band:
     """The band with its worst place given on the driver (``pair.driver``): where that is gear 2,
-    its turn φ2 and its tooth at the contact (gear 1's turn kept as ``gear1_phi``)."""
+    its turn φ2 and its tooth at the contact (gear 1's turn kept as ``gear1_phi``).  ``pin``: its
+    :meth:`~.band.Band.pinned` given so too."""
+    if pin and band.pin is not None:
+        raw = band
+        band = replace(band, pin=lambda: _as_driver(raw.pinned(), design))
     if getattr(design.params, "driver", 1) != 2 or band.mate_phi is None:
         return band
     teeth = design.detail.teeth

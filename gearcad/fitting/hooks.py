@@ -16,6 +16,8 @@ def gear_pair_fit(params, design_of):
     from . import design
 
     draft, bands = fit.chosen(params, design_of)
+    if not _TRYING:  # the design chosen: its least pinned down (a remedy's verdict needs it not)
+        bands = tuple(b.pinned() for b in bands)
     cures = None
     if bands and not bands[0].fits and params.process.kind != "none" and not _TRYING:
         module = draft.detail.teeth.plan.module

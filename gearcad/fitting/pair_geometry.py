@@ -11,7 +11,7 @@ from ..mechanisms.base import Design
 from ..mechanisms.registry import MECHANISMS
 from .certify import PER_TOOTH
 from .play import PairGeometry
-from .written import written_rings
+from .written import written_paths
 
 __all__ = ["pair_geometry", "follower_speed", "interval_maxima"]
 
@@ -20,8 +20,8 @@ def pair_geometry(design: Design, positions: int | None = None, *, written: bool
     """A toothed gear pair's geometry as the band measures it, at ``positions`` driver angles over
     one cycle (default: one per driver tooth, 12 to 48), and at any others the certificate asks
     for; ``None`` for any other design.  ``written``: the outlines as the files write them and
-    the cutter leaves them (:func:`~.written.written_rings`, what the band measures), else the
-    thinned outlines the mesh proof holds."""
+    a cutter runs them (:func:`~.written.written_paths`, what the band measures: the rings the
+    paths, ``cut`` the cutter's radius), else the thinned outlines the mesh proof holds."""
     detail = design.detail
     teeth = getattr(detail, "teeth", None)
     if MECHANISMS[design.mechanism].play != "pair" or teeth is None:
@@ -29,7 +29,7 @@ def pair_geometry(design: Design, positions: int | None = None, *, written: bool
     pair = detail.pitch.pair
     positions = positions or min(48, max(12, teeth.plan.teeth[0]))
     first = teeth.gears[0]
-    rings = written_rings(design) if written else tuple(g.outline.outer for g in teeth.gears)
+    rings, cut = written_paths(design) if written else (tuple(g.outline.outer for g in teeth.gears), 0.0)
     alpha = design.params.teeth.pressure_angle
     cycle = _one_pitch(pair, rings, teeth.plan.teeth) or pair.cycle
     ratio = follower_speed(pair.angle_map.slope, cycle)
@@ -50,6 +50,7 @@ def pair_geometry(design: Design, positions: int | None = None, *, written: bool
             slope=pair.angle_map.slope,
             cycle=cycle,
             first=start,
+            cut=cut,
         )
 
     if cycle < pair.cycle:  # one pitch is the whole cycle: 12 positions on it, to start from too

@@ -59,6 +59,9 @@ class PairGeometry:
     first: np.ndarray | None = field(default=None, compare=False, repr=False)
     """The driver angles the certificate starts from (rad): even steps along the driver's pitch
     curve, :data:`~.certify.PER_TOOTH` a tooth (None: ``phi1``)."""
+    cut: float = 0.0
+    """Where ``rings`` are cut paths: the cutter's radius (mm), by which the made parts lie inside
+    them (:func:`~.written.written_paths`); an edge offset e is the rings grown by e − ``cut``."""
 
     def subset(self, keep) -> PairGeometry:
         """The same pair at the positions ``keep`` (indices or a mask) only."""

@@ -25,12 +25,43 @@ from ..geometry.arcfit import arc_points
 from ..mechanisms.parts import cut_paths
 from ..tolerances import budget
 
-__all__ = ["written_rings", "written_shapes", "SAGITTA"]
+__all__ = ["written_paths", "written_rings", "written_shapes", "SAGITTA"]
 
 SAGITTA = 0.00025
 """The most (mm) the flattened outline strays from the written arcs: a quarter of the default
 tolerance, and no more at a coarser one — the band reports the files' least play to within a
 micrometre at any tolerance (issue 33's independent check)."""
+
+
+def written_paths(design, count: int = 2) -> tuple[tuple[np.ndarray, ...], float]:
+    """The outer paths (mm, pivot at the origin, counter-clockwise) the files write for the first
+    ``count`` parts, flattened as the module's docstring says, and the radius (mm) of the cutter
+    that runs along them (0: none): the part made is the path's region shrunk by it.
+
+    The band measures these: a cutter of width w ± v leaves the path's region shrunk by (w ± v)/2
+    in one step (a Minkowski difference), which rounds the roots by that radius and leaves the
+    tips' corners as the path has them.  The part cut to the nominal width and then grown by v/2
+    rounds the tips' corners by v/2 as well: up to 18 µm more play than the files at the laser
+    focus pair's steep contact (issue 33's independent check)."""
+    out = design.params.output
+    sagitta = min(budget(out.tolerance).fine, SAGITTA)
+    paths = tuple(_oriented(arc_points(p.cut[0], sagitta, balanced=True)) for p in _parts(design, count))
+    return paths, out.kerf / 2
+
+
+def _oriented(xy: np.ndarray) -> np.ndarray:
+    ring = shapely.geometry.polygon.orient(shapely.Polygon(xy), 1.0).exterior
+    return np.asarray(ring.coords)[:-1]
+
+
+def _parts(design, count: int | None):
+    """The first ``count`` parts as the finishing line makes them (a finished design's own)."""
+    parts = getattr(design, "part_list", None)
+    if parts is None:
+        process = getattr(design.params, "process", None)
+        blanks = tuple(s.blank(design.params.output) for s in design.parts[:count])
+        parts = cut_paths(blanks, design.params.output, router=getattr(process, "kind", None) == "cnc")
+    return parts[:count]
 
 
 def written_rings(design) -> tuple[np.ndarray, np.ndarray]:
@@ -44,14 +75,10 @@ def written_shapes(design, count: int | None = None) -> tuple[shapely.Polygon, .
     """The first ``count`` parts (all: None) as written and cut, each a polygon with its holes (a
     ring gear's toothed hole, a bore): see the module's docstring."""
     out = design.params.output
-    parts = getattr(design, "part_list", None)
-    if parts is None:
-        process = getattr(design.params, "process", None)
-        blanks = tuple(s.blank(out) for s in design.parts[:count])
-        parts = cut_paths(blanks, out, router=getattr(process, "kind", None) == "cnc")
     sagitta = min(budget(out.tolerance).fine, SAGITTA)
     return tuple(
-        _made([arc_points(r, sagitta, balanced=True) for r in p.cut], out.kerf / 2, sagitta) for p in parts[:count]
+        _made([arc_points(r, sagitta, balanced=True) for r in p.cut], out.kerf / 2, sagitta)
+        for p in _parts(design, count)
     )
 
 
