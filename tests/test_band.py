@@ -9,6 +9,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+import shapely
 
 import gearcad
 from gearcad.fitting.fit import pair_bands
@@ -160,3 +161,30 @@ def test_a_spur_pair_is_proven_over_one_pitch_and_no_tooth_is_tighter(spur):
     grown = edge[2] - g.cut  # the written cut paths less the cutter's radius: the parts as made
     play, _ = play_between(g.at(phi), (grown, grown), -0.1, spur.params.output.tolerance, reach=2.0)
     assert b.least <= float(np.nanmin(play)) + 1e-9
+
+
+def test_a_cut_part_is_its_written_path_shrunk_by_the_beam_in_one_step(spur):
+    """The band makes a laser-cut gear as the beam does (issue 33: a tip's corner rounded by
+    the kerf's variation read 72 µm of play where the files have 54): its rings are the written
+    cut paths and ``cut`` half the kerf, and a case's edge e grows them by e − kerf/2 at once.
+    On a square path with sharp corners (closed form), the narrowest beam (0.2 − 0.05 mm) leaves
+    the corner sharp at 0.075 mm in from each side; cutting to the nominal kerf and then growing
+    by 0.025 would round it, (√2 − 1)·0.025 mm short of that corner."""
+    from gearcad.fitting.pair_geometry import pair_geometry
+    from gearcad.fitting.play import _windows
+    from gearcad.fitting.written import SAGITTA
+
+    g = pair_geometry(spur, written=True)
+    assert g.cut == pytest.approx(spur.params.output.kerf / 2, abs=1e-15) and g.cut > 0
+    path = shapely.Polygon(spur.part("pinion").cut[0].vertices)  # the arcs' ends: on the written path
+    ring = shapely.Polygon(g.rings[0])
+    assert ring.area == pytest.approx(path.area, rel=1e-3)  # the path, not the part inside it
+    ends = shapely.points(spur.part("pinion").cut[0].vertices)
+    assert float(np.max(shapely.distance(ends, ring.exterior))) <= SAGITTA + 1e-9
+
+    square = np.array([[-5.0, -5.0], [5.0, -5.0], [5.0, 5.0], [-5.0, 5.0]])
+    (made,) = _windows(square, np.array([[5.0, 5.0]]), 1.0, 0.025 - 0.1, 1e-3)
+    corner = shapely.Point(5 - 0.075, 5 - 0.075)
+    assert made.distance(corner) <= 1e-12 and made.buffer(1e-9).contains(corner)
+    rounded = shapely.Polygon(square).buffer(-0.1).buffer(0.025, quad_segs=256)
+    assert rounded.distance(corner) == pytest.approx((math.sqrt(2) - 1) * 0.025, rel=1e-3)
