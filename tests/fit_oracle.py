@@ -616,15 +616,19 @@ class Sweep:
         from scipy.spatial import cKDTree
 
         _, _, _, _, tree, half = self.gears[gear]
-        limit = float(np.max(grow)) + half if len(grow) else 0.0
-        pairs = cKDTree(points).sparse_distance_matrix(tree, limit, output_type="ndarray")
-        i, j = pairs["i"].astype(np.int64), pairs["j"].astype(np.int64)
-        keep = pairs["v"] <= grow[i] + half
-        return i[keep], j[keep]
+        out_i, out_j = [np.zeros(0, np.int64)], [np.zeros(0, np.int64)]
+        for g in np.unique(grow):  # each reach alone (a few powers of 4): memory as the pairs need
+            rows = np.flatnonzero(grow == g)
+            pairs = cKDTree(points[rows]).sparse_distance_matrix(tree, float(g) + half, output_type="ndarray")
+            out_i.append(rows[pairs["i"].astype(np.int64)])
+            out_j.append(pairs["j"].astype(np.int64))
+        return np.concatenate(out_i), np.concatenate(out_j)
 
-    def plays(self, phis: np.ndarray) -> np.ndarray:
-        made = self.made
+    def plays(self, phis: np.ndarray, chunk: int = 96) -> np.ndarray:
         phis = np.atleast_1d(np.asarray(phis, dtype=float))
+        if len(phis) > chunk:  # a few positions at a time: a wide free turn pairs many edges
+            return np.concatenate([self.plays(phis[k : k + chunk], chunk) for k in range(0, len(phis), chunk)])
+        made = self.made
         n = len(phis)
         out = np.full(n, np.nan)
         extra = np.zeros(n)
