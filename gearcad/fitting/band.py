@@ -103,13 +103,16 @@ def pair_band(
     name: str = "pair",
     internal: bool = False,
     certificate: str = "estimate",
+    pin: bool = False,
 ) -> Band:
     """The band of one pair under an edge offset (nominal, smallest, largest; mm) and ±``spread``
     of centre distance (closer centres take play from an external mesh, farther from an internal
     one); ``tol`` the outline tolerance (the worst case must keep twice it free), ``backlash``
     the designed play (bounds the search with the stack), ``certificate`` how the tight case's
     least play is bounded between positions (``output.certificate``: "estimate", the slopes'
-    :func:`~.certify.certify_play`, or "theorem", :func:`~.prove.prove_play`)."""
+    :func:`~.certify.certify_play`, or "theorem", :func:`~.prove.prove_play`), ``pin``: the band
+    keeps how to pin its least down (:attr:`Band.pin`; a closure, so the band no longer pickles
+    until :meth:`Band.pinned` is called)."""
     closer = spread if internal else -spread
     alpha = g.pressure_angle
     reach = backlash + 4 * max(abs(e) for e in edge) / math.cos(alpha) + 2 * spread * math.tan(alpha) + 0.5 * g.module
@@ -121,7 +124,7 @@ def pair_band(
         if certify:
             found = bounded(g, grown[0], 0.0, tol, reach=reach, margin=margin)
             band = _band_certified(name, found, None, None, edge=edge, spread=spread, tol=tol, alpha=alpha)
-            return _pinnable(band, found, grown[0], 0.0, tol, reach)
+            return _pinnable(band, found, grown[0], 0.0, tol, reach) if pin else band
         nominal = tight = wide = signed_play(g, grown[0], 0.0, tol, reach=reach)
     else:
         with side_by_side() as pool:  # GEOS releases the GIL: the cases side by side
@@ -137,7 +140,7 @@ def pair_band(
             (nominal, _), tight, (wide, _) = (job.result() for job in jobs)
         if certify:
             band = _band_certified(name, tight, nominal, wide, edge=edge, spread=spread, tol=tol, alpha=alpha)
-            return _pinnable(band, tight, grown[2], closer, tol, reach)
+            return _pinnable(band, tight, grown[2], closer, tol, reach) if pin else band
     return band_of(
         name, (nominal, tight, wide), g.teeth, g.phi1, edge=edge, spread=spread, tol=tol, alpha=alpha, phi2=g.phi2
     )

@@ -252,6 +252,7 @@ def pair_bands(design: Design) -> tuple[Band, ...]:
         backlash=params.teeth.backlash,
         name=names,
         certificate=params.output.certificate,
+        pin=True,
     )
     return (_as_driver(band, design, pin=True),)
 
