@@ -151,8 +151,8 @@ def _pinnable(band: Band, found, offsets, spread: float, tol: float, reach: floa
     the golden sections of :func:`~.prove.pinned` about its lowest minima, the least, where it
     falls, and the positions and slack of the certificate taken from them where lower."""
     g, tight, cert = found
-    if cert is None or cert.kind != "theorem" or not cert.proven or band.band[0] < band.margin:
-        return band
+    if cert is None or cert.kind != "theorem" or not cert.proven or band.margin < 0 or band.band[0] < band.margin:
+        return band  # (exact parts that may bite: their jams cost a bisection each, the slack pins them)
 
     def pin() -> Band:
         sub, play = pinned(g, tight, offsets, spread, tol, reach)

@@ -43,6 +43,8 @@ neighbours, to :data:`PIN_WIDTH` of a radian):
 the least measured then is the least the outlines have there, not the least at the positions
 the proof happened to measure (issue 33: the report within 1 µm of the written files)."""
 PIN_WIDTH = 1e-6
+PIN_STEPS = 24
+"""At most this many golden steps (a bracket 0.618²⁴ ≈ 1e-5 of its first width)."""
 PIN_NEAR = 0.004
 
 BEYOND = 0.5
@@ -275,7 +277,9 @@ def pinned(g, measured: np.ndarray, offsets, spread: float, tol: float, reach: f
         return f
 
     fa, fb = np.split(measure(np.concatenate([a, b])), 2)
-    while len(low) and float(np.max(hi - lo)) > PIN_WIDTH:
+    for _ in range(PIN_STEPS):
+        if not len(low) or float(np.max(hi - lo)) <= PIN_WIDTH:
+            break
         left = fa <= fb
         hi, lo = np.where(left, b, hi), np.where(left, lo, a)
         a2, b2 = hi - ratio * (hi - lo), lo + ratio * (hi - lo)
