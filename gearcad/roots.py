@@ -1,4 +1,5 @@
-"""Brent's bracketed root finder (inverse quadratic interpolation, secant and bisection).
+"""Brent's bracketed root finder (inverse quadratic interpolation, secant and bisection), and
+golden sections over many brackets at once (:func:`golden_sections`).
 
 The same method as ``scipy.optimize.brentq`` (Brent 1973, "Algorithms for Minimization without
 Derivatives", ch. 4), a few lines here so that designing a gear pair does not import
@@ -10,11 +11,33 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 
+import numpy as np
+
 from .errors import DesignError
 
-__all__ = ["brentq"]
+__all__ = ["brentq", "golden_sections"]
 
 _EPS = 2.220446049250313e-16
+GOLDEN = (math.sqrt(5) - 1) / 2
+
+
+def golden_sections(f: Callable, lo, hi, steps: int, done: Callable | None = None):
+    """Golden sections of ``f`` (an array of positions -> an array of values) over the brackets
+    [lo, hi] (arrays), all at once: one new probe per bracket and step, at most ``steps`` steps,
+    ending early once ``done(lo, hi, fa, fb)``.  Returns the two inner probes and their values
+    (a, b, f(a), f(b)); the least lies in [lo, b] where f(a) <= f(b), else in [a, hi]."""
+    a, b = hi - GOLDEN * (hi - lo), lo + GOLDEN * (hi - lo)
+    fa, fb = f(a), f(b)
+    for _ in range(steps):
+        left = fa <= fb  # the least lies in [lo, b]: b becomes the upper end, a the new b
+        hi, lo = np.where(left, b, hi), np.where(left, lo, a)
+        a2, b2 = hi - GOLDEN * (hi - lo), lo + GOLDEN * (hi - lo)
+        a, b = np.where(left, a2, b), np.where(left, a, b2)
+        fresh = f(np.where(left, a, b))  # the one new probe of each bracket
+        fa, fb = np.where(left, fresh, fb), np.where(left, fa, fresh)
+        if done is not None and done(lo, hi, fa, fb):
+            break
+    return a, b, fa, fb
 
 
 def brentq(

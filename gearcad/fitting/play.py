@@ -18,6 +18,7 @@ from ..geometry.depth import overlap_areas, overlap_exceeds
 from ..geometry.gap import distances
 from ..geometry.gap import runs as edge_runs
 from ..geometry.outline import place_each
+from ..roots import golden_sections
 
 __all__ = ["PairGeometry", "measure", "play_along", "play_between", "signed_play"]
 
@@ -151,23 +152,13 @@ def _least_overlap(w1, place, bound: np.ndarray, iterations: int = 24) -> np.nda
     stuck = np.flatnonzero(overlap_areas(w1, place(turn)) > 0)
     if not len(stuck):
         return turn
-    golden = (math.sqrt(5) - 1) / 2
 
     def area(at: np.ndarray) -> np.ndarray:
         return overlap_areas(w1[stuck], place(at, stuck))
 
-    lo, hi = -bound[stuck], bound[stuck].copy()
-    a, b = hi - golden * (hi - lo), lo + golden * (hi - lo)
-    fa, fb = area(a), area(b)
-    for _ in range(iterations):
-        left = fa <= fb  # the least lies in [lo, b]: b becomes the upper end, a the new b
-        hi, lo = np.where(left, b, hi), np.where(left, lo, a)
-        a2, b2 = hi - golden * (hi - lo), lo + golden * (hi - lo)
-        a, b = np.where(left, a2, b), np.where(left, a, b2)
-        fresh = area(np.where(left, a, b))  # the one new probe of each position
-        fa, fb = np.where(left, fresh, fb), np.where(left, fa, fresh)
-        if not np.any(np.minimum(fa, fb)):
-            break
+    a, b, fa, fb = golden_sections(
+        area, -bound[stuck], bound[stuck].copy(), iterations, lambda lo, hi, fa, fb: not np.any(np.minimum(fa, fb))
+    )
     turn[stuck] = np.where(fa <= fb, a, b)
     return turn
 

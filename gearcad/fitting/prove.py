@@ -12,6 +12,7 @@ import numpy as np
 import shapely
 
 from ..geometry.outline import place_each
+from ..roots import golden_sections
 from .certify import Certificate
 from .play import _WINDOW, PairGeometry, _signed_from, _windows, play_between, signed_play
 from .tube import Site, nearest, outline, tube
@@ -265,8 +266,6 @@ def pinned(g, measured: np.ndarray, offsets, spread: float, tol: float, reach: f
     low = low[np.argsort(measured[low])][:PINNED]
     lo = phi[low] - (phi[low] - np.roll(phi, 1)[low]) % g.cycle
     hi = phi[low] + (np.roll(phi, -1)[low] - phi[low]) % g.cycle
-    ratio = (math.sqrt(5) - 1) / 2
-    a, b = hi - ratio * (hi - lo), lo + ratio * (hi - lo)
     xs, fs = [], []
 
     def measure(x: np.ndarray) -> np.ndarray:
@@ -276,16 +275,7 @@ def pinned(g, measured: np.ndarray, offsets, spread: float, tol: float, reach: f
         fs.append(f)
         return f
 
-    fa, fb = np.split(measure(np.concatenate([a, b])), 2)
-    for _ in range(PIN_STEPS):
-        if not len(low) or float(np.max(hi - lo)) <= PIN_WIDTH:
-            break
-        left = fa <= fb
-        hi, lo = np.where(left, b, hi), np.where(left, lo, a)
-        a2, b2 = hi - ratio * (hi - lo), lo + ratio * (hi - lo)
-        a, b = np.where(left, a2, b), np.where(left, a, b2)
-        fresh = measure(np.where(left, a, b))
-        fa, fb = np.where(left, fresh, fb), np.where(left, fa, fresh)
+    golden_sections(measure, lo, hi, PIN_STEPS, lambda lo, hi, fa, fb: float(np.max(hi - lo)) <= PIN_WIDTH)
     return measures.joined(xs), np.concatenate(fs)
 
 
