@@ -329,9 +329,10 @@ def test_a_rollers_bound_between_positions_is_never_above_a_dense_sweep(rollers,
     roller's moving pivot) is never above the least play a dense sweep (41 positions an interval)
     measures there, and within 4 µm of it: both parts 0.01 mm smaller, the axle 0.05 mm towards
     the body (the play about 7 µm), five intervals 0.006 rad of the body wide about its tightest
-    place."""
+    place; and the five bounded together (:func:`.tube.tubes`, as the proof asks for them) are the
+    five bounded one by one."""
     from gearcad.fitting.moving import MovingMeasures
-    from gearcad.fitting.tube import tube
+    from gearcad.fitting.tube import tube, tubes
 
     g = roller_meshes(rollers, positions=6)[0][1].pair
     measures, smaller, spread, h = MovingMeasures(), (-0.01, -0.01), 0.05, 0.003
@@ -340,10 +341,14 @@ def test_a_rollers_bound_between_positions_is_never_above_a_dense_sweep(rollers,
     ratio = measures.ratio(g, spread)
     dense = centres[:, None] + np.linspace(-h, h, 41)[None, :]
     plays = mesh_play(g.at(dense.ravel()).mesh, smaller, spread, 0.01, reach=1.0).reshape(dense.shape)
+    one_by_one = []
     for site, c, least in zip(sites, centres, plays.min(axis=1)):
         bounds = tuple(float(b[0]) for b in ratio(np.array([c - h]), np.array([c + h])))
-        proven = 2 * tube(site, h, 0.0, bounds) * g.arm
+        one_by_one.append(tube(site, h, 0.0, bounds))
+        proven = 2 * one_by_one[-1] * g.arm
         assert least - 0.004 <= proven <= least + 1e-6, (c, proven, least)
+    together = tubes(sites, np.full(len(sites), h), 0.0, np.column_stack(ratio(centres - h, centres + h)), 0.0)
+    assert np.allclose(together, one_by_one, rtol=1e-12, atol=0.0), (together, one_by_one)
 
 
 def test_a_train_mesh_is_proven_and_no_more_optimistic_than_a_dense_sweep(laser_train):

@@ -41,7 +41,7 @@ from .band_mesh import _WINDOW, MeshGeometry, _windows, clip, mesh_play, signed_
 from .certify import certify
 from .pair_geometry import interval_maxima
 from .prove import BEYOND, Measures, prove_play
-from .tube import Site, nearest, outline
+from .tube import NEAREST, Site, nearest, outline
 
 __all__ = ["MovingMesh", "MovingMeasures", "moving_band"]
 
@@ -65,11 +65,6 @@ ROUNDING = 1e-6
 a radian at steps δ errs by (νδ)²/6 of it, far under the largest step between neighbours (νδ)
 wherever the series changes; this covers one that does not (a pivot on a circle: |C'| = E is
 2.4e-8 under at 8192 steps a half turn)."""
-NEAREST = 0.3
-"""Modules within which each window vertex's distance to the mate's edges is measured (beyond, the
-bound takes that as its distance: a lower bound, which only picks the vertices it looks at; the
-noncircular sets' planet–ring windows hold a whole planet, and the full search took a third of
-their proof's CPU)."""
 STENCIL = 1e-3
 """The step (rad) of the five-point stencils that give the motion's derivatives at a position."""
 

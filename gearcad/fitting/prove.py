@@ -15,7 +15,8 @@ from ..geometry.outline import place_each
 from ..roots import golden_sections
 from .certify import Certificate
 from .play import _WINDOW, PairGeometry, _signed_from, _windows, play_between, signed_play
-from .tube import Site, nearest, outline, tube
+from .tube import NEAREST, Site, nearest, outline
+from .tube import tubes as tube_of
 
 __all__ = ["Measures", "PAIRS", "pinned", "prove_play"]
 
@@ -88,7 +89,8 @@ def _sites(g: PairGeometry, offsets, spread: float, tol: float, reach: float) ->
         s.t0, s.cap, s.k, s.dk = float(t0[i]), float((up[i] + down[i]) / 2), float(k[j]), float(dk[j])
         s.arm = float(g.center_distance - g.r1[i])
         a, b = outline(narrow1[j], wide1[j]), outline(narrow2[j], wide2[j])
-        s.a, s.b = (*a, nearest(a[0], b[3])), (*b, nearest(b[0], a[3]))
+        near = NEAREST * g.module  # (beyond, a vertex takes that as its distance: a lower bound)
+        s.a, s.b = (*a, nearest(a[0], b[3], near)), (*b, nearest(b[0], a[3], near))
     return sites, signed
 
 
@@ -182,14 +184,16 @@ def prove_play(
         slope = _drift(phi, t0, np.array([sites[i].cap for i in order]), g.cycle)
         bound = np.full(len(order), -math.inf)
         delta = np.full(len(order), -math.inf)
-        for j, i in enumerate(order if least >= margin else ()):  # (a measured jam settles it: no bound)
-            h, s = float(half[j]), float(slope[j])
-            row = tuple(float(t[j]) for t in table)
-            if tubes.get(i, (None,))[:2] != (h, s):
-                tubes[i] = (h, s, tube(sites[i], h, e, row, s))
-            delta[j] = tubes[i][2]
-            arm = min(sites[i].arm, measures.arm(g, row))
-            bound[j] = 2 * delta[j] * arm if delta[j] >= 0 else -math.inf
+        if least >= margin:  # (a measured jam settles it: no bound)
+            rows = np.column_stack(table)
+            stale = [j for j, i in enumerate(order) if tubes.get(i, (None,))[:2] != (half[j], slope[j])]
+            if stale:
+                got = tube_of([sites[order[j]] for j in stale], half[stale], e, rows[stale], slope[stale])
+                for j, d in zip(stale, got.tolist()):
+                    tubes[order[j]] = (half[j], slope[j], d)
+            delta = np.array([tubes[i][2] for i in order])
+            arm = np.minimum([sites[i].arm for i in order], measures.arm(g, table))
+            bound = np.where(delta >= 0, 2 * delta * arm, -math.inf)
         # neighbours' free turns meet half way between them (each sheared box's middle there)
         ahead = t0 + slope * gap / 2
         behind = np.roll(t0, -1) - np.roll(slope, -1) * gap / 2
@@ -226,17 +230,22 @@ def prove_play(
         # margin over a narrower interval (looked at without measuring), enough to reach it
         pieces = np.where(split, 2, 1)
         if least >= margin:
-            for j in np.flatnonzero(bound < margin):
-                i, h = order[j], float(half[j])
-                arm = measures.arm(g, tuple(float(t[j]) for t in table))
-                for _ in range(6):
-                    h /= 2
-                    near = tuple(float(t[0]) for t in ratio(np.array([phi[j] - h]), np.array([phi[j] + h])))
-                    if 2 * tube(sites[i], h, e, near, float(slope[j])) * min(sites[i].arm, arm) >= margin:
-                        break
-                need = int(min(16, math.ceil(float(half[j]) / h)))
+            weak = np.flatnonzero(bound < margin)
+            h = half[weak].copy()
+            arm = np.minimum([sites[order[j]].arm for j in weak], measures.arm(g, tuple(t[weak] for t in table)))
+            open_ = np.ones(len(weak), bool)
+            for _ in range(6):  # halved together, each until it keeps the margin
+                if not open_.any():
+                    break
+                h[open_] /= 2
+                j = weak[open_]
+                near = np.column_stack(ratio(phi[j] - h[open_], phi[j] + h[open_]))
+                got = tube_of([sites[order[i]] for i in j], h[open_], e, near, slope[j])
+                open_[np.flatnonzero(open_)[2 * got * arm[open_] >= margin]] = False
+            need = np.minimum(16, np.ceil(half[weak] / h)).astype(int)
+            for j, n in zip(weak.tolist(), need.tolist()):
                 for gj in (j, (j - 1) % len(order)):
-                    pieces[gj] = max(pieces[gj], need if split[gj] else 1)
+                    pieces[gj] = max(pieces[gj], n if split[gj] else 1)
         steps = [phi[j] + gap[j] * np.arange(1, pieces[j]) / pieces[j] for j in np.flatnonzero(pieces > 1)]
         mids = np.concatenate(steps) % g.cycle
         if len(sites) + len(mids) > budget:  # the budget: say what is left open

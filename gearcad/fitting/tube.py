@@ -24,7 +24,14 @@ from dataclasses import dataclass
 import numpy as np
 import shapely
 
-__all__ = ["Site", "outline", "nearest", "tube"]
+__all__ = ["Site", "outline", "nearest", "tube", "tubes"]
+
+
+NEAREST = 0.3
+"""Modules within which each window vertex's distance to the mate's edges is measured (beyond, the
+bound takes that as its distance: a lower bound, which only picks the vertices it looks at; the
+noncircular sets' planet–ring windows hold a whole planet, and the full search took a third of
+their proof's CPU)."""
 
 
 @dataclass
@@ -169,86 +176,121 @@ def tube(s: Site, h: float, e: float, bounds, slope: float = 0.0) -> float:
     y = t − t0 − slope·u the vertex's derivatives are ∂u = ∂φ + s·∂t, ∂uu = ∂φφ + 2s·∂φt + s²·∂tt,
     ∂uy = ∂φt + s·∂tt, ∂yy = ∂tt, and its third derivatives' bounds grow alike (|s| for s); its
     turn over the box reaches |s|·h + Δ."""
-    if s.a is None:
-        return -math.inf
-    kmax, unit_speed, dk, ddk, unit_accel, *more = bounds
-    w = 1.0 + kmax
-    if w * h >= 0.5:
-        return -math.inf
-    if s.pivot is None:
-        sigma, sigma2, pivot_speed = e * unit_speed, e * unit_accel, e
-        cosp, sinp = math.cos(s.phi), math.sin(s.phi)
-        centre = e * np.array([cosp, sinp])
-        u, du = s.k / (1 + s.k), s.dk / (1 + s.k) ** 2
-        instant = u * centre
-        turning = e * np.array([du * cosp - u * sinp, du * sinp + u * cosp])  # I'(c)
-    else:
-        sigma, sigma2, pivot_speed = unit_speed, unit_accel, more[0]
-        centre, instant, turning = s.pivot, s.instant, s.turning
-    omega = 1.0 + s.k
-    cap = s.cap
-    best = cap
-    a = abs(slope)
-    for mine, other, moving in ((s.b, s.a, True), (s.a, s.b, False)):
-        xy = mine[0]
-        r0 = np.hypot(*(xy - centre).T)
-        rho0 = np.hypot(*(xy - instant).T)
+    return float(tubes([s], [h], e, [tuple(bounds)], [slope])[0])
+
+
+def tubes(sites, h, e: float, bounds, slope) -> np.ndarray:
+    """:func:`tube` for many sites at once, each over its own interval: ``h``, ``slope`` one
+    each, ``bounds`` a row each (the work of all in a few array operations, not a loop of small
+    ones)."""
+    n = len(sites)
+    out = np.full(n, -math.inf)
+    if not n:
+        return out
+    h = np.broadcast_to(np.asarray(h, dtype=float), (n,))
+    slope = np.broadcast_to(np.asarray(slope, dtype=float), (n,))
+    bounds = np.asarray(bounds, dtype=float).reshape(n, -1)
+    w = 1.0 + bounds[:, 0]
+    live = np.flatnonzero(np.array([s.a is not None for s in sites]) & (w * h < 0.5))
+    if not len(live):
+        return out
+    sites = [sites[i] for i in live]
+    h, slope, w, (_, unit_speed, dk, ddk, unit_accel, *more) = h[live], slope[live], w[live], bounds[live].T
+    general = np.array([s.pivot is not None for s in sites])
+    phi, k, dk0 = (np.array([getattr(s, f) for s in sites]) for f in ("phi", "k", "dk"))
+    cosp, sinp = np.cos(phi), np.sin(phi)
+    u, du = k / (1 + k), dk0 / (1 + k) ** 2
+    centre = e * np.column_stack([cosp, sinp])
+    instant = u[:, None] * centre
+    turning = e * np.column_stack([du * cosp - u * sinp, du * sinp + u * cosp])  # I'(c)
+    sigma, sigma2, pivot_speed = e * unit_speed, e * unit_accel, np.full(len(sites), float(e))
+    if general.any():  # a general motion's sites carry C, I and I' (and the bounds are in mm)
+        for name, field in ((centre, "pivot"), (instant, "instant"), (turning, "turning")):
+            name[general] = [getattr(s, field) for s in np.array(sites, dtype=object)[general]]
+        sigma, sigma2 = np.where(general, unit_speed, sigma), np.where(general, unit_accel, sigma2)
+        pivot_speed = np.where(general, more[0] if more else np.nan, pivot_speed)
+    omega = 1.0 + k
+    cap = np.array([s.cap for s in sites])
+    best = cap.copy()
+    a = np.abs(slope)
+    for moving in (True, False):
+        mine = [s.b if moving else s.a for s in sites]
+        other = [s.a if moving else s.b for s in sites]
+        sizes = np.array([len(m[0]) for m in mine])
+        sv = np.repeat(np.arange(len(sites)), sizes)  # each vertex's site
+        xy = np.concatenate([m[0] for m in mine])
+        r0 = np.hypot(*(xy - centre[sv]).T)
+        rho0 = np.hypot(*(xy - instant[sv]).T)
+        hv, av, wv = h[sv], a[sv], w[sv]
         if moving:  # gear 2's vertices: |X − C| is fixed; ρ grows with the motion itself
             rbar = r0
-            rho = (rho0 + r0 * (cap + a * h) + sigma * h) / (1 - w * h)
+            rho = (rho0 + r0 * (cap[sv] + av * hv) + sigma[sv] * hv) / (1 - wv * hv)
         else:  # gear 1's, seen from gear 2: |w − I(φ)| and |w − C(φ)| move with φ only
-            rbar = r0 + pivot_speed * h
-            rho = rho0 + sigma * h
+            rbar = r0 + pivot_speed[sv] * hv
+            rho = rho0 + sigma[sv] * hv
         rbar = np.maximum(rbar, 1e-12)  # (a vertex on gear 2's pivot: its turn does not move it)
-        move = (w * rho + rbar * a) * h  # the most a vertex moves over the driver interval (sheared)
-        lip = (mine[4] - move) / rbar
-        near = np.flatnonzero(lip < best)
-        if not len(near):
+        move = (wv * rho + rbar * av) * hv  # the most a vertex moves over the driver interval (sheared)
+        lip = (np.concatenate([m[4] for m in mine]) - move) / rbar
+        near = lip < best[sv]
+        if not near.any():
             continue
         # the (vertex, edge) pairs the segment's bound leaves open: the edge within the vertex's
-        # reach, best·r̄ + its move (an R-tree query, not every pair)
-        reach = best * rbar[near] + move[near] if math.isfinite(best) else np.full(len(near), np.inf)
+        # reach, best·r̄ + its move (an R-tree query a site, not every pair)
+        bv = best[sv]
+        reach = np.where(np.isfinite(bv), bv * rbar + move, np.inf)
         reach = reach * (1 + 1e-9) + 1e-12  # GEOS's distance and ours may differ in the last bits
-        vi, ei = other[3].query(shapely.points(xy[near]), predicate="dwithin", distance=reach)
+        first = np.concatenate([[0], np.cumsum(sizes)])
+        vis, ps, qs = [], [], []
+        for j in np.unique(sv[near]).tolist():
+            rows = first[j] + np.flatnonzero(near[first[j] : first[j + 1]])
+            vi, ei = other[j][3].query(shapely.points(xy[rows]), predicate="dwithin", distance=reach[rows])
+            vis.append(rows[vi])
+            ps.append(other[j][1][ei])
+            qs.append(other[j][2][ei])
+        vi = np.concatenate(vis)
         if not len(vi):
             continue
-        p, q = other[1][ei], other[2][ei]
+        p, q = np.concatenate(ps), np.concatenate(qs)
+        sp = sv[vi]  # each pair's site
         seg = q - p
         length = np.maximum(np.hypot(*seg.T), 1e-300)
         unit = seg / length[:, None]
         normal = np.column_stack([-unit[:, 1], unit[:, 0]])
-        v = xy[near][vi]
+        v = xy[vi]
         rx, ry = v[:, 0] - p[:, 0], v[:, 1] - p[:, 1]
         side = rx * normal[:, 0] + ry * normal[:, 1]
         ahead = rx * unit[:, 0] + ry * unit[:, 1]
         beyond = np.maximum(ahead - length, 0.0) + np.maximum(-ahead, 0.0)
         dseg = np.hypot(side, beyond)
-        rn, rb = rho[near][vi], rbar[near][vi]
-        lip_pair = (dseg - move[near][vi]) / rb
-        open_ = lip_pair < best
+        rn, rb = rho[vi], rbar[vi]
+        lip_pair = (dseg - move[vi]) / rb
+        open_ = lip_pair < best[sp]
         if not np.any(open_):
             continue
-        vi, side, ahead, lip_pair = vi[open_], side[open_], ahead[open_], lip_pair[open_]
+        vi, sp, side, ahead, lip_pair = vi[open_], sp[open_], side[open_], ahead[open_], lip_pair[open_]
         p, normal, unit, length, v, rn, rb = (x[open_] for x in (p, normal, unit, length, v, rn, rb))
+        hp, ap, wp, bp = h[sp], a[sp], w[sp], best[sp]
         n_line = np.where(side[:, None] < 0, -1.0, 1.0) * normal
         past = np.where(ahead > length, ahead - length, -ahead)
         n_end = np.where((ahead > length)[:, None], 1.0, -1.0) * unit
-        xi = v - instant  # from the instant centre
-        xc = v - centre  # from gear 2's pivot
+        xi = v - instant[sp]  # from the instant centre
+        xc = v - centre[sp]  # from gear 2's pivot
         jxi = np.stack([-xi[:, 1], xi[:, 0]], -1)
         jxc = np.stack([-xc[:, 1], xc[:, 0]], -1)
-        jturn = np.array([-turning[1], turning[0]])
+        jturn = np.column_stack([-turning[sp, 1], turning[sp, 0]])
         sign = 1.0 if moving else -1.0  # gear 1's vertices move against gear 2's edges
-        accel = sign * s.dk * jxi - omega**2 * xi - sign * omega * jturn
+        om = omega[sp][:, None]
+        accel = sign * dk0[sp][:, None] * jxi - om**2 * xi - sign * om * jturn
         big = np.maximum(rn, rb)
-        m_ppp = ddk * rn + dk * (3 * w * rn + 2 * sigma) + w * w * (w * rn + sigma) + w * (sigma2 + w * sigma)
-        m_ppt = (dk + w * w) * big + w * sigma
-        m_ptt = w * big
+        sg, sg2 = sigma[sp], sigma2[sp]
+        m_ppp = ddk[sp] * rn + dk[sp] * (3 * wp * rn + 2 * sg) + wp * wp * (wp * rn + sg) + wp * (sg2 + wp * sg)
+        m_ppt = (dk[sp] + wp * wp) * big + wp * sg
+        m_ptt = wp * big
         m_ttt = rb
-        if a:  # the sheared box's derivatives (the docstring)
-            m_ppp = m_ppp + a * (3 * m_ppt + a * (3 * m_ptt + a * m_ttt))
-            m_ppt = m_ppt + a * (2 * m_ptt + a * m_ttt)
-            m_ptt = m_ptt + a * m_ttt
+        # the sheared box's derivatives (tube's docstring; a slope of 0 leaves them as they are)
+        m_ppp = m_ppp + ap * (3 * m_ppt + ap * (3 * m_ptt + ap * m_ttt))
+        m_ppt = m_ppt + ap * (2 * m_ptt + ap * m_ttt)
+        m_ptt = m_ptt + ap * m_ttt
         # linear functionals of the vertex's place, each a lower bound on its distance to the
         # segment where positive (the segment lies behind the line across the functional's
         # direction): the distance to the segment's line; how far the vertex lies past the
@@ -258,41 +300,52 @@ def tube(s: Site, h: float, e: float, bounds, slope: float = 0.0) -> float:
         foot = p + np.clip(ahead, 0.0, length)[:, None] * unit
         gap = np.maximum(np.hypot(*(v - foot).T), 1e-300)
         n_near = (v - foot) / gap[:, None]
-        v_t, v_tt, v_pt = sign * jxc, -xc, -omega * (xc if moving else xi)
-        v_p = sign * omega * jxi + slope * v_t
-        accel = accel + slope * (2 * v_pt + slope * v_tt)
-        derivs = (v_p, v_t, accel, v_tt, v_pt + slope * v_tt)
+        s_ = slope[sp][:, None]
+        v_t, v_tt, v_pt = sign * jxc, -xc, -om * (xc if moving else xi)
+        v_p = sign * om * jxi + s_ * v_t
+        accel = accel + s_ * (2 * v_pt + s_ * v_tt)
+        derivs = (v_p, v_t, accel, v_tt, v_pt + s_ * v_tt)
         terms = (m_ppp, m_ppt, m_ptt, m_ttt)
-        pair = _safe_turn(
-            np.stack([n_line, n_end, n_near]), np.stack([np.abs(side), past, gap]), derivs, terms, h, best
-        )
-        open_ = np.flatnonzero(pair < best)
-        if len(open_):
+        # the exact direction first: most pairs it keeps apart over the whole turn sought
+        pair = _safe_turn(n_near[None], gap[None], derivs, terms, hp, bp)
+        o = np.flatnonzero(pair < bp)
+        if len(o):
+            pair[o] = _safe_turn(
+                np.stack([n_line[o], n_end[o], n_near[o]]),
+                np.stack([np.abs(side[o]), past[o], gap[o]]),
+                tuple(x[o] for x in derivs),
+                tuple(x[o] for x in terms),
+                hp[o],
+                bp[o],
+            )
+        o = np.flatnonzero(pair < bp)
+        if len(o):
             # two more where those leave it open, one for each way the driver turns: the
             # direction that parts the vertex's path over the interval (its chord, to second
             # order) from the segment, where they do not cross (a vertex that slides past the
             # segment's end within a few µm)
             # and two for each way gear 2 turns: its chord over the turn sought (a vertex that
             # the turn carries along an edge and past its end)
-            o = open_
             ends = (p[o], p[o] + length[o, None] * unit[o])
-            y = best if math.isfinite(best) else cap
+            ho = hp[o][:, None]
+            y = np.where(np.isfinite(bp[o]), bp[o], cap[sp[o]])[:, None]
             ways = [
-                _parting(v[o], v[o] + w_ * h * derivs[0][o] + 0.5 * h * h * accel[o], *ends, n_near[o], foot[o])
+                _parting(v[o], v[o] + w_ * ho * derivs[0][o] + 0.5 * ho * ho * accel[o], *ends, n_near[o], foot[o])
                 for w_ in (1.0, -1.0)
             ] + [
                 _parting(v[o], v[o] + w_ * y * v_t[o] + 0.5 * y * y * v_tt[o], *ends, n_near[o], foot[o])
                 for w_ in (1.0, -1.0)
             ]
-            more = _safe_turn(
+            more_turn = _safe_turn(
                 np.stack([n for n, _ in ways]),
-                np.stack([np.sum(n * (v[o] - a), -1) for n, a in ways]),
+                np.stack([np.sum(n * (v[o] - at), -1) for n, at in ways]),
                 tuple(x[o] for x in derivs),
                 tuple(x[o] for x in terms),
-                h,
-                best,
+                hp[o],
+                bp[o],
             )
-            pair[o] = np.maximum(pair[o], more)
+            pair[o] = np.maximum(pair[o], more_turn)
         pair = np.maximum(pair, lip_pair)
-        best = min(best, float(np.min(pair)))
-    return best
+        np.minimum.at(best, sp, pair)
+    out[live] = best
+    return out
