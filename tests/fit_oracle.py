@@ -508,23 +508,62 @@ def _free_start(mesh, phi, parts, shift, window, samples):
     return None
 
 
-def _jam_shrink(made: Made, phi, window, samples) -> float:
-    """The least shrink ε (mm) of both parts' edges under which gear 2 turns free at ``phi``."""
-    lo, hi = 0.0, 0.01
-    mesh = made.mesh
-
-    def frees(eps):
-        parts = tuple(p.buffer(-eps, quad_segs=BUFFER_SEGMENTS) for p in made.parts)
-        return _free_start(mesh, phi, parts, made.shift, window, samples) is not None
-
-    while not frees(hi):
-        lo, hi = hi, hi * 2
-        if hi > mesh.module:
-            return hi
-    while hi - lo > 2e-7:
-        mid = (lo + hi) / 2
-        lo, hi = (lo, mid) if frees(mid) else (mid, hi)
+def depth(overlap, tol: float = 1e-9, below: float = math.inf) -> float:
+    """The least shrink ε (mm) of both parts' edges under which their ``overlap`` (the parts'
+    intersection) is gone: its inradius.  A point of the overlap keeps ε from both outlines
+    exactly when it keeps ε from the overlap's boundary (which lies on one outline or the other,
+    and any way out of the overlap crosses it), so the shrunk parts share a point exactly while
+    the overlap shrunk by ε is not empty: bisected to ``tol`` from πr² ≤ its area (the overlap
+    is a sliver: shrinking it, not the parts, is cheap); ``below``: where it is not, ``below``
+    (it is at least that: all a search for the least needs)."""
+    if overlap.is_empty or overlap.area <= 0.0:
+        return 0.0
+    lo, hi = 0.0, math.sqrt(overlap.area / math.pi) * (1 + 1e-6) + 1e-12
+    if below < hi:
+        if not overlap.buffer(-below, quad_segs=BUFFER_SEGMENTS).is_empty:
+            return below
+        hi = below
+    while hi - lo > tol:
+        mid = 0.5 * (lo + hi)
+        lo, hi = (lo, mid) if overlap.buffer(-mid, quad_segs=BUFFER_SEGMENTS).is_empty else (mid, hi)
     return hi
+
+
+def _jam_shrink(made: Made, phi, window, samples) -> float:
+    """The least shrink ε (mm) of both parts' edges under which gear 2 turns free at ``phi``: the
+    least :func:`depth` of their overlap over gear 2's turns within a pitch (a grid of
+    ``samples``, each measured only where it is less than the least so far, then golden sections
+    about the least to 1e-10 rad)."""
+    mesh = made.mesh
+    half = float(mesh.pitch_at(phi)) / 2
+    fixed = _placed(mesh, phi, 0.0, made.shift, made.parts)[0].intersection(window)
+    shapely.prepare(fixed)
+
+    def f(t, below=math.inf):
+        placed = _placed(mesh, phi, float(t), made.shift, made.parts)[1]
+        return depth(fixed.intersection(placed.intersection(window)), below=below)
+
+    turns = np.linspace(-half, half, samples)
+    depths = np.full(samples, math.inf)
+    for k in np.argsort(np.abs(turns)):  # from the assembled turn out, each only if it is less
+        least = float(np.min(depths))
+        found = f(turns[k], least)
+        depths[k] = found if found < least else math.inf
+    k = int(np.argmin(depths))
+    lo, hi = turns[max(k - 1, 0)], turns[min(k + 1, samples - 1)]
+    g = (math.sqrt(5) - 1) / 2
+    a, b = hi - g * (hi - lo), lo + g * (hi - lo)
+    fa, fb = f(a), f(b)
+    while hi - lo > 1e-10:
+        if fa <= fb:
+            hi, b, fb = b, a, fa
+            a = hi - g * (hi - lo)
+            fa = f(a)
+        else:
+            lo, a, fa = a, b, fb
+            b = lo + g * (hi - lo)
+            fb = f(b)
+    return float(min(depths[k], fa, fb))
 
 
 def least_play(

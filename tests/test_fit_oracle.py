@@ -156,6 +156,22 @@ def test_the_oracle_solves_a_touch_exactly():
     assert np.isinf(fo._touch(point, *far, np.zeros((1, 2)), 1.0)[0])
 
 
+def test_the_oracles_jam_depth_is_the_shrink_that_frees_two_discs():
+    """The checker's jam depth (the inradius of the overlap) against a closed form and against
+    shrinking the parts themselves: two discs of radius 5 whose centres lie 9.9 mm apart overlap
+    in a lens 0.1 mm thick, freed by a shrink of 0.05 mm of each edge; a tenth of a micron less
+    leaves them overlapping, as much more frees them."""
+    import shapely
+
+    a, b = shapely.Point(0, 0).buffer(5, quad_segs=256), shapely.Point(9.9, 0).buffer(5, quad_segs=256)
+    found = fo.depth(a.intersection(b))
+    assert found == pytest.approx(0.05, abs=1e-6)
+    for eps, apart in ((found - 1e-4, False), (found + 1e-4, True)):
+        shrunk = a.buffer(-eps, quad_segs=256), b.buffer(-eps, quad_segs=256)
+        assert shrunk[0].intersection(shrunk[1]).is_empty == apart
+    assert fo.depth(a.intersection(shapely.Point(20, 0).buffer(5))) == 0.0
+
+
 def test_headline_counts_match_the_report_and_the_page(built):
     """The "N warning(s)" of a gear pair's headline, report.json's warnings, the page's count
     and the index's are one number (issue 33: "0 warning(s)" beside a `loose` warning)."""
