@@ -14,7 +14,7 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 import shapely
 
-from ..geometry.depth import overlap_areas, overlap_exceeds
+from ..geometry.depth import inradius, overlap_areas, overlap_exceeds
 from ..geometry.gap import distances
 from ..geometry.gap import runs as edge_runs
 from ..geometry.outline import place_each
@@ -254,11 +254,13 @@ def _signed_from(g: PairGeometry, play, start, offsets, spread: float, tol: floa
     """The play ``play`` (:func:`play_between`, gear 2 from ``start``) signed where it is NaN
     (jammed): −4ε/cos α for the least shrink ε of both parts that frees gear 2 at some turn.
 
-    The shrink is bisected with gear 2 held at a turn (where it overlapped least, first): free
-    there, it is free, so each bisection bounds ε from above.  Where two teeth bite, the turn of
-    least overlap need not be the one that frees first (on a circular train's mesh it cost 0.19
-    mm where 0.127 frees it), so gear 2 is then moved to the middle of its free turn at that
-    shrink and the shrink bisected again below it."""
+    At a turn, ε is the inradius of the parts' overlap (:func:`~..geometry.depth.inradius`: the
+    shrunk parts share a point exactly while the overlap holds a disc of radius ε), first where
+    gear 2 overlapped least.  Where two teeth bite, the turn of least overlap need not be the one
+    that frees first (on a circular train's mesh it cost 0.19 mm where 0.127 frees it), so gear 2
+    is then moved to the middle of its free turn at that shrink and its overlap measured again.
+    An overlap that reaches its window's rim (a bite wider than the window, whose rim is no
+    outline) has the shrink bisected on the parts' offsets instead (:func:`_shrink_to_free`)."""
     play = play.copy()
     jammed = np.isnan(play)
     if not jammed.any():
@@ -267,20 +269,39 @@ def _signed_from(g: PairGeometry, play, start, offsets, spread: float, tol: floa
         g.rings, g.center_distance, g.phi1[jammed], g.phi2[jammed], g.r1[jammed], g.module, g.pressure_angle, g.teeth
     )
     turn = start[jammed]
-    hi = np.full(int(jammed.sum()), 0.5 * g.module)
+    most = 0.5 * g.module
+    hi = np.full(int(jammed.sum()), most)
+    contact = sub.r1[:, None] * np.column_stack([np.cos(sub.phi1), np.sin(sub.phi1)])
+    rim = shapely.buffer(shapely.points(contact), 0.95 * _WINDOW * g.module, quad_segs=16)
     for again in range(2):
-        lo = np.zeros_like(hi)
-        for _ in range(14):
-            mid = 0.5 * (lo + hi)
-            shrunk = (offsets[0] - mid, offsets[1] - mid)
-            free = ~np.isnan(play_between(sub, shrunk, spread, tol, reach=reach, steps=0, start=turn)[0])
-            hi, lo = np.where(free, mid, hi), np.where(free, lo, mid)
+        w1, place, _, _ = _placer(sub, offsets, spread, tol)
+        lap = shapely.intersection(w1, place(turn))
+        inside = shapely.within(lap, rim)
+        depth = np.full_like(hi, most)
+        depth[inside] = inradius(lap[inside], 1e-6 * g.module)
+        wide = np.flatnonzero(~inside)
+        if len(wide):
+            depth[wide] = _shrink_to_free(sub.subset(wide), offsets, spread, tol, reach, turn[wide], hi[wide])
+        hi = np.minimum(hi, depth)
         if again:
             break
         halves: list[np.ndarray] = []
-        shrunk = (offsets[0] - hi, offsets[1] - hi)
+        give = hi * (1 + 1e-6) + 1e-9 * g.module  # (just past the touch: free there)
+        shrunk = (offsets[0] - give, offsets[1] - give)
         _, at = play_between(sub, shrunk, spread, tol, reach=reach, start=turn, halves=halves)
         up, down = halves
-        turn = at + (up - down) / 2  # the middle of the free turn there: free at the shrink found
+        turn = at + (up - down) / 2  # the middle of the free turn there
     play[jammed] = -4 * hi / math.cos(g.pressure_angle)
     return play
+
+
+def _shrink_to_free(g: PairGeometry, offsets, spread: float, tol: float, reach: float, turn, hi) -> np.ndarray:
+    """The least shrink (mm, to ``hi``/2¹⁴) of both parts' offsets under which gear 2 is free
+    at ``turn``, bisected below ``hi``."""
+    lo = np.zeros_like(hi)
+    for _ in range(14):
+        mid = 0.5 * (lo + hi)
+        shrunk = (offsets[0] - mid, offsets[1] - mid)
+        free = ~np.isnan(play_between(g, shrunk, spread, tol, reach=reach, steps=0, start=turn)[0])
+        hi, lo = np.where(free, mid, hi), np.where(free, lo, mid)
+    return hi

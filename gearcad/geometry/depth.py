@@ -15,7 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 import shapely
 
-__all__ = ["Depths", "overlap_depths", "overlap_areas", "overlap_exceeds"]
+__all__ = ["Depths", "inradius", "overlap_depths", "overlap_areas", "overlap_exceeds"]
 
 
 @dataclass(frozen=True)
@@ -143,3 +143,30 @@ def overlap_depths(first, second, *, step: float) -> Depths:
     depth[hit[which[deepest]]] = inside[deepest]
     point[hit[which[deepest]]] = xy[deepest]
     return Depths(depth, point, area)
+
+
+def inradius(overlaps, tol: float) -> np.ndarray:
+    """The radius of the largest disc inside each of ``overlaps`` (shapely polygons; 0 where
+    empty), to ``tol`` mm: where two parts overlap, the least shrink of both their edges that
+    parts them.  A point of the overlap keeps ε from both outlines exactly when it keeps ε from
+    the overlap's boundary (which lies on one outline or the other, and any way out of the
+    overlap crosses it), so the parts shrunk by ε share a point exactly while the overlap shrunk
+    by ε is not empty: bisected on that, from πr² ≤ its area (an overlap is a sliver: shrinking
+    it, not the parts, is cheap; its concave corners' arcs in 16 chords a quarter: 0.12 % under).
+
+    >>> import shapely
+    >>> lens = shapely.Point(0, 0).buffer(5, 256).intersection(shapely.Point(9.9, 0).buffer(5, 256))
+    >>> round(float(inradius([lens], 1e-7)[0]), 6)  # half of 2·5 − 9.9
+    0.05
+    """
+    overlaps = np.asarray(overlaps, dtype=object)
+    area = shapely.area(overlaps)
+    hi = np.where(area > 0, np.sqrt(area / math.pi) * (1 + 1e-6) + 1e-12, 0.0)
+    lo = np.zeros_like(hi)
+    live = np.flatnonzero(hi > tol)
+    while len(live):
+        mid = 0.5 * (lo[live] + hi[live])
+        gone = shapely.is_empty(shapely.buffer(overlaps[live], -mid, quad_segs=16))
+        hi[live], lo[live] = np.where(gone, mid, hi[live]), np.where(gone, lo[live], mid)
+        live = live[hi[live] - lo[live] > tol]
+    return hi
