@@ -35,6 +35,7 @@ from .certify import PER_TOOTH
 from .fit import least_said, process_block
 from .moving import MovingMesh, moving_band
 from .play import PairGeometry
+from .written import written_regions, written_shapes
 
 __all__ = ["MeshBand", "mesh_bands", "radial_room", "with_mesh_bands", "train_meshes", "roller_meshes"]
 
@@ -72,17 +73,29 @@ def _rotate(points: np.ndarray, angle: np.ndarray) -> np.ndarray:
     return np.column_stack([c * points[:, 0] - s * points[:, 1], s * points[:, 0] + c * points[:, 1]])
 
 
-def _shape(spec) -> shapely.Polygon:
+def _held(spec) -> shapely.Polygon:
+    """A part's outline as the mechanism holds it (its hole with it)."""
     return shapely.Polygon(spec.outer, None if spec.hole is None else [spec.hole])
 
 
-def train_meshes(draft, positions: int = 12) -> list[tuple[str, MeshGeometry, bool, ContactData]]:
-    """Each mesh of a carrier train: (name, geometry in gear k's frame, internal, contact)."""
+Meshes = list[tuple[str, MeshGeometry, bool, ContactData]]
+"""Each mesh: (name, geometry, internal, contact)."""
+
+
+def train_meshes(draft, positions: int = 12, *, written: bool = True) -> Meshes:
+    """Each mesh of a carrier train: (name, geometry in gear k's frame, internal, contact), the
+    parts as the files write them and a cutter leaves them (:mod:`.written`; ``written`` False:
+    the outlines the mechanism holds, as its closed forms have them)."""
     from ..mechanisms.carrier_train import layout
 
     p = draft.params
     sides, alpha = layout(p).sides, p.pressure_angle
-    shapes = [_shape(s) for s in draft.parts]
+    if written:  # the regions the cut paths bound (a pair's proof grows them less the cutter) and the parts made
+        regions = written_regions(draft)
+        shapes, cut = written_shapes(draft, regions=regions), regions[1]
+    else:
+        shapes, cut = [_held(s) for s in draft.parts], 0.0
+        regions = (shapes, cut)
     out = []
     for k, (kind, (r_from, r_to)) in enumerate(zip(p.meshes, sides)):
         inside = kind == "internal"
@@ -100,7 +113,7 @@ def train_meshes(draft, positions: int = 12) -> list[tuple[str, MeshGeometry, bo
         material = (math.atan2(*(contact - c1)[::-1]) - a1) / (TWO_PI / z)
         teeth = (np.floor(material) if first_ring else np.round(material)).astype(int) % z
         z2 = p.teeth[k + 1]  # the compound gear meets the gear before it with its outer teeth
-        ends = [(shapes[k], one, r_from, z), (shapes[k + 1], two, r_to, z2)]
+        ends = [(regions[0][k], one, r_from, z), (regions[0][k + 1], two, r_to, z2)]
         geometry = MeshGeometry(
             shapes=(shapes[k], shapes[k + 1]),
             phi1=turn,
@@ -111,7 +124,7 @@ def train_meshes(draft, positions: int = 12) -> list[tuple[str, MeshGeometry, bo
             module=m,
             pressure_angle=alpha,
             teeth=teeth,
-            pair=fixed_pair(*(ends[::-1] if first_ring else ends), internal=inside, module=m, alpha=alpha),
+            pair=fixed_pair(*(ends[::-1] if first_ring else ends), internal=inside, module=m, alpha=alpha, cut=cut),
         )
         k1 = np.full(positions, (-1.0 if first_ring else 1.0) / r_from)
         k2 = np.full(positions, (-1.0 if second_ring else 1.0) / r_to)
@@ -122,7 +135,7 @@ def train_meshes(draft, positions: int = 12) -> list[tuple[str, MeshGeometry, bo
     return out
 
 
-def fixed_pair(one, two, *, internal: bool, module: float, alpha: float) -> PairGeometry | None:
+def fixed_pair(one, two, *, internal: bool, module: float, alpha: float, cut: float = 0.0) -> PairGeometry | None:
     """A mesh of two circles about fixed centres as a :class:`~.play.PairGeometry` (what the proven
     certificate measures): ``one`` and ``two`` each (shape about its pivot, placement, pitch
     radius, teeth), ``two`` the ring of an internal mesh; None unless each toothed outline is its
@@ -130,7 +143,9 @@ def fixed_pair(one, two, *, internal: bool, module: float, alpha: float) -> Pair
     tooth pair would have to meet, z2/gcd(z1, z2) turns: minutes under the proof).  Both shapes are
     turned so that the line of centres lies along x, as assembled; gear 1 turned by −φ turns gear 2
     by φ2 = k·φ, k = r1/r2 (an internal mesh: −r1/r2, the ring the same way), and gear 1's contact
-    lies r1 along the line (an internal mesh: −r1, its pitch point away from the ring's centre)."""
+    lies r1 along the line (an internal mesh: −r1, its pitch point away from the ring's centre).
+    ``cut``: the shapes are the regions of cut paths and a cutter of that radius runs along them
+    (:attr:`~.play.PairGeometry.cut`)."""
     (shape1, place1, r1, z1), (shape2, place2, r2, z2) = one, two
     gap = np.asarray(place2.offset, dtype=float) - np.asarray(place1.offset, dtype=float)
     theta = math.atan2(gap[1], gap[0])
@@ -168,6 +183,7 @@ def fixed_pair(one, two, *, internal: bool, module: float, alpha: float) -> Pair
             slope=lambda phi: np.full(np.shape(phi), k),
             cycle=cycle,
             first=start,
+            cut=cut,
         )
 
     return at(start)
@@ -186,10 +202,11 @@ def _repeats(ring, teeth: int) -> bool:
     return any(np.max(np.abs(turned - np.roll(xy, shift, axis=0))) <= 1e-9 * size for shift in shifts)
 
 
-def roller_meshes(draft, positions: int = 36) -> list[tuple[str, MeshGeometry, bool, ContactData]]:
+def roller_meshes(draft, positions: int = 36, *, written: bool = True) -> Meshes:
     """Each roller against a toothed body: (name, geometry in the body's frame, False, contact);
     none when the body has no teeth.  Each geometry's ``pair`` is the roller's
-    :class:`~.moving.MovingMesh` (what the proof measures, at any turn of the body)."""
+    :class:`~.moving.MovingMesh` (what the proof measures, at any turn of the body); the parts as
+    :func:`train_meshes` takes them."""
     p, detail = draft.params, draft.detail
     frame = getattr(detail, "pitch", None)
     if frame is None:
@@ -197,7 +214,7 @@ def roller_meshes(draft, positions: int = 36) -> list[tuple[str, MeshGeometry, b
     teeth = draft.data["teeth"]
     m, z, alpha = teeth["module"], teeth["body_teeth"], p.pressure_angle
     rho = detail.roller_radius * p.scale
-    shapes = (_shape(draft.parts[0]), _shape(draft.parts[1]))
+    shapes = written_shapes(draft, 2) if written else tuple(_held(s) for s in draft.parts[:2])
     z_r = teeth["roller_teeth"]
     # a body's turn is the whole cycle where the roller is its own vertices turned by a tooth
     # (after it the roller has turned z_b/z_r turns); otherwise until the same roller tooth returns
