@@ -214,7 +214,7 @@ def roller_meshes(draft, positions: int = 36, *, written: bool = True) -> Meshes
     teeth = draft.data["teeth"]
     m, z, alpha = teeth["module"], teeth["body_teeth"], p.pressure_angle
     rho = detail.roller_radius * p.scale
-    shapes = written_shapes(draft, 2) if written else tuple(_held(s) for s in draft.parts[:2])
+    shapes = written_shapes(draft, 2, micron=False) if written else tuple(_held(s) for s in draft.parts[:2])
     z_r = teeth["roller_teeth"]
     # a body's turn is the whole cycle where the roller is its own vertices turned by a tooth
     # (after it the roller has turned z_b/z_r turns); otherwise until the same roller tooth returns
