@@ -136,7 +136,7 @@ def rollers():
 def test_each_roller_rolls_on_the_body_from_its_assembled_place(rollers):
     """At the assembly each roller's pivot and turn are its placement's (the body unturned), and
     rolling keeps it in mesh all the way round: the drawn play stays within the tolerance."""
-    found = roller_meshes(rollers, positions=12, written=False)
+    found = roller_meshes(rollers, positions=12)
     assert [name for name, *_ in found] == ["body/roller 1", "body/roller 2", "body/roller 3"]
     for (_, g, _, contact), placed in zip(found, rollers.placements[1:]):
         assert np.allclose(g.centre2[0], placed.offset, atol=1e-6)
@@ -311,7 +311,7 @@ def test_a_rollers_instant_centre_is_its_pitch_point(rollers):
     parallel at ρ − s), and |ω| = (1/ρ + κ)·ds/dτ."""
     from gearcad.fitting.moving import local
 
-    g = roller_meshes(rollers, positions=6, written=False)[0][1].pair
+    g = roller_meshes(rollers, positions=6)[0][1].pair
     frame, rho = rollers.detail.pitch, g.arm
     m = g.mesh
     s = frame.arc_at(-m.phi1)
@@ -334,7 +334,7 @@ def test_a_rollers_bound_between_positions_is_never_above_a_dense_sweep(rollers,
     from gearcad.fitting.moving import MovingMeasures
     from gearcad.fitting.tube import tube, tubes
 
-    g = roller_meshes(rollers, positions=6, written=False)[0][1].pair
+    g = roller_meshes(rollers, positions=6)[0][1].pair
     measures, smaller, spread, h = MovingMeasures(), (-0.01, -0.01), 0.05, 0.003
     centres = roller_bands[0].band.worst_phi + 2 * h * np.arange(-2, 3)
     sites, _ = measures.sites(g.at(centres), smaller, spread, 0.01, 1.0)

@@ -412,13 +412,11 @@ def test_the_square_sets_least_plays_are_proven_under_an_independent_sweep(built
 
     import shapely
 
-    from gearcad.fitting.written import written_shapes
-
     from .fit_oracle import _turn, turns_free
 
     bands = {b["mesh"]: b for b in json.loads((built / "nc_square" / "report.json").read_text())["bands"]}
     ps, draft = square_draft.detail, square_draft
-    sun, planet, ring = written_shapes(draft, 3, micron=False)  # as the files write them and a beam leaves them
+    sun, planet, ring = (shapely.Polygon(p.outer, None if p.hole is None else [p.hole]) for p in draft.parts)
     radius = lambda g: np.hypot(*shapely.get_coordinates(g).T)  # noqa: E731
 
     def sweep(theta):

@@ -202,11 +202,12 @@ def _repeats(ring, teeth: int) -> bool:
     return any(np.max(np.abs(turned - np.roll(xy, shift, axis=0))) <= 1e-9 * size for shift in shifts)
 
 
-def roller_meshes(draft, positions: int = 36, *, written: bool = True) -> Meshes:
+def roller_meshes(draft, positions: int = 36) -> Meshes:
     """Each roller against a toothed body: (name, geometry in the body's frame, False, contact);
     none when the body has no teeth.  Each geometry's ``pair`` is the roller's
-    :class:`~.moving.MovingMesh` (what the proof measures, at any turn of the body); the parts as
-    :func:`train_meshes` takes them."""
+    :class:`~.moving.MovingMesh` (what the proof measures, at any turn of the body).  The parts are
+    the outlines the mechanism holds, not yet the written paths: a fuzzed body's written roller
+    that did not repeat by a tooth took its proof over 19 turns (40 CPU-s)."""
     p, detail = draft.params, draft.detail
     frame = getattr(detail, "pitch", None)
     if frame is None:
@@ -214,7 +215,7 @@ def roller_meshes(draft, positions: int = 36, *, written: bool = True) -> Meshes
     teeth = draft.data["teeth"]
     m, z, alpha = teeth["module"], teeth["body_teeth"], p.pressure_angle
     rho = detail.roller_radius * p.scale
-    shapes = written_shapes(draft, 2, micron=False) if written else tuple(_held(s) for s in draft.parts[:2])
+    shapes = tuple(_held(s) for s in draft.parts[:2])
     z_r = teeth["roller_teeth"]
     # a body's turn is the whole cycle where the roller is its own vertices turned by a tooth
     # (after it the roller has turned z_b/z_r turns); otherwise until the same roller tooth returns

@@ -9,6 +9,7 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
+import shapely
 
 from ..pitch.curve import curvature, polar_curvature
 from ..teeth.contact import ContactData, contact_ratio
@@ -16,7 +17,6 @@ from ..teeth.frame import arc_frame
 from .band_mesh import MeshGeometry
 from .band_trains import _repeats
 from .moving import MovingMesh
-from .written import written_shapes
 
 __all__ = ["INSIDE_PER_TOOTH", "NcMesh", "internal_meshes", "moving", "nc_meshes", "planetary_meshes"]
 
@@ -67,6 +67,10 @@ def _inward(tangent: np.ndarray) -> np.ndarray:
     return np.column_stack([-np.sin(tangent), np.cos(tangent)])
 
 
+def _shape(spec) -> shapely.Polygon:
+    return shapely.Polygon(spec.outer, None if spec.hole is None else [spec.hole])
+
+
 def _tilt(normal_angle: np.ndarray, contact: np.ndarray, pivot: np.ndarray) -> np.ndarray:
     """The angle (rad, within ±π/2) between the pitch curves' common normal at the contact and the
     line from the contact to the driven part's pivot: the working pressure angle is α ∓ it."""
@@ -112,7 +116,7 @@ def internal_meshes(draft) -> list[NcMesh]:
     pair, teeth = draft.detail, draft.data["teeth"]
     m, z1, alpha = teeth["module"], teeth["pinion_teeth"], draft.params.pressure_angle
     e, curve = pair.center_distance, pair.pinion
-    shapes = written_shapes(draft, 2, micron=False)  # the pinion and the ring as written and cut
+    shapes = (_shape(draft.parts[0]), _shape(draft.parts[1]))
     frame = arc_frame(curve)
     wide = 1.0
 
@@ -158,7 +162,7 @@ def planetary_meshes(draft) -> list[NcMesh]:
     ps, teeth, p = draft.detail, draft.data["teeth"], draft.params
     m, z, alpha = teeth["module"], teeth["sun"], p.pressure_angle
     sun, planet = ps.sun, ps.planet
-    shapes = written_shapes(draft, 3, micron=False)  # the sun, a planet and the ring as written and cut
+    shapes = [_shape(part) for part in draft.parts]
     frames = [arc_frame(NS.as_pitch_curve(c, "curve")) for c in (sun, planet)]
     ring_curve = NS.ring_pitch_curve(ps)
     pitch = math.pi * m

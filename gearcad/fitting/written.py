@@ -71,38 +71,28 @@ def written_rings(design) -> tuple[np.ndarray, np.ndarray]:
     return tuple(np.asarray(shape.exterior.coords)[:-1] for shape in written_shapes(design, 2))
 
 
-def written_shapes(
-    design, count: int | None = None, regions: tuple | None = None, *, micron: bool = True
-) -> tuple[shapely.Polygon, ...]:
+def written_shapes(design, count: int | None = None, regions: tuple | None = None) -> tuple[shapely.Polygon, ...]:
     """The first ``count`` parts (all: None) as written and cut, each a polygon with its holes (a
     ring gear's toothed hole, a bore): see the module's docstring; ``regions``: what
-    :func:`written_regions` gave for them (not made again); ``micron``: as there."""
-    paths, radius = regions or written_regions(design, count, micron=micron)
-    return tuple(_made(p, radius, _sagitta(design, micron)) for p in paths)
+    :func:`written_regions` gave for them (not made again)."""
+    paths, radius = regions or written_regions(design, count)
+    sagitta = min(budget(design.params.output.tolerance).fine, SAGITTA)
+    return tuple(_made(p, radius, sagitta) for p in paths)
 
 
-def written_regions(
-    design, count: int | None = None, *, micron: bool = True
-) -> tuple[tuple[shapely.Polygon, ...], float]:
+def written_regions(design, count: int | None = None) -> tuple[tuple[shapely.Polygon, ...], float]:
     """The regions the first ``count`` parts' written paths bound (all: None; each outer path
     with its holes', flattened as the module's docstring says), and the radius (mm) of the cutter
     that runs along them (0: none): the part made is each region shrunk by it (what
     :func:`written_shapes` gives; a band grows the region by its edge less the radius, the beam
-    in one step).  ``micron``: the arcs flattened to :data:`SAGITTA` at most, the band then
-    within a micrometre of the files; False: to a quarter of the tolerance only (what the
-    verdict's margin of two tolerances needs; a coarse tolerance's parts keep fewer vertices)."""
+    in one step)."""
     out = design.params.output
-    sagitta = _sagitta(design, micron)
+    sagitta = min(budget(out.tolerance).fine, SAGITTA)
     regions = []
     for part in _parts(design, count):
         outer, *holes = (arc_points(c, sagitta, balanced=True) for c in part.cut)
         regions.append(shapely.geometry.polygon.orient(shapely.Polygon(outer, holes), 1.0))
     return tuple(regions), out.kerf / 2
-
-
-def _sagitta(design, micron: bool) -> float:
-    fine = budget(design.params.output.tolerance).fine
-    return min(fine, SAGITTA) if micron else fine
 
 
 def _made(region: shapely.Polygon, radius: float, sagitta: float) -> shapely.Polygon:
