@@ -487,14 +487,20 @@ def _free_start(mesh, phi, parts, shift, window, samples):
         return float(turns[free[np.argmin(np.abs(turns[free]))]])
     # golden section on the overlap about the least sample
     k = int(np.argmin(areas))
-    lo, hi = turns[max(k - 1, 0)], turns[min(k + 1, samples - 1)]
-    g = (math.sqrt(5) - 1) / 2
     f = lambda t: _overlap(*_placed(mesh, phi, float(t), shift, parts)[:2], window)  # noqa: E731
+    a, fa, b, fb = _golden(f, turns[max(k - 1, 0)], turns[min(k + 1, samples - 1)], 1e-12, 60, 1e-14)
+    return float(a if fa <= fb else b) if min(fa, fb) <= 1e-14 else None
+
+
+def _golden(f, lo: float, hi: float, width: float, steps: int = 10**6, enough: float = -math.inf):
+    """Golden sections of ``f`` on [lo, hi] until the bracket is under ``width``, ``steps`` are
+    taken or either probe is at most ``enough``: (a, f(a), b, f(b)), the last probes."""
+    g = (math.sqrt(5) - 1) / 2
     a, b = hi - g * (hi - lo), lo + g * (hi - lo)
     fa, fb = f(a), f(b)
-    for _ in range(60):
-        if min(fa, fb) <= 1e-14:
-            return float(a if fa <= fb else b)
+    for _ in range(steps):
+        if min(fa, fb) <= enough or hi - lo <= width:
+            break
         if fa <= fb:
             hi, b, fb = b, a, fa
             a = hi - g * (hi - lo)
@@ -503,9 +509,7 @@ def _free_start(mesh, phi, parts, shift, window, samples):
             lo, a, fa = a, b, fb
             b = lo + g * (hi - lo)
             fb = f(b)
-        if hi - lo < 1e-12:
-            break
-    return None
+    return a, fa, b, fb
 
 
 def depth(overlap, tol: float = 1e-9, below: float = math.inf) -> float:
@@ -550,19 +554,7 @@ def _jam_shrink(made: Made, phi, window, samples) -> float:
         found = f(turns[k], least)
         depths[k] = found if found < least else math.inf
     k = int(np.argmin(depths))
-    lo, hi = turns[max(k - 1, 0)], turns[min(k + 1, samples - 1)]
-    g = (math.sqrt(5) - 1) / 2
-    a, b = hi - g * (hi - lo), lo + g * (hi - lo)
-    fa, fb = f(a), f(b)
-    while hi - lo > 1e-10:
-        if fa <= fb:
-            hi, b, fb = b, a, fa
-            a = hi - g * (hi - lo)
-            fa = f(a)
-        else:
-            lo, a, fa = a, b, fb
-            b = lo + g * (hi - lo)
-            fb = f(b)
+    _, fa, _, fb = _golden(f, turns[max(k - 1, 0)], turns[min(k + 1, samples - 1)], 1e-10)
     return float(min(depths[k], fa, fb))
 
 
