@@ -91,11 +91,11 @@ def train_meshes(draft, positions: int = 12, *, written: bool = True) -> Meshes:
     p = draft.params
     sides, alpha = layout(p).sides, p.pressure_angle
     if written:  # the regions the cut paths bound (a pair's proof grows them less the cutter) and the parts made
-        regions = written_regions(draft)
-        shapes, cut = written_shapes(draft, regions=regions), regions[1]
+        regions, cut = written_regions(draft)
+        shapes = written_shapes(draft, regions=(regions, cut))
     else:
-        shapes, cut = [_held(s) for s in draft.parts], 0.0
-        regions = (shapes, cut)
+        shapes = regions = [_held(s) for s in draft.parts]
+        cut = 0.0
     out = []
     for k, (kind, (r_from, r_to)) in enumerate(zip(p.meshes, sides)):
         inside = kind == "internal"
@@ -113,7 +113,7 @@ def train_meshes(draft, positions: int = 12, *, written: bool = True) -> Meshes:
         material = (math.atan2(*(contact - c1)[::-1]) - a1) / (TWO_PI / z)
         teeth = (np.floor(material) if first_ring else np.round(material)).astype(int) % z
         z2 = p.teeth[k + 1]  # the compound gear meets the gear before it with its outer teeth
-        ends = [(regions[0][k], one, r_from, z), (regions[0][k + 1], two, r_to, z2)]
+        ends = [(regions[k], one, r_from, z), (regions[k + 1], two, r_to, z2)]
         geometry = MeshGeometry(
             shapes=(shapes[k], shapes[k + 1]),
             phi1=turn,

@@ -273,8 +273,8 @@ def _signed_from(g: PairGeometry, play, start, offsets, spread: float, tol: floa
     hi = np.full(int(jammed.sum()), most)
     contact = sub.r1[:, None] * np.column_stack([np.cos(sub.phi1), np.sin(sub.phi1)])
     rim = shapely.buffer(shapely.points(contact), 0.95 * _WINDOW * g.module, quad_segs=16)
+    w1, place, _, _ = _placer(sub, offsets, spread, tol)  # the windows, gear 2's placed at any turn
     for again in range(2):
-        w1, place, _, _ = _placer(sub, offsets, spread, tol)
         lap = shapely.intersection(w1, place(turn))
         inside = shapely.within(lap, rim)
         depth = np.full_like(hi, most)
