@@ -15,7 +15,7 @@ import shapely
 from gearcad.fitting.band import pair_band
 from gearcad.fitting.pair_geometry import follower_speed
 from gearcad.fitting.play import PairGeometry
-from gearcad.fitting.prove import prove_play
+from gearcad.fitting.prove import prove_lazily, prove_play
 from tests.fit_oracle import free_turns
 
 N, R, A, E = 8, 10.0, 1.0, 20.3
@@ -134,3 +134,18 @@ def test_the_assembly_says_its_depth_is_proven_only_where_every_band_is(built):
     for name in ("spur_pair", "elliptic_focus", "walker"):
         assert json.loads((built / name / "report.json").read_text(encoding="utf-8"))["assembly"]["depth_proven"]
     assert seen == {True, False}
+
+
+def test_a_lazy_proof_settles_the_same_verdict_first_and_finishes_as_the_whole_proof():
+    """What a backlash search reads of each cut (:func:`prove_lazily`'s first answer) is the
+    verdict of the whole proof, proven, its bound no higher than the finished one's; finished,
+    it is the whole proof, position for position."""
+    g = _pair(np.linspace(0.0, 2 * math.pi, 2 * N, endpoint=False))
+    margin = 0.01
+    whole = prove_play(g, (0.0, 0.0), 0.0, 1e-3, reach=3.0, margin=margin)
+    (geo, play, cert), finish = prove_lazily(g, (0.0, 0.0), 0.0, 1e-3, reach=3.0, margin=margin)
+    assert cert.proven and whole[2].proven and cert.lower >= margin
+    assert cert.lower <= whole[2].lower and cert.positions < whole[2].positions
+    done = finish()
+    assert done[2] == whole[2] and np.array_equal(done[1], whole[1])
+    assert finish() is done  # carried on once

@@ -3,9 +3,9 @@
 The made parts differ from the drawn ones by an edge offset δ (the kerf's variation, a printer's
 XY error and elephant foot) and sit at a centre distance off by ±Δa (with the bores' play).  The
 play is measured from the geometry: both outlines offset by δ (shapely's buffer), gear 2 placed
-at E + Δa, and at each driver position gear 2 turned each way until it touches gear 1 (stepped
-by the gap, which never passes through); the two free turns times the contact radius add up to the play, mm on the pitch
-curve.  The smallest play comes with both parts large and the centres close, the largest with
+at E + Δa, and at each driver position gear 2 turned each way until it touches gear 1 (found
+exactly, :mod:`~..geometry.sweep`); the two free turns times the contact radius add up to the
+play, mm on the pitch curve.  The smallest play comes with both parts large and the centres close, the largest with
 both small and the centres apart.  Where the worst case overlaps already (it jams), the play is
 negative: the parts are shrunk until they come free, and the shrink ε counts −4ε/cos α (a
 rack-cut flank moved ε along its normal moves 1/cos α along the pitch curve; four flanks).
@@ -23,7 +23,7 @@ import numpy as np
 from ..threads import side_by_side
 from .certify import Certificate, certify_play
 from .play import PairGeometry, play_between, signed_play
-from .prove import pinned, prove_play
+from .prove import pinned, prove_lazily, prove_play
 
 __all__ = ["Band", "band_of", "pair_band"]
 
@@ -119,12 +119,12 @@ def pair_band(
     margin = _margin(edge, spread, tol, alpha)
     certify = g.at is not None and g.ratio is not None
     grown = [(e - g.cut, e - g.cut) for e in edge]  # the rings grown so (cut paths: less the cutter)
-    bounded = prove_play if certificate == "theorem" else certify_play
+    lazy = pin and certificate == "theorem" and margin >= 0  # the least pinned down only when asked
+    bounded = prove_lazily if lazy else prove_play if certificate == "theorem" else certify_play
     if edge[0] == edge[1] == edge[2] and not spread:  # no stack (no process): one case, not three alike
         if certify:
             found = bounded(g, grown[0], 0.0, tol, reach=reach, margin=margin)
-            band = _band_certified(name, found, None, None, edge=edge, spread=spread, tol=tol, alpha=alpha)
-            return _pinnable(band, found, grown[0], 0.0, tol, reach) if pin else band
+            return _certified(name, found, None, None, grown[0], 0.0, edge, spread, tol, reach, alpha, pin, lazy)
         nominal = tight = wide = signed_play(g, grown[0], 0.0, tol, reach=reach)
     else:
         with side_by_side() as pool:  # GEOS releases the GIL: the cases side by side
@@ -139,11 +139,33 @@ def pair_band(
             ]
             (nominal, _), tight, (wide, _) = (job.result() for job in jobs)
         if certify:
-            band = _band_certified(name, tight, nominal, wide, edge=edge, spread=spread, tol=tol, alpha=alpha)
-            return _pinnable(band, tight, grown[2], closer, tol, reach) if pin else band
+            return _certified(name, tight, nominal, wide, grown[2], closer, edge, spread, tol, reach, alpha, pin, lazy)
     return band_of(
         name, (nominal, tight, wide), g.teeth, g.phi1, edge=edge, spread=spread, tol=tol, alpha=alpha, phi2=g.phi2
     )
+
+
+def _certified(name, found, nominal, wide, offsets, spread_at, edge, spread, tol, reach, alpha, pin, lazy) -> Band:
+    """The band of a certified tight case ``found`` (``lazy``: (found, finish), :func:`~.prove.prove_lazily`:
+    its least pinned down, and pinned, only by :meth:`Band.pinned`); ``offsets``, ``spread_at``: how the
+    tight case was measured."""
+    finish = found[1] if lazy else None
+    found = found[0] if lazy else found
+
+    def band_of_(tight) -> Band:
+        return _band_certified(name, tight, nominal, wide, edge=edge, spread=spread, tol=tol, alpha=alpha)
+
+    band = band_of_(found)
+    if not pin:
+        return band
+    if finish is None:
+        return _pinnable(band, found, offsets, spread_at, tol, reach)
+
+    def pin_() -> Band:
+        done = finish()
+        return _pinnable(band_of_(done), done, offsets, spread_at, tol, reach).pinned()
+
+    return replace(band, pin=pin_)
 
 
 def _pinnable(band: Band, found, offsets, spread: float, tol: float, reach: float) -> Band:

@@ -11,7 +11,7 @@ so the play is 2a'(inv α − inv α'): it falls as a' = a·cos α/cos α' grows
 an external pair's 2a'(inv α' − inv α).)  A roller's axle moves along the common normal towards
 the body.  Both parts are offset by the edge (shapely's buffer; a ring's teeth grow into its
 spaces), gear 2 placed with the error, and turned each way about its pivot until it touches gear 1
-(stepped by the gap, never through): the two free turns times gear 2's pitch radius at the
+(found exactly, :mod:`~..geometry.sweep`): the two free turns times gear 2's pitch radius at the
 contact are the play, mm on its pitch curve.  Where the parts overlap as placed, the shrink ε that
 frees them counts −4ε/cos α.  Only a window of three modules about the contact is offset.
 """
@@ -25,9 +25,8 @@ import numpy as np
 import shapely
 
 from ..geometry.depth import overlap_exceeds
-from ..geometry.gap import distances
-from ..geometry.gap import runs as edge_runs
 from ..geometry.outline import place_each
+from ..geometry.sweep import free_turns
 from ..threads import side_by_side
 from .band import Band, band_of
 
@@ -100,7 +99,7 @@ def mesh_play(
     tol: float,
     *,
     reach: float,
-    steps: int = 8,
+    steps: int = 1,
     pieces: tuple[np.ndarray, np.ndarray] | None = None,
     halves: list | None = None,
 ) -> np.ndarray:
@@ -110,8 +109,9 @@ def mesh_play(
     sought; ``pieces`` the parts cut about the contact (:func:`clip`; default: cut here);
     ``halves`` (a list): the free turn each way (rad, 0 where they overlap) is appended to it.
 
-    Each way, gear 2 is turned towards gear 1 until they touch (:func:`_turn_to_touch`); ``steps``
-    bring the gap under a millionth of a module."""
+    Each way, gear 2 is turned until it touches gear 1, found exactly as the least turn at which
+    a vertex of either window meets an edge of the other (:func:`~..geometry.sweep.free_turns`);
+    ``steps`` 0: only whether they are free (0 where they are)."""
     radius = _WINDOW * g.module
     if pieces is None:
         pieces = clip(g, float(max(np.max(np.abs(o)) for o in offsets)))
@@ -120,9 +120,6 @@ def mesh_play(
     w2 = _windows(pieces[1], own, radius, offsets[1], tol)
     shapely.prepare(w1)
     coords, which = shapely.get_coordinates(w2, return_index=True)
-    far = np.zeros(len(g.phi1))
-    np.maximum.at(far, which, np.hypot(coords[:, 0], coords[:, 1]))
-    far = np.maximum(far, 1e-9)
     centre = g.centre2 + shift * g.tighter
     place = _placer(w2, coords, which, g.angle2, centre)
     arm = np.hypot(*(g.contact - g.centre2).T)  # gear 2's pitch radius at the contact
@@ -132,30 +129,12 @@ def mesh_play(
     free = ~overlap_exceeds(w1, placed, 1e-9 * g.module**2)
     if not steps or not free.any():  # only whether they are free: no play to measure
         return np.where(free, 0.0, np.nan)
-    live = slice(None)
-    if not free.all():  # where they overlap the play is NaN: only the free positions are turned
-        live = np.flatnonzero(free)
-        w1, placed, far, limit, w2 = w1[live], placed[live], far[live], limit[live], w2[live]
-        place = _placer(w2, *shapely.get_coordinates(w2, return_index=True), g.angle2[live], centre[live])
-    edges1, edges2 = edge_runs(w1, g.contact[live]), edge_runs(w2, own[live])
-    lines1 = edges1.lines(shapely.get_coordinates(w1))
-
-    def gap(turn: np.ndarray, at=None) -> np.ndarray:
-        """The distance between the windows, gear 2's turned ``turn`` (mm); ``at``: those only."""
-        windows, xy = place(turn)
-        lines2 = edges2.lines(xy)
-        at = slice(None) if at is None else at
-        return distances(w1[at], windows[at], lines1[at], lines2[at])
-
-    start = distances(w1, placed, lines1, edges2.lines(shapely.get_coordinates(placed)))
-    total, settled = np.zeros_like(g.phi1), 1e-6 * g.module
-    for sign in (1.0, -1.0):
-        turned = np.zeros_like(g.phi1)
-        turned[live] = _turn_to_touch(lambda turn, at=None: gap(sign * turn, at), start, far, limit, steps, settled)
-        total += turned
-        if halves is not None:
-            halves.append(turned)
-    return np.where(free, total * arm, np.nan)
+    live = np.flatnonzero(free)  # where they overlap the play is NaN: only the free positions are turned
+    up, down = np.zeros_like(g.phi1), np.zeros_like(g.phi1)
+    up[live], down[live] = free_turns(w1[live], placed[live], centre[live], limit[live])
+    if halves is not None:
+        halves += [up, down]
+    return np.where(free, (up + down) * arm, np.nan)
 
 
 def _placer(w2, coords: np.ndarray, which: np.ndarray, angle2: np.ndarray, centre: np.ndarray):
@@ -167,35 +146,6 @@ def _placer(w2, coords: np.ndarray, which: np.ndarray, angle2: np.ndarray, centr
         return shapely.set_coordinates(w2.copy(), xy), xy
 
     return place
-
-
-def _turn_to_touch(gap_at, gap: np.ndarray, far: np.ndarray, limit, steps: int, settled: float) -> np.ndarray:
-    """The turn (rad, ≥ 0, at most ``limit``) that brings gear 2's windows to touch gear 1's
-    (``gap_at(turn, at=None)``: their distance, mm, gear 2's turned ``turn``; ``at``: those
-    positions only), from ``gap`` at turn 0, in ``steps`` looks at the gap.
-
-    A turn by the gap over ``far`` (the farthest reach of gear 2's window from its pivot) moves no
-    point farther than the gap, so it never passes through gear 1, but it closes only the share
-    r_b/far of the gap (about 0.2–0.8).  Once two gaps are known the flanks close about linearly,
-    so the secant's step (to 95 % of the way) is taken instead; where that lands the parts
-    touching or overlapping (a gap of 0) it is taken back and the safe step taken."""
-    turn, before, gap_before = np.zeros_like(gap), None, None
-    for _ in range(steps):
-        safe = gap / far
-        step = safe
-        if before is not None:
-            closing = (gap_before - gap) / np.maximum(turn - before, 1e-15)  # mm per rad
-            step = np.where(closing > 0, np.maximum(safe, 0.95 * gap / np.where(closing > 0, closing, 1.0)), safe)
-        ahead = np.minimum(turn + step, limit)
-        gap_ahead = gap_at(ahead)
-        over = np.flatnonzero((gap_ahead <= 0) & (step > safe))
-        if len(over):  # the secant went too far: the safe step there
-            ahead[over] = np.minimum(turn[over] + safe[over], limit[over] if np.ndim(limit) else limit)
-            gap_ahead[over] = gap_at(ahead, over)
-        before, gap_before, turn, gap = turn, gap, ahead, gap_ahead
-        if np.all((gap <= settled) | (turn >= limit)):  # every position has come to rest
-            break
-    return turn
 
 
 def signed_mesh_play(g: MeshGeometry, pieces, edge: float, shift: float, tol: float, *, reach: float) -> np.ndarray:
@@ -227,7 +177,7 @@ def signed_mesh_play(g: MeshGeometry, pieces, edge: float, shift: float, tol: fl
         if not stuck.any() or np.all(shrink[stuck] >= most):
             break
         shrink = np.where(stuck, np.minimum(2 * shrink, most), shrink)
-    need = np.clip(shrink - free(shrink, steps=8) * cos_a / 4, 0.0, shrink)  # NaN where even `most` jams
+    need = np.clip(shrink - free(shrink, steps=1) * cos_a / 4, 0.0, shrink)  # NaN where even `most` jams
     lo, hi = np.zeros_like(shrink), np.where(np.isnan(need), most, need)
     measured = np.flatnonzero(~np.isnan(need))
     step = tol / 4

@@ -15,9 +15,8 @@ import numpy as np
 import shapely
 
 from ..geometry.depth import inradius, overlap_areas, overlap_exceeds
-from ..geometry.gap import distances
-from ..geometry.gap import runs as edge_runs
 from ..geometry.outline import place_each
+from ..geometry.sweep import free_turns
 from ..roots import golden_sections
 
 __all__ = ["PairGeometry", "measure", "play_along", "play_between", "signed_play"]
@@ -89,11 +88,12 @@ def _windows(ring: np.ndarray, centres: np.ndarray, radius: float, offset, tol: 
     return shapely.intersection(pieces, shapely.buffer(shapely.points(centres), radius, quad_segs=16))
 
 
-def _placer(g: PairGeometry, offsets, spread: float, tol: float, *, gaps: bool = False):
-    """(w1, place, gap, reach): gear 1's windows, place(turn) -> gear 2's windows turned ``turn``
-    (rad, per position) beyond the assembled angle in gear 1's frame, gap(turn) -> the distance
-    between the windows so placed (mm; with ``gaps``, else None), and the farthest any point of
-    gear 2's lies from its pivot (mm); the parts grown by ``offsets``, E by ``spread``."""
+def _placer(g: PairGeometry, offsets, spread: float, tol: float, *, turns: bool = False):
+    """(w1, place, free_turns, reach): gear 1's windows, place(turn) -> gear 2's windows turned
+    ``turn`` (rad, per position) beyond the assembled angle in gear 1's frame, free_turns(turn,
+    limit, at) -> how far gear 2's windows so placed turn each way before they touch gear 1's
+    (rad, :func:`~..geometry.sweep.free_turns`; with ``turns``, else None), and the farthest any
+    point of gear 2's lies from its pivot (mm); the parts grown by ``offsets``, E by ``spread``."""
     e = g.center_distance + spread
     c1 = g.r1[:, None] * np.column_stack([np.cos(g.phi1), np.sin(g.phi1)])
     back = g.r1 - g.center_distance  # the contact in gear 2's frame, before its turn
@@ -109,8 +109,9 @@ def _placer(g: PairGeometry, offsets, spread: float, tol: float, *, gaps: bool =
     first = np.cumsum(counts) - counts  # each window's first row of ``coords``
     centre = e * np.column_stack([np.cos(g.phi1), np.sin(g.phi1)])  # gear 2's pivot in gear 1's frame
 
-    def placed(turn: np.ndarray, at) -> tuple[np.ndarray, np.ndarray]:
-        """Gear 2's windows ``at`` turned ``turn`` and their coordinates."""
+    def place(turn: np.ndarray, at=None) -> np.ndarray:
+        """Gear 2's windows turned ``turn`` (per position); ``at`` (ascending indices): only those
+        windows, ``turn`` given for them alone."""
         if at is None:
             at, rows = slice(None), slice(None)
             owner = which
@@ -119,25 +120,16 @@ def _placer(g: PairGeometry, offsets, spread: float, tol: float, *, gaps: bool =
             owner = np.repeat(np.arange(len(n)), n)
             rows = np.repeat(first[at] - np.cumsum(n) + n, n) + np.arange(int(n.sum()))
         xy = place_each(coords[rows], owner, g.phi1[at] + g.phi2[at] + turn, centre[at])
-        return shapely.set_coordinates(w2[at].copy(), xy), xy
+        return shapely.set_coordinates(w2[at].copy(), xy)
 
-    def place(turn: np.ndarray, at=None) -> np.ndarray:
-        """Gear 2's windows turned ``turn`` (per position); ``at`` (ascending indices): only those
-        windows, ``turn`` given for them alone."""
-        return placed(turn, at)[0]
-
-    if not gaps:
+    if not turns:
         return w1, place, None, far
-    edges1 = edge_runs(w1, c1).lines(shapely.get_coordinates(w1))
-    edges2 = edge_runs(w2, c2)
 
-    def gap(turn: np.ndarray, at=None) -> np.ndarray:
-        """The distance between the windows, gear 2's turned as :func:`place` turns them (mm)."""
-        windows, xy = placed(turn, at)
-        chosen = slice(None) if at is None else at
-        return distances(w1[chosen], windows, edges1[chosen], edges2.lines(xy, at))
+    def free(turn: np.ndarray, limit: np.ndarray, at) -> tuple[np.ndarray, np.ndarray]:
+        """How far gear 2's windows ``at``, turned ``turn``, turn on each way (rad, to ``limit``)."""
+        return free_turns(w1[at], place(turn, at), centre[at], limit)
 
-    return w1, place, gap, far
+    return w1, place, free, far
 
 
 def _least_overlap(w1, place, bound: np.ndarray, iterations: int = 24) -> np.ndarray:
@@ -170,7 +162,7 @@ def play_between(
     tol: float,
     *,
     reach: float,
-    steps: int = 8,
+    steps: int = 1,
     start=None,
     halves=None,
     keep=None,
@@ -179,12 +171,12 @@ def play_between(
     NaN where the parts overlap wherever gear 2 sits; and the turn of gear 2 it was measured from.
 
     Gear 2 is first turned to where it is free (:func:`_least_overlap`; ``start`` given: there);
-    from there, each way, it is turned by the gap left over the farthest reach of its window (no
-    point of it moves farther than the gap, so it never passes through gear 1); the gap shrinks
-    by about cos α times that each step, so ``steps`` bring it under a millionth of a module.
+    from there, each way, it is turned until it touches gear 1, found exactly as the least turn
+    at which a vertex of either window meets an edge of the other
+    (:func:`~..geometry.sweep.free_turns`).  ``steps`` 0: only whether it is free (0 where it is).
     ``reach`` (mm) bounds the play sought; ``halves`` (a list): the free turn each way (rad, (2, n))
     is appended to it; ``keep`` (a dict): gear 1's windows, the placer and the reach stored in it."""
-    w1, place, gap_at, far = _placer(g, offsets, spread, tol, gaps=steps > 0)
+    w1, place, turns, far = _placer(g, offsets, spread, tol, turns=steps > 0)
     if keep is not None:
         keep.update(w1=w1, place=lambda turn, at: place(turn, at), far=far)
     arm = g.center_distance - g.r1
@@ -192,43 +184,14 @@ def play_between(
     touching = 1e-9 * g.module**2
     if start is None:  # the follower's play lies within a quarter pitch of the rolling angle
         start = _least_overlap(w1, place, np.minimum(limit, 0.25 * math.pi * g.module / arm))
-
-    def apart(turn: np.ndarray, at=None) -> np.ndarray:
-        if at is None:
-            return ~overlap_exceeds(w1, place(start + turn), touching)
-        return ~overlap_exceeds(w1[at], place(start[at] + turn, at), touching)
-
-    free = apart(np.zeros_like(start))
-    live = None if free.all() else np.flatnonzero(free)  # overlapping: the play is NaN, no gap to close
-
-    def gap(turn: np.ndarray) -> np.ndarray:
-        """The gap at the free positions, gear 2 turned ``turn`` (rad, one per free position)."""
-        if live is None:
-            return gap_at(start + turn)
-        return gap_at(start[live] + turn, live)
-
-    at = slice(None) if live is None else live
-    first = gap(np.zeros_like(start[at])) if steps and free.any() else None  # the same either way
-    total = np.zeros_like(g.phi1)
-    for sign in (1.0, -1.0):
-        turn, ahead = np.zeros_like(g.phi1), np.zeros_like(start[at])
-        for step in range(steps if free.any() else 0):
-            ahead = np.minimum(ahead + (first if step == 0 else gap(sign * ahead)) / far[at], limit[at])
-        turn[at] = ahead
-        if steps:  # the gap is the nearest flank's, which may be the one turning away: bisect there
-            nudge = 1e-4 * g.module / arm
-            stalled = np.flatnonzero(free & (turn + nudge < limit))
-            stalled = stalled[apart(sign * (turn + nudge)[stalled], stalled)]
-            lo, hi = turn[stalled], limit[stalled]
-            for _ in range(18 if len(stalled) else 0):
-                mid = 0.5 * (lo + hi)
-                ok = apart(sign * mid, stalled)
-                lo, hi = np.where(ok, mid, lo), np.where(ok, hi, mid)
-            turn[stalled] = lo
-        total += turn
-        if halves is not None:
-            halves.append(turn)
-    return np.where(free, total * arm, np.nan), start
+    free = ~overlap_exceeds(w1, place(start), touching)
+    live = np.flatnonzero(free)  # overlapping: the play is NaN, no gap to close
+    up, down = np.zeros_like(g.phi1), np.zeros_like(g.phi1)
+    if steps and len(live):
+        up[live], down[live] = turns(start[live], limit[live], live)
+    if halves is not None:
+        halves += [up, down]
+    return np.where(free, (up + down) * arm, np.nan), start
 
 
 def measure(g: PairGeometry, offsets, spread: float, tol: float, *, reach: float) -> np.ndarray:

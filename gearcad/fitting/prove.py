@@ -18,7 +18,7 @@ from .play import _WINDOW, PairGeometry, _signed_from, _windows, play_between, s
 from .tube import NEAREST, Site, nearest, outline
 from .tube import tubes as tube_of
 
-__all__ = ["Measures", "PAIRS", "pinned", "prove_play"]
+__all__ = ["Measures", "PAIRS", "pinned", "prove_lazily", "prove_play"]
 
 
 BUDGET = 12
@@ -155,10 +155,50 @@ def prove_play(
     positions) runs out: then the certificate is not ``proven``, names the interval and says the
     play short of the margin by the resolution, max(tol, 1e-4·m) (what a fit search then adds).  A
     measured position under the margin proves the pair jams; the intervals about the least play
-    are then halved :data:`JAM_HALVINGS` times to say how far short it falls.  ``measures``: how
-    ``g`` is measured and bounded (:class:`Measures`; a gear pair's by default)."""
+    are then halved :data:`JAM_HALVINGS` times to say how far short it falls.  Once proven, the
+    least is pinned down (:data:`SLACK`).  ``measures``: how ``g`` is measured and bounded
+    (:class:`Measures`; a gear pair's by default)."""
     if margin < 0:  # exact parts may bite: the outlines, each moved in by what it may lose, apart
         return _bitten(g, offsets, spread, tol, reach=reach, margin=margin, budget=budget, measures=measures)
+    _, finish = prove_lazily(g, offsets, spread, tol, reach=reach, margin=margin, budget=budget, measures=measures)
+    return finish()
+
+
+def prove_lazily(
+    g: PairGeometry,
+    offsets,
+    spread: float,
+    tol: float,
+    *,
+    reach: float,
+    margin: float,
+    budget: int = 0,
+    measures: Measures = PAIRS,
+):
+    """(found, finish): :func:`prove_play` (a margin of 0 or more) stopped as soon as the verdict
+    is settled — ``found`` its (geometry, play, :class:`Certificate`), the least not yet pinned
+    down (:data:`SLACK`) — and finish() -> the same proof carried on until it is, from where it
+    stopped (what a search for the backlash skips on every cut but the one it keeps: half the
+    laser focus pair's CPU)."""
+    proof = _proof(g, offsets, spread, tol, reach=reach, margin=margin, budget=budget, measures=measures)
+    found = next(proof)
+    done: list = []
+
+    def finish():
+        if not done:
+            settled = found[2].proven and found[2].lower >= margin  # (a jam is pinned as it is proven)
+            done.append(proof.send(measures.tighten) if settled and measures.tighten > 0 else found)
+            proof.close()
+        return done[0]
+
+    return found, finish
+
+
+def _proof(g: PairGeometry, offsets, spread: float, tol: float, *, reach: float, margin: float, budget: int, measures):
+    """:func:`prove_play`'s work, a generator: it yields the proof once the verdict is settled,
+    and, sent how many times the first positions more may pin the least down, yields it again
+    when they have."""
+    tighten = 0.0
     if g.first is not None:  # the certificate's own even start along the pitch curve
         g = g.at(g.first)
     n0 = len(g.phi1)
@@ -207,7 +247,7 @@ def prove_play(
             if not weak.any() and joined.all():  # proven: then the least pinned down, lowest first
                 settled = len(sites) if settled is None else settled
                 loose = np.flatnonzero(bound < least - SLACK)
-                weak[loose[np.argsort(bound[loose])][:TIGHTEN]] = len(sites) < settled + measures.tighten * n0
+                weak[loose[np.argsort(bound[loose])][:TIGHTEN]] = len(sites) < settled + tighten * n0
             split = weak | np.roll(weak, -1) | ~joined  # the gaps either side of a weak position
         split &= gap > narrowest
         certified = float(np.min(np.where(joined, bound, -math.inf))) if least >= margin else least
@@ -224,8 +264,11 @@ def prove_play(
                 open=(0.0, 0.0) if proven else (float(phi[worst] - half[worst]), float(phi[worst] + half[worst])),
                 kind="theorem",
             )
-            geo = measures.joined(geos)
-            return geo, np.concatenate(plays), cert
+            more = yield measures.joined(geos), np.concatenate(plays), cert
+            if more is not None and more > tighten:  # carry on: pin the least down
+                tighten = more
+                continue
+            return
         # how many new positions each gap takes: where a weak position's bound would keep the
         # margin over a narrower interval (looked at without measuring), enough to reach it
         pieces = np.where(split, 2, 1)
