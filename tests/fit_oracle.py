@@ -140,8 +140,49 @@ def placement(part: Path, assembly: Path) -> tuple[float, np.ndarray, float]:
         err = float(np.max(tree.query(_turn(everything, angle) + shift)[0]))
         if best is None or err < best[2]:
             best = (angle, shift, err)
+    if best is None or best[2] >= 1e-6:  # the writer split the arcs of the turned copy elsewhere
+        best = _by_curve(part, assembly, best)
     if best is None:
         raise ValueError(f"{part.name}: not found in {assembly.name}")
+    return best
+
+
+def _by_curve(part: Path, assembly: Path, best):
+    """The placement laying the part's outline onto a loop of the assembly as curves: the DXF
+    writer splits arcs into equal sub-arcs where their chords would lose area, and which of a
+    gear's like arcs it splits turns on the last bits of their radii, so a turned copy may carry
+    its extra vertices on other teeth (the same curve, other vertices; the engraved dashes
+    alike).  Centroid onto centroid, then each turn that lays the part's farthest vertex onto
+    one of the loop's as far out; the error is the largest distance of either's written vertices
+    from the other's flattened curve (every written vertex lies on the curve)."""
+    mine_raw = max(read_loops(part, raw=True), key=len)
+    mine = shapely.Polygon(max(read_loops(part), key=len))
+    c_mine = np.array(mine.centroid.coords[0])
+    r_mine = np.hypot(*(mine_raw - c_mine).T)
+    far = mine_raw[int(np.argmax(r_mine))] - c_mine
+    for other_raw, other in zip(read_loops(assembly, raw=True), read_loops(assembly)):
+        theirs = shapely.Polygon(other)
+        if abs(theirs.area - mine.area) > 1e-6 * mine.area or abs(theirs.length - mine.length) > 1e-6 * mine.length:
+            continue
+        c_theirs = np.array(theirs.centroid.coords[0])
+        r_theirs = np.hypot(*(other_raw - c_theirs).T)
+        for w in other_raw[np.abs(r_theirs - r_mine.max()) < 1e-6] - c_theirs:
+            angle = math.atan2(w[1], w[0]) - math.atan2(far[1], far[0])
+            shift = c_theirs - _turn(c_mine, angle)
+            placed = _turn(mine_raw, angle) + shift
+            err = max(
+                float(np.max(shapely.distance(shapely.points(placed), theirs.exterior))),
+                float(
+                    np.max(
+                        shapely.distance(
+                            shapely.points(other_raw),
+                            shapely.LinearRing(_turn(np.asarray(mine.exterior.coords), angle) + shift),
+                        )
+                    )
+                ),
+            )
+            if best is None or err < best[2]:
+                best = (angle, shift, err)
     return best
 
 
@@ -222,7 +263,7 @@ def pair_mesh(folder: Path, gear1: str, gear2: str, driver: str, pressure_angle_
     poses = []
     for name in (gear1, gear2):
         angle, shift, err = placement(folder / f"{name}.dxf", folder / "assembly.dxf")
-        assert err < 1e-6, (name, err)
+        assert err < 3e-5, (name, err)  # (laid on as curves: to the flattening's 20 nm, see _by_curve)
         poses.append((angle, shift))
     d, f, ratio = _kinematics(folder)
     e = float(np.hypot(*(poses[1][1] - poses[0][1])))
@@ -278,7 +319,7 @@ def train_mesh(folder: Path, gear1: str, gear2: str, pressure_angle_deg: float, 
     poses = []
     for name in (gear1, gear2):
         angle, shift, err = placement(folder / f"{name}.dxf", folder / "assembly.dxf")
-        assert err < 1e-6, (name, err)
+        assert err < 3e-5, (name, err)  # (laid on as curves: to the flattening's 20 nm, see _by_curve)
         poses.append((angle, shift))
 
     # internal: one part's largest hole holds the other
