@@ -53,3 +53,30 @@ def test_the_turn_found_is_apart_just_short_of_it_and_touching_just_past():
 
             assert not any(at(t).intersects(a) for t in np.linspace(0, turn * (1 - 1e-6), 50))
             assert turn >= limit or at(turn + 1e-7).intersects(a)
+
+
+def test_parts_that_touch_or_overlap_as_placed_turn_free_neither_way():
+    """A tip 1 nm into a plate (an overlap of 1e-13 mm², under what a band counts as touching),
+    or resting on it: no vertex meets an edge the way it goes deeper, so the sweep alone gave the
+    far side's exit (1.03 rad) where 1e-4 rad already bites (a review's finding): 0 both ways."""
+    plate = shapely.box(-5, -5, 5, 0)
+    for tip_y, pivot in ((-1e-6, (3.0, 3.0)), (0.0, (-3.0, 3.0))):
+        tip = shapely.Polygon([(-0.5, 3), (0, tip_y), (0.5, 3)])
+        up, down = free_turns(np.array([plate]), np.array([tip]), np.array([pivot]), math.pi / 2)
+        assert up[0] == 0.0 and down[0] == 0.0
+
+
+def test_repeated_vertices_and_nested_collections():
+    """A ring with each vertex written three times (edges of length 0, which once made the bands
+    of radius a nanometre wide: 15 GiB), and a polygon inside a collection inside a collection:
+    the same turn as the plain polygon."""
+    ring = [(2 + math.cos(t), math.sin(t)) for t in np.linspace(0, 2 * math.pi, 12, endpoint=False)]
+    wall = shapely.box(-10.0, 2.0, 10.0, 5.0)
+    plain = shapely.Polygon(ring)
+    tripled = shapely.Polygon([p for p in ring for _ in range(3)])
+    nested = shapely.GeometryCollection([shapely.MultiPolygon([wall, shapely.box(20, 20, 21, 21)])])
+    up, down = free_turns(np.array([wall, wall, nested]), np.array([plain, tripled, plain]), np.zeros((3, 2)), 3.0)
+    # the vertex (2.5, √3/2) turned by 30°: y = 2.5·sin 30° + (√3/2)·cos 30° = 2, the wall (the
+    # others reach it later); clockwise the ring turns away from it, to the limit
+    assert up == pytest.approx([math.pi / 6] * 3, abs=1e-12)
+    assert list(down) == [3.0] * 3

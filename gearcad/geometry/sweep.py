@@ -22,17 +22,31 @@ __all__ = ["free_turns"]
 
 BANDS = 2.0
 """The bands of radius are this many times an edge's median radial span wide."""
+EVEN = 1e-12
+"""A touch this near a turn of 0 (rad) is where the polygons stand: it stops both ways."""
 
 
 def _edges(polygons: np.ndarray, pivot: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """(starts, ends, owner): every ring edge of each polygon (n,), from its pivot ((n, 2))."""
+    """(starts, ends, owner): every ring edge of each polygon (n,), from its pivot ((n, 2)); a
+    collection's polygons however deep (its lines and points hold no material), no edge of
+    length 0 (a repeated vertex)."""
     parts, part_of = shapely.get_parts(polygons, return_index=True)
+    while len(parts) and np.any(shapely.get_num_geometries(parts) > 1) | np.any(_collections(parts)):
+        parts, inner = shapely.get_parts(parts, return_index=True)
+        part_of = part_of[inner]
     rings, ring_of = shapely.get_rings(parts, return_index=True)
     xy, row_ring = shapely.get_coordinates(rings, return_index=True)
     owner = part_of[ring_of][row_ring]
     xy = xy - pivot[owner]
     same = row_ring[1:] == row_ring[:-1]
-    return xy[:-1][same], xy[1:][same], owner[:-1][same]
+    p, q, owner = xy[:-1][same], xy[1:][same], owner[:-1][same]
+    keep = np.any(p != q, axis=1)
+    return p[keep], q[keep], owner[keep]
+
+
+def _collections(parts: np.ndarray) -> np.ndarray:
+    kinds = shapely.get_type_id(parts)
+    return np.isin(kinds, (shapely.GeometryType.MULTIPOLYGON, shapely.GeometryType.GEOMETRYCOLLECTION))
 
 
 def _touches(v, vpos, p, q, epos, moving_vertex: bool, limit: np.ndarray, n: int):
@@ -49,7 +63,8 @@ def _touches(v, vpos, p, q, epos, moving_vertex: bool, limit: np.ndarray, n: int
     s = np.clip(-pd / a, 0.0, 1.0)
     rmin = np.hypot(p[:, 0] + s * d[:, 0], p[:, 1] + s * d[:, 1])
     rmax = np.maximum(np.hypot(p[:, 0], p[:, 1]), np.hypot(q[:, 0], q[:, 1]))
-    width = BANDS * max(float(np.median(rmax - rmin)), 1e-9)
+    span = rmax - rmin
+    width = BANDS * max(float(np.median(span[span > 0])) if np.any(span > 0) else 0.0, 1e-6 * float(rmax.max()), 1e-12)
     lo, hi = np.floor(rmin / width).astype(np.int64), np.floor(rmax / width).astype(np.int64)
     bands = int(max(hi.max(), np.floor(rho.max() / width))) + 1
     count = hi - lo + 1
@@ -80,16 +95,17 @@ def _touches(v, vpos, p, q, epos, moving_vertex: bool, limit: np.ndarray, n: int
         turn = turn if moving_vertex else -turn
         turn = (turn + np.pi) % (2 * np.pi) - np.pi
         who = owner[on]
-        ahead = turn >= 0
-        np.minimum.at(up, who[ahead], turn[ahead])
-        np.minimum.at(down, who[~ahead], -turn[~ahead])
+        ahead, behind = turn >= -EVEN, turn <= EVEN  # (a touch as placed stops both ways)
+        np.minimum.at(up, who[ahead], np.maximum(turn[ahead], 0.0))
+        np.minimum.at(down, who[behind], np.maximum(-turn[behind], 0.0))
     return up, down
 
 
 def free_turns(still: np.ndarray, turning: np.ndarray, pivot: np.ndarray, limit) -> tuple[np.ndarray, np.ndarray]:
     """(up, down): for each k, how far (rad, ≥ 0) ``turning[k]`` turns about ``pivot[k]`` (mm)
-    counter-clockwise and clockwise before it touches ``still[k]`` (polygons, apart as placed),
-    at most ``limit`` (rad, scalar or per k; no more than π: a turn is found within (−π, π])."""
+    counter-clockwise and clockwise before it touches ``still[k]`` (polygons), at most ``limit``
+    (rad, scalar or per k; no more than π: a turn is found within (−π, π]); 0 both ways where
+    they overlap as placed (a vertex already inside meets no edge the way it goes deeper)."""
     n = len(still)
     pivot = np.asarray(pivot, dtype=float).reshape(n, 2)
     limit = np.minimum(np.broadcast_to(np.asarray(limit, dtype=float), (n,)), np.pi)
@@ -99,4 +115,8 @@ def free_turns(still: np.ndarray, turning: np.ndarray, pivot: np.ndarray, limit)
     p2, q2, o2 = _edges(np.asarray(turning, dtype=object), pivot)
     up, down = _touches(p2, o2, p1, q1, o1, True, limit, n)
     up2, down2 = _touches(p1, o1, p2, q2, o2, False, limit, n)
-    return np.minimum(up, up2), np.minimum(down, down2)
+    up, down = np.minimum(up, up2), np.minimum(down, down2)
+    still, turning = np.asarray(still, dtype=object), np.asarray(turning, dtype=object)
+    inside = shapely.intersects(still, turning) & ~shapely.touches(still, turning)
+    up[inside] = down[inside] = 0.0
+    return up, down
