@@ -5,8 +5,8 @@ XY error and elephant foot) and sit at a centre distance off by ±Δa (with the 
 play is measured from the geometry: both outlines offset by δ (shapely's buffer), gear 2 placed
 at E + Δa, and at each driver position gear 2 turned each way until it touches gear 1 (found
 exactly, :mod:`~..geometry.sweep`); the two free turns times the contact radius add up to the
-play, mm on the pitch curve.  The smallest play comes with both parts large and the centres close, the largest with
-both small and the centres apart.  Where the worst case overlaps already (it jams), the play is
+play, mm on the pitch curve.  The smallest play comes with both parts large and the centres
+close, the largest with both small and the centres apart.  Where the worst case overlaps already (it jams), the play is
 negative: the parts are shrunk until they come free, and the shrink ε counts −4ε/cos α (a
 rack-cut flank moved ε along its normal moves 1/cos α along the pitch curve; four flanks).
 Only a window of each gear around the contact (three modules) is offset and intersected.
