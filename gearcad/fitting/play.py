@@ -165,7 +165,6 @@ def play_between(
     steps: int = 1,
     start=None,
     halves=None,
-    keep=None,
 ) -> tuple[np.ndarray, np.ndarray]:
     """Free play at each position (mm on gear 2's pitch curve, at its nominal contact radius);
     NaN where the parts overlap wherever gear 2 sits; and the turn of gear 2 it was measured from.
@@ -175,10 +174,8 @@ def play_between(
     at which a vertex of either window meets an edge of the other
     (:func:`~..geometry.sweep.free_turns`).  ``steps`` 0: only whether it is free (0 where it is).
     ``reach`` (mm) bounds the play sought; ``halves`` (a list): the free turn each way (rad, (2, n))
-    is appended to it; ``keep`` (a dict): gear 1's windows, the placer and the reach stored in it."""
-    w1, place, turns, far = _placer(g, offsets, spread, tol, turns=steps > 0)
-    if keep is not None:
-        keep.update(w1=w1, place=lambda turn, at: place(turn, at), far=far)
+    is appended to it."""
+    w1, place, turns, _ = _placer(g, offsets, spread, tol, turns=steps > 0)
     arm = g.center_distance - g.r1
     limit = min(reach, 1.2 * math.pi * g.module) / arm  # more than a pitch never frees a tooth
     touching = 1e-9 * g.module**2

@@ -57,8 +57,7 @@ the cut edges of the two windows then lie apart, and only the real outlines come
 def _sites(g: PairGeometry, offsets, spread: float, tol: float, reach: float) -> tuple[list[Site], np.ndarray]:
     """Measure ``g``'s positions: the signed play and, where free, the windows as the bound needs them."""
     halves: list[np.ndarray] = []
-    keep: dict = {}
-    play, start = play_between(g, offsets, spread, tol, reach=reach, halves=halves, keep=keep)
+    play, start = play_between(g, offsets, spread, tol, reach=reach, halves=halves)
     signed = _signed_from(g, play, start, offsets, spread, tol, reach=reach)
     up, down = halves
     t0 = start + (up - down) / 2
