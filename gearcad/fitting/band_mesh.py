@@ -29,6 +29,7 @@ from ..geometry.outline import place_each
 from ..geometry.sweep import free_turns
 from ..threads import side_by_side
 from .band import Band, band_of
+from .play import cut_about
 
 __all__ = ["MeshGeometry", "clip", "mesh_band", "mesh_play", "signed_mesh_play"]
 
@@ -77,10 +78,7 @@ def clip(g: MeshGeometry, grow: float) -> tuple[np.ndarray, np.ndarray]:
     enough for any offset up to ``grow`` mm, and then only offset and trimmed (:func:`mesh_play`)."""
     big = _WINDOW * g.module * 7 / 6 + grow
     own = _rotate(g.contact - g.centre2, -g.angle2)  # the contact in gear 2's own coordinates
-    return tuple(
-        shapely.intersection(shape, shapely.buffer(shapely.points(centres), big, quad_segs=16))
-        for shape, centres in ((g.shapes[0], g.contact), (g.shapes[1], own))
-    )
+    return tuple(cut_about(shape, centres, big) for shape, centres in ((g.shapes[0], g.contact), (g.shapes[1], own)))
 
 
 def _windows(pieces: np.ndarray, centres: np.ndarray, radius: float, offset, tol: float) -> np.ndarray:

@@ -41,7 +41,7 @@ from .band_mesh import _WINDOW, MeshGeometry, _windows, clip, mesh_play, signed_
 from .certify import certify
 from .pair_geometry import interval_maxima
 from .prove import BEYOND, Measures, prove_play
-from .tube import NEAREST, Site, nearest, outline
+from .tube import Site, outline
 
 __all__ = ["MovingMesh", "MovingMeasures", "moving_band"]
 
@@ -247,8 +247,7 @@ class MovingMeasures(Measures):
             s.arm = g.arm if g.arm is not None else float(np.hypot(*(m.contact[i] - m.centre2[i])))
             s.pivot, s.instant, s.turning = centre[j], instant[j], turning[j]
             a, b = outline(narrow1[j], wide1[j]), outline(narrow2[j], wide2[j])
-            near = NEAREST * m.module  # (farther from the mate than that, a vertex takes that as its distance)
-            s.a, s.b = (*a, nearest(a[0], b[3], near)), (*b, nearest(b[0], a[3], near))
+            s.a, s.b = a, b
         return sites, signed
 
     def ratio(self, g: MovingMesh, spread: float):

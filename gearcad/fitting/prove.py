@@ -15,7 +15,7 @@ from ..geometry.outline import place_each
 from ..roots import golden_sections
 from .certify import Certificate
 from .play import _WINDOW, PairGeometry, _signed_from, _windows, play_between, signed_play
-from .tube import NEAREST, Site, nearest, outline
+from .tube import Site, outline
 from .tube import tubes as tube_of
 
 __all__ = ["Measures", "PAIRS", "pinned", "prove_lazily", "prove_play"]
@@ -88,8 +88,7 @@ def _sites(g: PairGeometry, offsets, spread: float, tol: float, reach: float) ->
         s.t0, s.cap, s.k, s.dk = float(t0[i]), float((up[i] + down[i]) / 2), float(k[j]), float(dk[j])
         s.arm = float(g.center_distance - g.r1[i])
         a, b = outline(narrow1[j], wide1[j]), outline(narrow2[j], wide2[j])
-        near = NEAREST * g.module  # (beyond, a vertex takes that as its distance: a lower bound)
-        s.a, s.b = (*a, nearest(a[0], b[3], near)), (*b, nearest(b[0], a[3], near))
+        s.a, s.b = a, b
     return sites, signed
 
 

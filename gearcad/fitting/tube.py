@@ -24,14 +24,7 @@ from dataclasses import dataclass
 import numpy as np
 import shapely
 
-__all__ = ["Site", "outline", "nearest", "tube", "tubes"]
-
-
-NEAREST = 0.3
-"""Modules within which each window vertex's distance to the mate's edges is measured (beyond, the
-bound takes that as its distance: a lower bound, which only picks the vertices it looks at; the
-noncircular sets' planet–ring windows hold a whole planet, and the full search took a third of
-their proof's CPU)."""
+__all__ = ["Site", "outline", "tube", "tubes"]
 
 
 @dataclass
@@ -48,8 +41,7 @@ class Site:
     dk: float = 0.0
     arm: float = 0.0
     a: tuple | None = None
-    """Gear 1's window: (vertices, edge starts, edge ends, the edges' R-tree, each vertex's
-    distance to gear 2's wide window)."""
+    """Gear 1's window: (vertices, edge starts, edge ends, the edges' R-tree) (:func:`outline`)."""
     b: tuple | None = None
     """Gear 2's window at (φ, t0): the same."""
     pivot: np.ndarray | None = None
@@ -69,17 +61,6 @@ def outline(narrow, wide) -> tuple:
     same = ring[1:] == ring[:-1]
     p, q = ends[:-1][same], ends[1:][same]
     return shapely.get_coordinates(narrow), p, q, shapely.STRtree(shapely.linestrings(np.stack([p, q], 1)))
-
-
-def nearest(xy: np.ndarray, edges: shapely.STRtree, within: float | None = None) -> np.ndarray:
-    """Each point's distance to the nearest of the segments in the R-tree ``edges`` (the
-    distance to the polygon they bound, for points outside it); ``within``: only that near, a
-    point with none so near given ``within`` (a lower bound: all :func:`tube` asks of it)."""
-    kw = {} if within is None else {"max_distance": within}
-    which, dist = edges.query_nearest(shapely.points(xy), return_distance=True, all_matches=False, **kw)
-    out = np.full(len(xy), np.inf if within is None else within)
-    out[which[0]] = dist
-    return out
 
 
 def _one_sided_min(b: np.ndarray, c: np.ndarray, a) -> np.ndarray:
@@ -230,23 +211,22 @@ def tubes(sites, h, e: float, bounds, slope) -> np.ndarray:
             rho = rho0 + sigma[sv] * hv
         rbar = np.maximum(rbar, 1e-12)  # (a vertex on gear 2's pivot: its turn does not move it)
         move = (wv * rho + rbar * av) * hv  # the most a vertex moves over the driver interval (sheared)
-        lip = (np.concatenate([m[4] for m in mine]) - move) / rbar
-        near = lip < best[sv]
-        if not near.any():
-            continue
         # the (vertex, edge) pairs the segment's bound leaves open: the edge within the vertex's
-        # reach, best·r̄ + its move (an R-tree query a site, not every pair)
+        # reach, best·r̄ + its move (an R-tree query a site, not every pair; a vertex with no
+        # edge so near is kept apart over the whole box by its distance alone)
         bv = best[sv]
         reach = np.where(np.isfinite(bv), bv * rbar + move, np.inf)
         reach = reach * (1 + 1e-9) + 1e-12  # GEOS's distance and ours may differ in the last bits
         first = np.concatenate([[0], np.cumsum(sizes)])
         vis, ps, qs = [], [], []
-        for j in np.unique(sv[near]).tolist():
-            rows = first[j] + np.flatnonzero(near[first[j] : first[j + 1]])
+        for j in np.flatnonzero((best > -np.inf) & (sizes > 0)).tolist():  # (−inf: no turn is left to prove)
+            rows = np.arange(first[j], first[j + 1])
             vi, ei = other[j][3].query(shapely.points(xy[rows]), predicate="dwithin", distance=reach[rows])
             vis.append(rows[vi])
             ps.append(other[j][1][ei])
             qs.append(other[j][2][ei])
+        if not vis:
+            continue
         vi = np.concatenate(vis)
         if not len(vi):
             continue
