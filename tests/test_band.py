@@ -56,10 +56,11 @@ def test_kerf_variation_matches_the_tooth_thickness_closed_form(spur):
     assert b.band[1] - b.nominal[1] == pytest.approx(expected, rel=0.01)
 
 
-def test_a_laser_focus_pair_fits_by_default_and_the_band_is_fast():
+def test_a_laser_focus_pair_fits_by_default_with_the_least_backlash():
     """At the profile's own 0.001 mm: the chooser's step there, max(1 % of b, the tolerance), is
     0.003 mm, so a backlash chosen more than that above the smallest that fits is caught (at
-    0.01 mm the step is 0.01 mm and a 0.004 mm overshoot went unseen)."""
+    0.01 mm the step is 0.01 mm and a 0.004 mm overshoot went unseen).  How fast the band is
+    `gearcad bench` measures (its bands rows), not this test."""
     laser = {**QUICK, "process.kind": "laser"}
     d = gearcad.design(gearcad.load_profile(ROOT / "profiles" / "elliptic_focus.toml", laser))
     band = d.report()["bands"][0]
@@ -77,13 +78,6 @@ def test_a_laser_focus_pair_fits_by_default_and_the_band_is_fast():
     )
     assert below.report()["bands"][0]["verdict"] == "jams" and not below.ok
     assert any(f.code == "backlash-fixed" and "keeps the worst case free" in f.message for f in below.findings)
-    import time
-
-    start = time.process_time()  # warm (the design measured it once); CPU time, of both threads if two (a
-    pair_bands(d)  # shared machine's load stretches the wall clock, not this)
-    # proven on the written paths: 7.6 CPU-s for the tight case's proof alone, the nominal and wide
-    # cases beside it ~1.5 s (docs/speed.md; the estimate took 0.5 s); 10 s failed under load
-    assert time.process_time() - start <= 15.0
 
 
 def test_a_fixed_backlash_too_small_jams_and_fails_the_check(spur):
