@@ -42,6 +42,17 @@ def profile(name: str, overrides=(), **kwargs):
     return load_profile(EXAMPLES / f"{name}.toml", overrides, **kwargs)
 
 
+def drawn(params):
+    """The design of ``params`` as drawn and finished, with no fit search and no band (what
+    ``gearcad.design`` makes less the fitting): for tests of the drawing alone — the cut paths,
+    a reference outline — where the fit's proof is most of the CPU and changes no vertex."""
+    from gearcad.fitting.fit import made
+    from gearcad.mechanisms.finish import finish
+    from gearcad.mechanisms.registry import MECHANISMS
+
+    return finish(MECHANISMS[params.mechanism].design(made(params)))
+
+
 def drafted(name: str, design, overrides=()):
     """The example profile ``name`` at :data:`COARSE` (and ``overrides``) and what a mechanism
     module's ``design`` draws of it: (params, draft)."""

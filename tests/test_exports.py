@@ -19,6 +19,8 @@ from gearcad.export.mesh import extrude
 from gearcad.geometry.arcfit import ArcRing
 from gearcad.geometry.outline import Outline
 
+from .conftest import drawn
+
 SMALL = """
 name = "small"
 [gear1]
@@ -62,8 +64,9 @@ def build(
 ):
     """The small pair built with these settings into ``tmp_path``: (its folder, its report).
     Built once per settings for the module (the tests only read what it wrote), in this process
-    (``gearcad.design`` and the writing loop: no pool, no forks), writing only ``formats``."""
-    import gearcad
+    (the design as drawn, :func:`~.conftest.drawn` — the files are what is tested here, and with
+    no process the fit's band changes none of them — and the writing loop: no pool, no forks),
+    writing only ``formats``."""
     from gearcad.export.write import write_design
     from gearcad.profiles import load_profile
 
@@ -85,7 +88,7 @@ def build(
     )
     folder = tmp_path / name / "small"
     folder.mkdir(parents=True)
-    design = gearcad.design(load_profile(path))
+    design = drawn(load_profile(path))
     assert design.ok, design.failures()  # what ``gearcad build`` asks before it writes (exit 3 if not)
     write_design(design, folder)
     _BUILT[key] = folder, json.loads((folder / "report.json").read_text())
@@ -145,11 +148,8 @@ def _reference_rings(report, gear):
 
 @functools.cache
 def _reference_parts():
-    """The parts as drawn, finished without the band: the outline is all the reference is (the
-    fit and its proof at 1e-4 mm took 6 of the 7 CPU-s and change no vertex of it)."""
-    from gearcad.fitting.fit import made
-    from gearcad.mechanisms.finish import finish
-    from gearcad.mechanisms.registry import MECHANISMS
+    """The parts as drawn (:func:`~tests.conftest.drawn`: the fit and its proof at 1e-4 mm took 6
+    of the 7 CPU-s and change no vertex of the outline)."""
     from gearcad.profiles import parse_profile
 
     data_dict = {
@@ -161,8 +161,7 @@ def _reference_parts():
         "output": {"tolerance": 1e-4},
         "bore": {"diameter": 3.0},
     }
-    params = parse_profile(data_dict)
-    return finish(MECHANISMS[params.mechanism].design(made(params))).parts()
+    return drawn(parse_profile(data_dict)).parts()
 
 
 def test_dxf_needs_far_fewer_vertices_than_chords(tmp_path):
