@@ -160,12 +160,11 @@ def built_step(tmp_path_factory, worker_id) -> Path:
     """Every profile's STEP files (every part and the assembly) with its 3MF and DXF, written
     once at :data:`STEP_BUILD` for the tests that read them back (tests/test_step_profiles.py,
     FreeCAD's import in tests/test_consumers.py), report.json beside them."""
-    import gearcad
     from gearcad.export.write import write_design
 
     def build_all(out: Path) -> None:  # in this process, one after another: no pool to start
         for path in STEP_PROFILES:
-            design = gearcad.design(profile(path.stem, STEP_BUILD))
+            design = drawn(profile(path.stem, STEP_BUILD))  # (the solids are tested: no fit, no band)
             folder = out / path.stem
             folder.mkdir(parents=True)
             write_design(design, folder)

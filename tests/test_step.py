@@ -39,7 +39,7 @@ from OCP.GProp import GProp_GProps  # noqa: E402
 from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_SHELL, TopAbs_SOLID  # noqa: E402
 from OCP.TopoDS import TopoDS  # noqa: E402
 
-from .conftest import EXAMPLES, bulge_arc  # noqa: E402
+from .conftest import EXAMPLES, bulge_arc, drawn  # noqa: E402
 from .occ import every as _all  # noqa: E402
 from .occ import face_counts as _faces  # noqa: E402
 from .occ import read_step as _read  # noqa: E402
@@ -49,7 +49,7 @@ QUIET = ["output.charts=false", "output.animation=false"]
 
 def _written(tmp_path_factory, profile: str, overrides: list[str]):
     params = load_profile(profile, [*overrides, *QUIET])
-    design = gearcad.design(params)
+    design = drawn(params)  # (the solids are tested here: no fit, no band)
     folder = tmp_path_factory.mktemp(params.name)
     files = write_design(design, folder)
     return design, folder, files
