@@ -149,3 +149,18 @@ def test_a_lazy_proof_settles_the_same_verdict_first_and_finishes_as_the_whole_p
     done = finish()
     assert done[2] == whole[2] and np.array_equal(done[1], whole[1])
     assert finish() is done  # carried on once
+
+
+def test_a_lazy_proof_of_a_jam_answers_at_the_first_positions_and_finishes_as_the_whole_proof():
+    """A cut that jams settles its verdict at the first position measured under the margin: a
+    backlash search reads that (the first positions' least); finished — what a design reports —
+    the intervals about the least are halved as :func:`prove_play` halves them."""
+    g = _pair(np.linspace(0.0, 2 * math.pi, 2 * N, endpoint=False))
+    grown, margin = (0.1, 0.1), 0.01  # both wheels 0.1 mm fatter: the bumped flank bites
+    whole = prove_play(g, grown, 0.0, 1e-3, reach=3.0, margin=margin)
+    (geo, play, cert), finish = prove_lazily(g, grown, 0.0, 1e-3, reach=3.0, margin=margin)
+    assert cert.proven and cert.lower < margin and cert.lower == float(np.min(play))
+    assert cert.positions == 2 * N < whole[2].positions  # not yet halved
+    done = finish()
+    assert done[2] == whole[2] and np.array_equal(done[1], whole[1])
+    assert finish() is done

@@ -175,17 +175,19 @@ def prove_lazily(
 ):
     """(found, finish): :func:`prove_play` (a margin of 0 or more) stopped as soon as the verdict
     is settled — ``found`` its (geometry, play, :class:`Certificate`), the least not yet pinned
-    down (:data:`SLACK`) — and finish() -> the same proof carried on until it is, from where it
-    stopped (what a search for the backlash skips on every cut but the one it keeps: half the
-    laser focus pair's CPU)."""
+    down (:data:`SLACK`; a jam: at the first position measured under the margin, its intervals
+    not yet halved, :data:`JAM_HALVINGS`) — and finish() -> the same proof carried on until it
+    is, from where it stopped (what a search for the backlash skips on every cut but the one it
+    keeps: half the laser focus pair's CPU; a cut that jams, a tenth of a printed pair's)."""
     proof = _proof(g, offsets, spread, tol, reach=reach, margin=margin, budget=budget, measures=measures)
     found = next(proof)
     done: list = []
 
     def finish():
         if not done:
-            settled = found[2].proven and found[2].lower >= margin  # (a jam is pinned as it is proven)
-            done.append(proof.send(measures.tighten) if settled and measures.tighten > 0 else found)
+            jams = found[2].lower < margin
+            fits = found[2].proven and not jams and measures.tighten > 0
+            done.append(proof.send(measures.tighten) if jams or fits else found)
             proof.close()
         return done[0]
 
@@ -209,6 +211,7 @@ def _proof(g: PairGeometry, offsets, spread: float, tol: float, *, reach: float,
     plays.append(signed)
     tubes: dict[int, tuple[float, float, float]] = {}  # site id -> (h, slope, Δ) last computed
     jammed = 0
+    told = False  # whether a jam was yielded before its intervals were halved
     settled = None  # how many positions were measured when the margin was first proven
     while True:
         order = sorted(range(len(sites)), key=lambda i: sites[i].phi)
@@ -237,6 +240,11 @@ def _proof(g: PairGeometry, offsets, spread: float, tol: float, *, reach: float,
         behind = np.roll(t0, -1) - np.roll(slope, -1) * gap / 2
         joined = np.abs(behind - ahead) <= np.maximum(delta, 0) + np.maximum(np.roll(delta, -1), 0)
         if least < margin:  # it jams, proven by a measured position: pin the least down a little
+            if not told and JAM_HALVINGS:  # the verdict first, as measured (a search's cut needs no more)
+                told = True
+                cert = Certificate(lower=least, positions=len(sites), slack=0.0, proven=True, kind="theorem")
+                if (yield measures.joined(geos), np.concatenate(plays), cert) is None:
+                    return
             jammed += 1
             low_site = measured < least + 8 * max(tol, 1e-4 * g.module)
             split = (low_site | np.roll(low_site, -1)) & (jammed <= JAM_HALVINGS)
