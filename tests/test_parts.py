@@ -11,7 +11,7 @@ from gearcad.geometry.arcfit import arc_points
 from gearcad.geometry.verify import is_simple, max_distance
 from gearcad.profiles import load_profile
 
-from .conftest import QUICK, ROOT
+from .conftest import QUICK, ROOT, drawn
 
 
 def _design(profile: str, **overrides):
@@ -31,8 +31,10 @@ def _design(profile: str, **overrides):
 )
 def test_cut_paths_are_simple_and_within_tolerance(profile, overrides, bites):
     """The check is independent of the fitting: the arcs are flattened finely and measured
-    against the part's outline offset by half the kerf with shapely."""
-    d = _design(profile, **overrides)
+    against the part's outline offset by half the kerf with shapely.  The parts as drawn
+    (:func:`~.conftest.drawn`: the assembly's interference proof is the finishing line's, the
+    fit's band adds nothing here; it was two thirds of the walker's CPU)."""
+    d = drawn(load_profile(ROOT / "profiles" / f"{profile}.toml", {**QUICK, **overrides}))
     assert ("interference" in {f.code for f in d.failures()}) is bites
     assert (d.assembly.depth > d.assembly.allowed_depth) is bites
     tol, kerf = d.params.output.tolerance, d.params.output.kerf
@@ -40,11 +42,11 @@ def test_cut_paths_are_simple_and_within_tolerance(profile, overrides, bites):
         # the fine cut lies within a quarter of the tolerance of the exact outline
         exact = shapely.Polygon(part.fine.rings[0], part.fine.rings[1:]).buffer(kerf / 2, quad_segs=64)
         for ring in part.cut:
-            drawn = arc_points(ring, tol / 100)
-            assert is_simple(drawn), part.name
+            points = arc_points(ring, tol / 100)
+            assert is_simple(points), part.name
             band = shapely.buffer(exact.boundary, 0.75 * tol * 1.001, quad_segs=16)
-            if not band.covers(shapely.LineString(drawn)):  # measured only to say by how much
-                miss = shapely.distance(shapely.points(drawn), exact.boundary).max()
+            if not band.covers(shapely.LineString(points)):  # measured only to say by how much
+                miss = shapely.distance(shapely.points(points), exact.boundary).max()
                 raise AssertionError((part.name, miss))
 
 
