@@ -164,3 +164,19 @@ def test_a_lazy_proof_of_a_jam_answers_at_the_first_positions_and_finishes_as_th
     done = finish()
     assert done[2] == whole[2] and np.array_equal(done[1], whole[1])
     assert finish() is done
+
+
+def test_a_proof_whose_budget_runs_out_says_so_also_where_nothing_pins_the_least():
+    """A proof left open by its work budget is an answer (not proven, the interval named), also
+    under measures that pin nothing down (a general motion's: ``tighten`` 0), and a jam with no
+    halvings to carry on is its own whole proof (a review found both raising StopIteration)."""
+    from gearcad.fitting import prove
+
+    class Pinless(prove.Measures):
+        tighten = 0.0
+
+    g = _pair(np.linspace(0.0, 2 * math.pi, 2 * N, endpoint=False))
+    geo, play, cert = prove_play(g, (0.0, 0.0), 0.0, 1e-3, reach=3.0, margin=0.0, budget=2 * N + 1, measures=Pinless())
+    assert not cert.proven and cert.lower == -1e-3 and cert.open[0] < cert.open[1]
+    lazy, finish = prove_lazily(g, (0.1, 0.1), 0.0, 1e-3, reach=3.0, margin=0.01, measures=Pinless())
+    assert finish()[2] == prove_play(g, (0.1, 0.1), 0.0, 1e-3, reach=3.0, margin=0.01)[2]

@@ -16,8 +16,9 @@ def gear_pair_fit(params, design_of):
     from . import design
 
     draft, bands = fit.chosen(params, design_of)
-    if not _TRYING:  # the design chosen: its least pinned down (a remedy's verdict needs it not)
-        bands = tuple(b.pinned() for b in bands)
+    # the design chosen: its least pinned down; a remedy's trial needs only its verdict where it
+    # fits, and where it jams how far short, as a design reports it (the next try adds that)
+    bands = tuple(b if _TRYING and b.fits else b.pinned() for b in bands)
     cures = None
     if bands and not bands[0].fits and params.process.kind != "none" and not _TRYING:
         module = draft.detail.teeth.plan.module

@@ -185,9 +185,12 @@ def prove_lazily(
 
     def finish():
         if not done:
-            jams = found[2].lower < margin
+            jams = found[2].proven and found[2].lower < margin  # (unproven: the budget ran out, as it stands)
             fits = found[2].proven and not jams and measures.tighten > 0
-            done.append(proof.send(measures.tighten) if jams or fits else found)
+            try:
+                done.append(proof.send(measures.tighten) if jams or fits else found)
+            except StopIteration:  # nothing was left to carry on: the first answer is the whole proof
+                done.append(found)
             proof.close()
         return done[0]
 
@@ -240,7 +243,7 @@ def _proof(g: PairGeometry, offsets, spread: float, tol: float, *, reach: float,
         behind = np.roll(t0, -1) - np.roll(slope, -1) * gap / 2
         joined = np.abs(behind - ahead) <= np.maximum(delta, 0) + np.maximum(np.roll(delta, -1), 0)
         if least < margin:  # it jams, proven by a measured position: pin the least down a little
-            if not told and JAM_HALVINGS:  # the verdict first, as measured (a search's cut needs no more)
+            if not told and JAM_HALVINGS and settled is None:  # the verdict first (a search's cut needs no more)
                 told = True
                 cert = Certificate(lower=least, positions=len(sites), slack=0.0, proven=True, kind="theorem")
                 if (yield measures.joined(geos), np.concatenate(plays), cert) is None:
