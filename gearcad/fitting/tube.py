@@ -72,10 +72,16 @@ def _one_sided_min(b: np.ndarray, c: np.ndarray, a) -> np.ndarray:
     return np.minimum(np.minimum(end, 0.0), vertex)
 
 
+def _dot(a, b):
+    """Dot products of 2-vectors along the last axis (what ``np.sum(a * b, -1)`` gives, bit for
+    bit, without a reduction over an axis of two)."""
+    return a[..., 0] * b[..., 0] + a[..., 1] * b[..., 1]
+
+
 def _closest_on(x, a, b):
     """The point of each segment [a, b] nearest each x (rows)."""
     ab = b - a
-    t = np.clip(np.sum((x - a) * ab, -1) / np.maximum(np.sum(ab * ab, -1), 1e-300), 0.0, 1.0)
+    t = np.clip(_dot(x - a, ab) / np.maximum(_dot(ab, ab), 1e-300), 0.0, 1.0)
     return a + t[:, None] * ab
 
 
@@ -129,8 +135,8 @@ def _safe_turn(d, f0, derivs, terms, h: float, best: float) -> np.ndarray:
     f0 = f0[:, None]
     sp = np.array([1.0, 1.0, -1.0, -1.0])[None, :, None]  # the quadrants: the signs of φ − c
     st = np.array([1.0, -1.0, 1.0, -1.0])[None, :, None]  # and of t − t0
-    f_p, f_t = (d * v_p).sum(-1), (d * v_t).sum(-1)
-    f_pp, f_tt, f_pt = (d * v_pp).sum(-1), (d * v_tt).sum(-1), (d * v_pt).sum(-1)
+    f_p, f_t = _dot(d, v_p), _dot(d, v_t)
+    f_pp, f_tt, f_pt = _dot(d, v_pp), _dot(d, v_tt), _dot(d, v_pt)
     f_p, f_pp = np.broadcast_arrays(sp * f_p, f_pp)
     lead = f0 + _one_sided_min(f_p, f_pp, h) - m_ppp * h**3 / 6
     b1 = np.maximum(0.0, -st * f_t) + np.maximum(0.0, -sp * st * f_pt) * h + m_ppt * h * h / 2
@@ -318,7 +324,7 @@ def tubes(sites, h, e: float, bounds, slope) -> np.ndarray:
             ]
             more_turn = _safe_turn(
                 np.stack([n for n, _ in ways]),
-                np.stack([np.sum(n * (v[o] - at), -1) for n, at in ways]),
+                np.stack([_dot(n, v[o] - at) for n, at in ways]),
                 tuple(x[o] for x in derivs),
                 tuple(x[o] for x in terms),
                 hp[o],
