@@ -137,8 +137,9 @@ def _safe_turn(d, f0, derivs, terms, h: float, best: float) -> np.ndarray:
     st = np.array([1.0, -1.0, 1.0, -1.0])[None, :, None]  # and of t − t0
     f_p, f_t = _dot(d, v_p), _dot(d, v_t)
     f_pp, f_tt, f_pt = _dot(d, v_pp), _dot(d, v_tt), _dot(d, v_pt)
-    f_p, f_pp = np.broadcast_arrays(sp * f_p, f_pp)
-    lead = f0 + _one_sided_min(f_p, f_pp, h) - m_ppp * h**3 / 6
+    # the driver's part depends on the sign of φ − c alone: worked out for two quadrants, not four
+    f_p, f_pp = np.broadcast_arrays(sp[:, 1:3] * f_p, f_pp)
+    lead = (f0 + _one_sided_min(f_p, f_pp, h) - m_ppp * h**3 / 6)[:, [0, 0, 1, 1]]
     b1 = np.maximum(0.0, -st * f_t) + np.maximum(0.0, -sp * st * f_pt) * h + m_ppt * h * h / 2
     c1 = np.maximum(0.0, -f_tt) / 2 + m_ptt * h / 2
     e1 = m_ttt / 6
