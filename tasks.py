@@ -202,7 +202,7 @@ def main(argv: list[str]) -> int:
         what = "the profiles given" if argv[1:] else f"the {count} profiles in profiles/ (a minute or so in all)"
         _say(f"{LAUNCHER} build: {what}, a line as each is built")
         return subprocess.run([str(BIN / "gearcad"), "build", *argv[1:]], env=_bytecode_kept()).returncode
-    _say("running the test suite: pytest -q on every core (about 5 minutes on 2 cores; a dot per test)")
+    _say("running the test suite: pytest -q on every core (about 3 minutes on 2 cores; a dot per test)")
     return subprocess.run([str(PYTHON), "-m", "pytest", "-q", *argv[1:]], env=_bytecode_kept()).returncode
 
 
