@@ -93,11 +93,11 @@ def cut_about(shape, centres: np.ndarray, radius: float) -> np.ndarray:
 
 
 def _placer(g: PairGeometry, offsets, spread: float, tol: float, *, turns: bool = False):
-    """(w1, place, free_turns, reach): gear 1's windows, place(turn) -> gear 2's windows turned
-    ``turn`` (rad, per position) beyond the assembled angle in gear 1's frame, free_turns(turn,
-    limit, at) -> how far gear 2's windows so placed turn each way before they touch gear 1's
-    (rad, :func:`~..geometry.sweep.free_turns`; with ``turns``, else None), and the farthest any
-    point of gear 2's lies from its pivot (mm); the parts grown by ``offsets``, E by ``spread``."""
+    """(w1, place, free_turns): gear 1's windows, place(turn) -> gear 2's windows turned ``turn``
+    (rad, per position) beyond the assembled angle in gear 1's frame, and free_turns(turn, limit,
+    at) -> how far gear 2's windows so placed turn each way before they touch gear 1's (rad,
+    :func:`~..geometry.sweep.free_turns`; with ``turns``, else None); the parts grown by
+    ``offsets``, E by ``spread``."""
     e = g.center_distance + spread
     c1 = g.r1[:, None] * np.column_stack([np.cos(g.phi1), np.sin(g.phi1)])
     back = g.r1 - g.center_distance  # the contact in gear 2's frame, before its turn
@@ -107,8 +107,6 @@ def _placer(g: PairGeometry, offsets, spread: float, tol: float, *, turns: bool 
     w2 = _windows(g.rings[1], c2, radius, offsets[1], tol)
     shapely.prepare(w1)
     coords, which = shapely.get_coordinates(w2, return_index=True)
-    far = np.zeros(len(g.phi1))
-    np.maximum.at(far, which, np.hypot(coords[:, 0], coords[:, 1]))
     counts = np.bincount(which, minlength=len(g.phi1))
     first = np.cumsum(counts) - counts  # each window's first row of ``coords``
     centre = e * np.column_stack([np.cos(g.phi1), np.sin(g.phi1)])  # gear 2's pivot in gear 1's frame
@@ -127,13 +125,13 @@ def _placer(g: PairGeometry, offsets, spread: float, tol: float, *, turns: bool 
         return shapely.set_coordinates(w2[at].copy(), xy)
 
     if not turns:
-        return w1, place, None, far
+        return w1, place, None
 
     def free(turn: np.ndarray, limit: np.ndarray, at) -> tuple[np.ndarray, np.ndarray]:
         """How far gear 2's windows ``at``, turned ``turn``, turn on each way (rad, to ``limit``)."""
         return free_turns(w1[at], place(turn, at), centre[at], limit)
 
-    return w1, place, free, far
+    return w1, place, free
 
 
 def _least_overlap(w1, place, bound: np.ndarray, iterations: int = 24) -> np.ndarray:
@@ -179,7 +177,7 @@ def play_between(
     (:func:`~..geometry.sweep.free_turns`).  ``steps`` 0: only whether it is free (0 where it is).
     ``reach`` (mm) bounds the play sought; ``halves`` (a list): the free turn each way (rad, (2, n))
     is appended to it."""
-    w1, place, turns, _ = _placer(g, offsets, spread, tol, turns=steps > 0)
+    w1, place, turns = _placer(g, offsets, spread, tol, turns=steps > 0)
     arm = g.center_distance - g.r1
     limit = min(reach, 1.2 * math.pi * g.module) / arm  # more than a pitch never frees a tooth
     touching = 1e-9 * g.module**2
@@ -237,7 +235,7 @@ def _signed_from(g: PairGeometry, play, start, offsets, spread: float, tol: floa
     hi = np.full(int(jammed.sum()), most)
     contact = sub.r1[:, None] * np.column_stack([np.cos(sub.phi1), np.sin(sub.phi1)])
     rim = shapely.buffer(shapely.points(contact), 0.95 * _WINDOW * g.module, quad_segs=16)
-    w1, place, _, _ = _placer(sub, offsets, spread, tol)  # the windows, gear 2's placed at any turn
+    w1, place, _ = _placer(sub, offsets, spread, tol)  # the windows, gear 2's placed at any turn
     for again in range(2):
         lap = shapely.intersection(w1, place(turn))
         inside = shapely.within(lap, rim)
