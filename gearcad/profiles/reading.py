@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import codecs
 import copy
+import functools
 import tomllib
 from collections.abc import Iterable, Mapping, Sequence
 from pathlib import Path
@@ -319,7 +320,15 @@ def profile_schema() -> dict[str, Any]:
     ``#:schema ./profile.schema.json`` is checked and completed as it is typed. Regenerate
     the file with ``json.dumps(profile_schema(), indent=2, ensure_ascii=False)``.
     """
-    document_fields(_models(ParamsModel))
+    return copy.deepcopy(_schema(tuple(MODEL_OF.items()), tuple(_models(ParamsModel))))
+
+
+@functools.lru_cache(maxsize=2)
+def _schema(tagged: tuple, models: tuple) -> dict[str, Any]:
+    """:func:`profile_schema` for the profile models registered (``tagged``, and ``models`` every
+    model class): made once for them (the models rebuilt and the schema generated: half a
+    CPU-second), again only when a mechanism is registered."""
+    document_fields(list(models))
     schema = TypeAdapter(_tagged()).json_schema(schema_generator=_TomlSchema)
     return {
         "$schema": "https://json-schema.org/draft/2020-12/schema",
