@@ -180,3 +180,28 @@ def test_a_proof_whose_budget_runs_out_says_so_also_where_nothing_pins_the_least
     assert not cert.proven and cert.lower == -1e-3 and cert.open[0] < cert.open[1]
     lazy, finish = prove_lazily(g, (0.1, 0.1), 0.0, 1e-3, reach=3.0, margin=0.01, measures=Pinless())
     assert finish()[2] == prove_play(g, (0.1, 0.1), 0.0, 1e-3, reach=3.0, margin=0.01)[2]
+
+
+def test_a_pairs_first_bounds_are_taken_over_half_intervals():
+    """Where the first positions show no jam, a gear pair's proof measures their midpoints before
+    it takes any bound (``Measures.first_split``, docs/fit.md "The first bounds over half
+    intervals"): every midpoint is among the positions of its first answer, where without the
+    split the refining measures only some; a budget under the split's positions is kept."""
+    from gearcad.fitting import prove
+
+    class Unsplit(prove.Measures):
+        first_split = 1
+
+    g = _pair(np.linspace(0.0, 2 * math.pi, 2 * N, endpoint=False))
+    mids = (g.phi1 + PITCH / 4) % (2 * math.pi)  # two first positions a tooth: half a pitch apart
+
+    def measured(geo) -> np.ndarray:
+        gaps = np.abs((geo.phi1[None, :] - mids[:, None] + math.pi) % (2 * math.pi) - math.pi)
+        return np.min(gaps, axis=1) < 1e-12
+
+    (geo, _, cert), _ = prove_lazily(g, (0.0, 0.0), 0.0, 1e-3, reach=3.0, margin=0.01)
+    assert cert.proven and measured(geo).all()
+    (geo, _, cert), _ = prove_lazily(g, (0.0, 0.0), 0.0, 1e-3, reach=3.0, margin=0.01, measures=Unsplit())
+    assert cert.proven and not measured(geo).all()
+    geo, _, cert = prove_play(g, (0.0, 0.0), 0.0, 1e-3, reach=3.0, margin=0.01, budget=3 * N)
+    assert cert.positions <= 3 * N and len(geo.phi1) <= 3 * N
