@@ -205,3 +205,15 @@ def test_a_pairs_first_bounds_are_taken_over_half_intervals():
     assert cert.proven and not measured(geo).all()
     geo, _, cert = prove_play(g, (0.0, 0.0), 0.0, 1e-3, reach=3.0, margin=0.01, budget=3 * N)
     assert cert.positions <= 3 * N and len(geo.phi1) <= 3 * N
+
+
+def test_a_lone_first_position_bounds_the_whole_cycle():
+    """A proof started from one position covers the whole turn from it (its gap to the next is
+    the cycle, not 0: a review found a zero-width interval "proven" at 0.78 mm on this pair,
+    whose play falls to about 0.4 mm): whatever it proves lies under the least the oracle's exact
+    turns give anywhere on a grid."""
+    grid = np.linspace(0.0, 2 * math.pi, 64, endpoint=False)
+    least = min(_oracle_play(p) for p in grid)
+    geo, play, cert = prove_play(_pair(np.array([0.3])), (0.0, 0.0), 0.0, 1e-3, reach=3.0, margin=0.01)
+    assert cert.positions > 1 and len(geo.phi1) == len(play) == cert.positions
+    assert cert.lower <= least + 1e-9

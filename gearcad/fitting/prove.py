@@ -221,10 +221,11 @@ def _proof(g: PairGeometry, offsets, spread: float, tol: float, *, reach: float,
     geos, plays = [g], []
     sites, signed = measures.sites(g, offsets, spread, tol, reach)
     plays.append(signed)
-    if 1 < measures.first_split and n0 * measures.first_split <= budget and float(np.min(signed)) >= margin:
+    phi = np.sort(g.phi1 % g.cycle)
+    gap = _gaps(phi, g.cycle)
+    phi, gap = phi[gap > narrowest], gap[gap > narrowest]  # (a position given twice: split once)
+    if 1 < measures.first_split and n0 * measures.first_split <= budget and len(phi) and np.min(signed) >= margin:
         # (a jam is told at the first positions; a budget under the split's positions is kept)
-        phi = np.sort(g.phi1 % g.cycle)
-        gap = (np.roll(phi, -1) - phi) % g.cycle
         k = measures.first_split
         sub = g.at(np.concatenate([phi + gap * j / k for j in range(1, k)]) % g.cycle)
         more, signed = measures.sites(sub, offsets, spread, tol, reach)
@@ -238,7 +239,7 @@ def _proof(g: PairGeometry, offsets, spread: float, tol: float, *, reach: float,
     while True:
         order = sorted(range(len(sites)), key=lambda i: sites[i].phi)
         phi = np.array([sites[i].phi for i in order])
-        gap = (np.roll(phi, -1) - phi) % g.cycle  # to the next
+        gap = _gaps(phi, g.cycle)  # to the next
         half = 0.5 * np.maximum(gap, np.roll(gap, 1))  # the wider half-interval either side
         table = ratio(phi - half, phi + half)
         measured = np.array([sites[i].play for i in order])
@@ -357,6 +358,12 @@ def pinned(g, measured: np.ndarray, offsets, spread: float, tol: float, reach: f
 
     golden_sections(measure, lo, hi, PIN_STEPS, lambda lo, hi, fa, fb: float(np.max(hi - lo)) <= PIN_WIDTH)
     return measures.joined(xs), np.concatenate(fs)
+
+
+def _gaps(phi: np.ndarray, cycle: float) -> np.ndarray:
+    """From each of the driver angles ``phi`` (ascending) to the next, round the cycle (rad): a
+    lone position's is the whole cycle (its own next, one turn on), not 0."""
+    return (np.roll(phi, -1) - phi) % cycle if len(phi) > 1 else np.full(len(phi), cycle)
 
 
 def _drift(phi: np.ndarray, t0: np.ndarray, cap: np.ndarray, cycle: float) -> np.ndarray:
