@@ -11,7 +11,7 @@ the same build, at any tolerance); they cost a build each, so they run with
 
 The report's least play is the band's least measured play (``bands[].min``) on the paths as
 written, less the cutter (``fitting/written.py``), followed down from its lowest minima between
-positions by golden sections (``prove.pinned``); the proven lower bound beside it
+positions by golden sections (``pin.pinned``); the proven lower bound beside it
 (``certified_min``) is what the verdict rests on.  The truth here: a dense sweep of 720–3840
 driver angles and golden sections to 1e-7 rad.
 """

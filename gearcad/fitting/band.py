@@ -22,8 +22,9 @@ import numpy as np
 
 from ..threads import side_by_side
 from .certify import Certificate, certify_play
+from .pin import pinned
 from .play import PairGeometry, play_between, signed_play
-from .prove import pinned, prove_lazily, prove_play
+from .prove import prove_lazily, prove_play
 
 __all__ = ["Band", "band_of", "pair_band"]
 
@@ -53,7 +54,7 @@ class Band:
     """Gear 2's turn at the least play (rad), as the band measured it."""
     pin: Callable[[], Band] | None = field(default=None, compare=False, repr=False)
     """The same band with its least measured play followed down from the lowest minima between
-    positions (:func:`~.prove.pinned`): what a search for the backlash skips, and the design it
+    positions (:func:`~.pin.pinned`): what a search for the backlash skips, and the design it
     chooses reports (:meth:`pinned`)."""
 
     def pinned(self) -> Band:
@@ -170,7 +171,7 @@ def _certified(name, found, nominal, wide, offsets, spread_at, edge, spread, tol
 
 def _pinnable(band: Band, found, offsets, spread: float, tol: float, reach: float) -> Band:
     """``band`` with its :attr:`~Band.pin`: where its tight case is proven to keep the margin,
-    the golden sections of :func:`~.prove.pinned` about its lowest minima, the least, where it
+    the golden sections of :func:`~.pin.pinned` about its lowest minima, the least, where it
     falls, and the positions and slack of the certificate taken from them where lower."""
     g, tight, cert = found
     if cert is None or cert.kind != "theorem" or not cert.proven or band.margin < 0 or band.band[0] < band.margin:

@@ -12,13 +12,12 @@ import numpy as np
 import shapely
 
 from ..geometry.outline import place_each
-from ..roots import golden_sections
 from .certify import Certificate
 from .play import _WINDOW, PairGeometry, _signed_from, _windows, play_between, signed_play
 from .tube import Site, outline
 from .tube import tubes as tube_of
 
-__all__ = ["Measures", "PAIRS", "pinned", "prove_lazily", "prove_play"]
+__all__ = ["Measures", "PAIRS", "prove_lazily", "prove_play"]
 
 
 BUDGET = 12
@@ -37,17 +36,6 @@ measured lies the truth — not only shown to keep the margin (issue 33: the rep
 of the written files); the certificate's ``slack`` says how near it came."""
 TIGHTEN = 8
 TIGHT_BUDGET = 1
-
-PINNED = 4
-"""Once the margin is proven, the play measured is followed down from this many of its lowest
-local minima within :data:`PIN_NEAR` of the least (golden sections between each one's
-neighbours, to :data:`PIN_WIDTH` of a radian):
-the least measured then is the least the outlines have there, not the least at the positions
-the proof happened to measure (issue 33: the report within 1 µm of the written files)."""
-PIN_WIDTH = 1e-6
-PIN_STEPS = 24
-"""At most this many golden steps (a bracket 0.618²⁴ ≈ 1e-5 of its first width)."""
-PIN_NEAR = 0.004
 
 BEYOND = 0.5
 """Gear 1's window for the bound reaches this many modules beyond gear 2's (:data:`~.play._WINDOW`):
@@ -330,34 +318,6 @@ def _proof(g: PairGeometry, offsets, spread: float, tol: float, *, reach: float,
         sites += more
         geos.append(sub)
         plays.append(signed)
-
-
-def pinned(g, measured: np.ndarray, offsets, spread: float, tol: float, reach: float, measures: Measures = PAIRS):
-    """The play measured by golden sections about the :data:`PINNED` lowest local minima of
-    ``measured`` (the play at ``g``'s positions, as :func:`prove_play` gives them), each between
-    its neighbours: (the geometry at every position so measured, the play there)."""
-    order = np.argsort(g.phi1 % g.cycle)
-    phi, measured = g.phi1[order] % g.cycle, measured[order]
-    how = (offsets, spread, tol, reach)
-    low = np.flatnonzero(
-        (measured <= np.roll(measured, 1))
-        & (measured <= np.roll(measured, -1))
-        & (measured <= float(np.min(measured)) + PIN_NEAR)
-    )
-    low = low[np.argsort(measured[low])][:PINNED]
-    lo = phi[low] - (phi[low] - np.roll(phi, 1)[low]) % g.cycle
-    hi = phi[low] + (np.roll(phi, -1)[low] - phi[low]) % g.cycle
-    xs, fs = [], []
-
-    def measure(x: np.ndarray) -> np.ndarray:
-        sub = g.at(x % g.cycle)
-        f = measures.signed(sub, *how)
-        xs.append(sub)
-        fs.append(f)
-        return f
-
-    golden_sections(measure, lo, hi, PIN_STEPS, lambda lo, hi, fa, fb: float(np.max(hi - lo)) <= PIN_WIDTH)
-    return measures.joined(xs), np.concatenate(fs)
 
 
 def _gaps(phi: np.ndarray, cycle: float) -> np.ndarray:
