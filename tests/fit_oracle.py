@@ -322,12 +322,18 @@ def train_mesh(folder: Path, gear1: str, gear2: str, pressure_angle_deg: float, 
         assert err < 3e-5, (name, err)  # (laid on as curves: to the flattening's 20 nm, see _by_curve)
         poses.append((angle, shift))
 
-    # internal: one part's largest hole holds the other
-    def hole_area(shape):
-        return max((shapely.Polygon(r).area for r in shape.interiors), default=0.0)
+    # internal: one part's largest hole holds the other's pivot (a compound ring's outer teeth
+    # mesh externally though its hole is larger than the gear: by area alone the gear1/ring mesh
+    # was taken as internal, its inner teeth counted, and its play came out as the 3π mm cap)
+    def holds(ring: int) -> bool:
+        holes = [np.asarray(r.coords) for r in shapes[ring].interiors]
+        if not holes:
+            return False
+        hole = max(holes, key=lambda xy: shapely.Polygon(xy).area)
+        inner = float(np.min(np.hypot(*hole.T)))  # the hole's least radius about the part's pivot (its origin)
+        return float(np.hypot(*(poses[1 - ring][1] - poses[ring][1]))) < inner
 
-    ring1 = hole_area(shapes[0]) > shapely.Polygon(shapes[1].exterior).area
-    ring2 = hole_area(shapes[1]) > shapely.Polygon(shapes[0].exterior).area
+    ring1, ring2 = holds(0), holds(1)
     internal = ring1 or ring2
     z1 = tooth_count(shapes[0], "interior" if ring1 else "exterior")
     z2 = tooth_count(shapes[1], "interior" if ring2 else "exterior")

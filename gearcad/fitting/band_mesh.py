@@ -73,6 +73,12 @@ def _rotate(points: np.ndarray, angle: np.ndarray) -> np.ndarray:
     return np.column_stack([c * points[:, 0] - s * points[:, 1], s * points[:, 0] + c * points[:, 1]])
 
 
+def contacts(g: MeshGeometry) -> tuple[np.ndarray, np.ndarray]:
+    """The contact at each position in gear 1's frame, and in gear 2's own (mm): the centres of
+    the windows :func:`mesh_play` measures with."""
+    return g.contact, _rotate(g.contact - g.centre2, -g.angle2)
+
+
 def clip(g: MeshGeometry, grow: float) -> tuple[np.ndarray, np.ndarray]:
     """Each part about the contact at each position, in its own coordinates: cut once, wide
     enough for any offset up to ``grow`` mm, and then only offset and trimmed (:func:`mesh_play`)."""
@@ -100,22 +106,28 @@ def mesh_play(
     steps: int = 1,
     pieces: tuple[np.ndarray, np.ndarray] | None = None,
     halves: list | None = None,
+    windows: tuple[np.ndarray, np.ndarray] | None = None,
 ) -> np.ndarray:
     """Free play at each position (mm on gear 2's pitch curve); NaN where the parts overlap as
     placed.  ``offsets`` grow gear 1 and gear 2 (mm, scalars or per position), ``shift`` moves
     gear 2's pivot along ``g.tighter`` (mm; negative: the other way), ``reach`` bounds the play
     sought; ``pieces`` the parts cut about the contact (:func:`clip`; default: cut here);
-    ``halves`` (a list): the free turn each way (rad, 0 where they overlap) is appended to it.
+    ``halves`` (a list): the free turn each way (rad, 0 where they overlap) is appended to it;
+    ``windows``: each part's window about the contact, made already (gear 2's in its own frame,
+    :func:`contacts`).
 
     Each way, gear 2 is turned until it touches gear 1, found exactly as the least turn at which
     a vertex of either window meets an edge of the other (:func:`~..geometry.sweep.free_turns`);
     ``steps`` 0: only whether they are free (0 where they are)."""
-    radius = _WINDOW * g.module
-    if pieces is None:
-        pieces = clip(g, float(max(np.max(np.abs(o)) for o in offsets)))
-    own = _rotate(g.contact - g.centre2, -g.angle2)
-    w1 = _windows(pieces[0], g.contact, radius, offsets[0], tol)
-    w2 = _windows(pieces[1], own, radius, offsets[1], tol)
+    if windows is None:
+        radius = _WINDOW * g.module
+        if pieces is None:
+            pieces = clip(g, float(max(np.max(np.abs(o)) for o in offsets)))
+        contact, own = contacts(g)
+        w1 = _windows(pieces[0], contact, radius, offsets[0], tol)
+        w2 = _windows(pieces[1], own, radius, offsets[1], tol)
+    else:
+        w1, w2 = windows
     shapely.prepare(w1)
     coords, which = shapely.get_coordinates(w2, return_index=True)
     centre = g.centre2 + shift * g.tighter

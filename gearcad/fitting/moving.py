@@ -34,14 +34,13 @@ from dataclasses import dataclass, replace
 import numpy as np
 import shapely
 
-from ..geometry.outline import place_each
 from ..threads import side_by_side
 from .band import Band, _margin, band_of
-from .band_mesh import _WINDOW, MeshGeometry, _windows, clip, mesh_play, signed_mesh_play
+from .band_mesh import _WINDOW, MeshGeometry, _windows, clip, contacts, mesh_play, signed_mesh_play
 from .certify import certify
 from .pair_geometry import interval_maxima
-from .prove import BEYOND, Measures, prove_play
-from .tube import Site, outline
+from .prove import BEYOND, Measures, _placed, prove_play
+from .tube import Site, outlines
 
 __all__ = ["MovingMesh", "MovingMeasures", "moving_band"]
 
@@ -217,8 +216,16 @@ class MovingMeasures(Measures):
     def sites(self, g: MovingMesh, offsets, spread: float, tol: float, reach: float):
         m = g.mesh
         pieces = self._pieces(m, offsets)
+        # each part's window and a wider one (:mod:`.prove`), made once: the play is measured on the narrow ones
+        contact, own = contacts(m)
+        wide_r = (_WINDOW + BEYOND) * m.module
+        wide1 = _windows(pieces[0], contact, wide_r, offsets[0], tol)
+        wide2 = _windows(pieces[1], own, wide_r, offsets[1], tol)
+        radius = _WINDOW * m.module
+        narrow1 = shapely.intersection(wide1, shapely.buffer(shapely.points(contact), radius, quad_segs=16))
+        narrow2 = shapely.intersection(wide2, shapely.buffer(shapely.points(own), radius, quad_segs=16))
         halves: list[np.ndarray] = []
-        play = mesh_play(m, offsets, spread, tol, reach=reach, pieces=pieces, halves=halves)
+        play = mesh_play(m, offsets, spread, tol, reach=reach, halves=halves, windows=(narrow1, narrow2))
         signed = play.copy()
         jammed = np.isnan(play)
         if jammed.any():
@@ -230,27 +237,20 @@ class MovingMeasures(Measures):
             return sites, signed
         up, down = halves
         t0, cap = (up - down) / 2, (up + down) / 2
-        # each part's window and a wider one, gear 2's placed at the middle of its free turn (:mod:`.prove`)
-        contact = m.contact[free]
-        own = np.einsum("nij,nj->ni", _turns(-m.angle2[free]), contact - m.centre2[free])
-        wide_r = (_WINDOW + BEYOND) * m.module
-        wide1 = _windows(pieces[0][free], contact, wide_r, offsets[0], tol)
-        wide2 = _windows(pieces[1][free], own, wide_r, offsets[1], tol)
-        xy, which = shapely.get_coordinates(wide2, return_index=True)
+        # gear 2's windows placed at the middle of its free turn
         centre, omega, domega, instant, turning = local(g.place, m.phi1[free], spread)
-        placed = place_each(xy, which, m.angle2[free] + t0[free], centre)
-        wide2 = shapely.set_coordinates(wide2.copy(), placed)
-        discs = shapely.buffer(shapely.points(contact), _WINDOW * m.module, quad_segs=16)
-        narrow1, narrow2 = shapely.intersection(wide1, discs), shapely.intersection(wide2, discs)
+        turned = m.angle2[free] + t0[free]
+        wide1, narrow1 = wide1[free], narrow1[free]
+        wide2, narrow2 = (_placed(w[free], turned, centre) for w in (wide2, narrow2))
         apart = ~(shapely.intersects(narrow1, wide2) | shapely.intersects(narrow2, wide1))
-        for j, i in enumerate(free.tolist()):
-            if not apart[j]:
-                continue
+        kept = np.flatnonzero(apart)
+        ones, twos = outlines(narrow1[kept], wide1[kept]), outlines(narrow2[kept], wide2[kept])
+        for j, a, b in zip(kept.tolist(), ones, twos):
+            i = int(free[j])
             s = sites[i]
             s.t0, s.cap, s.k, s.dk = float(t0[i]), float(cap[i]), float(omega[j] - 1.0), float(domega[j])
             s.arm = g.arm if g.arm is not None else float(np.hypot(*(m.contact[i] - m.centre2[i])))
             s.pivot, s.instant, s.turning = centre[j], instant[j], turning[j]
-            a, b = outline(narrow1[j], wide1[j]), outline(narrow2[j], wide2[j])
             s.a, s.b = a, b
         return sites, signed
 
@@ -269,12 +269,6 @@ class MovingMeasures(Measures):
         fields = ("phi1", "centre2", "angle2", "contact", "tighter", "teeth")
         cat = {f: np.concatenate([getattr(p.mesh, f) for p in parts]) for f in fields}
         return replace(parts[0], mesh=replace(parts[0].mesh, **cat))
-
-
-def _turns(angle: np.ndarray) -> np.ndarray:
-    """(n, 2, 2) rotation matrices."""
-    c, s = np.cos(angle), np.sin(angle)
-    return np.stack([np.stack([c, -s], -1), np.stack([s, c], -1)], -2)
 
 
 def moving_band(

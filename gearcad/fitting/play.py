@@ -92,19 +92,29 @@ def cut_about(shape, centres: np.ndarray, radius: float) -> np.ndarray:
     return shapely.intersection(boxed, discs)
 
 
-def _placer(g: PairGeometry, offsets, spread: float, tol: float, *, turns: bool = False):
+def contacts(g: PairGeometry) -> tuple[np.ndarray, np.ndarray]:
+    """The pitch point at each position in gear 1's frame, and in gear 2's before its turn (mm):
+    the centres of the windows :func:`_placer` measures with."""
+    c1 = g.r1[:, None] * np.column_stack([np.cos(g.phi1), np.sin(g.phi1)])
+    back = g.r1 - g.center_distance
+    return c1, back[:, None] * np.column_stack([np.cos(-g.phi2), np.sin(-g.phi2)])
+
+
+def _placer(g: PairGeometry, offsets, spread: float, tol: float, *, turns: bool = False, windows=None):
     """(w1, place, free_turns): gear 1's windows, place(turn) -> gear 2's windows turned ``turn``
     (rad, per position) beyond the assembled angle in gear 1's frame, and free_turns(turn, limit,
     at) -> how far gear 2's windows so placed turn each way before they touch gear 1's (rad,
     :func:`~..geometry.sweep.free_turns`; with ``turns``, else None); the parts grown by
-    ``offsets``, E by ``spread``."""
+    ``offsets``, E by ``spread``.  ``windows``: the two gears' windows, made already (each
+    gear's shape within :data:`_WINDOW` modules of :func:`contacts`, gear 2's in its own frame)."""
     e = g.center_distance + spread
-    c1 = g.r1[:, None] * np.column_stack([np.cos(g.phi1), np.sin(g.phi1)])
-    back = g.r1 - g.center_distance  # the contact in gear 2's frame, before its turn
-    c2 = back[:, None] * np.column_stack([np.cos(-g.phi2), np.sin(-g.phi2)])
-    radius = _WINDOW * g.module
-    w1 = _windows(g.rings[0], c1, radius, offsets[0], tol)
-    w2 = _windows(g.rings[1], c2, radius, offsets[1], tol)
+    if windows is None:
+        c1, c2 = contacts(g)
+        radius = _WINDOW * g.module
+        w1 = _windows(g.rings[0], c1, radius, offsets[0], tol)
+        w2 = _windows(g.rings[1], c2, radius, offsets[1], tol)
+    else:
+        w1, w2 = windows
     shapely.prepare(w1)
     coords, which = shapely.get_coordinates(w2, return_index=True)
     counts = np.bincount(which, minlength=len(g.phi1))
@@ -167,6 +177,7 @@ def play_between(
     steps: int = 1,
     start=None,
     halves=None,
+    windows=None,
 ) -> tuple[np.ndarray, np.ndarray]:
     """Free play at each position (mm on gear 2's pitch curve, at its nominal contact radius);
     NaN where the parts overlap wherever gear 2 sits; and the turn of gear 2 it was measured from.
@@ -176,8 +187,8 @@ def play_between(
     at which a vertex of either window meets an edge of the other
     (:func:`~..geometry.sweep.free_turns`).  ``steps`` 0: only whether it is free (0 where it is).
     ``reach`` (mm) bounds the play sought; ``halves`` (a list): the free turn each way (rad, (2, n))
-    is appended to it."""
-    w1, place, turns = _placer(g, offsets, spread, tol, turns=steps > 0)
+    is appended to it; ``windows``: the gears' windows, made already (:func:`_placer`)."""
+    w1, place, turns = _placer(g, offsets, spread, tol, turns=steps > 0, windows=windows)
     arm = g.center_distance - g.r1
     limit = min(reach, 1.2 * math.pi * g.module) / arm  # more than a pitch never frees a tooth
     touching = 1e-9 * g.module**2

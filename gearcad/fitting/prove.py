@@ -13,8 +13,8 @@ import shapely
 
 from ..geometry.outline import place_each
 from .certify import Certificate
-from .play import _WINDOW, PairGeometry, _signed_from, _windows, play_between, signed_play
-from .tube import Site, outline
+from .play import _WINDOW, PairGeometry, _signed_from, _windows, contacts, play_between, signed_play
+from .tube import Site, outlines
 from .tube import tubes as tube_of
 
 __all__ = ["Measures", "PAIRS", "prove_lazily", "prove_play"]
@@ -27,11 +27,11 @@ JAM_HALVINGS = 1
 more to say how far short it falls (the verdict is settled)."""
 
 
-SLACK = 0.0005
+SLACK = 0.001
 """Once the margin is proven, the positions whose bound lies more than this (mm) under the least
 measured play have their intervals halved too, :data:`TIGHTEN` of the lowest bounds at a time,
 for up to :data:`TIGHT_BUDGET` times the first positions more than it took: the least
-play is then known to half a micrometre — between the proven lower bound and the least
+play is then known to a micrometre — between the proven lower bound and the least
 measured lies the truth — not only shown to keep the margin (issue 33: the report within 1 µm
 of the written files); the certificate's ``slack`` says how near it came."""
 TIGHTEN = 8
@@ -43,9 +43,20 @@ the cut edges of the two windows then lie apart, and only the real outlines come
 
 
 def _sites(g: PairGeometry, offsets, spread: float, tol: float, reach: float) -> tuple[list[Site], np.ndarray]:
-    """Measure ``g``'s positions: the signed play and, where free, the windows as the bound needs them."""
+    """Measure ``g``'s positions: the signed play and, where free, the windows as the bound needs them.
+
+    Each gear's window (:data:`~.play._WINDOW` modules about the contact, what the play is
+    measured on) is cut from a wider one (:data:`BEYOND` more), made once: the bound checks each
+    narrow window's vertices against the other's wide one (docs/fit.md)."""
+    contact, own = contacts(g)
+    wide_r = (_WINDOW + BEYOND) * g.module
+    wide1 = _windows(g.rings[0], contact, wide_r, offsets[0], tol)
+    wide2 = _windows(g.rings[1], own, wide_r, offsets[1], tol)
+    radius = _WINDOW * g.module
+    narrow1 = shapely.intersection(wide1, shapely.buffer(shapely.points(contact), radius, quad_segs=16))
+    narrow2 = shapely.intersection(wide2, shapely.buffer(shapely.points(own), radius, quad_segs=16))
     halves: list[np.ndarray] = []
-    play, start = play_between(g, offsets, spread, tol, reach=reach, halves=halves)
+    play, start = play_between(g, offsets, spread, tol, reach=reach, halves=halves, windows=(narrow1, narrow2))
     signed = _signed_from(g, play, start, offsets, spread, tol, reach=reach)
     up, down = halves
     t0 = start + (up - down) / 2
@@ -53,31 +64,30 @@ def _sites(g: PairGeometry, offsets, spread: float, tol: float, reach: float) ->
     sites = [Site(float(p), float(s)) for p, s in zip(g.phi1, signed)]
     if not len(free):
         return sites, signed
-    # each gear's window and a wider one, gear 2's placed at the middle of its free turn; the
-    # bound checks each narrow window's vertices against the other's wide one (docs/fit.md)
-    phi1, r1 = g.phi1[free], g.r1[free]
-    contact = r1[:, None] * np.column_stack([np.cos(phi1), np.sin(phi1)])
-    own = (r1 - g.center_distance)[:, None] * np.column_stack([np.cos(-g.phi2[free]), np.sin(-g.phi2[free])])
-    wide_r = (_WINDOW + BEYOND) * g.module
-    wide1 = _windows(g.rings[0], contact, wide_r, offsets[0], tol)
-    wide2 = _windows(g.rings[1], own, wide_r, offsets[1], tol)
-    xy, which = shapely.get_coordinates(wide2, return_index=True)
+    # gear 2's windows placed at the middle of its free turn
+    phi1 = g.phi1[free]
     pivot = (g.center_distance + spread) * np.column_stack([np.cos(phi1), np.sin(phi1)])
-    wide2 = shapely.set_coordinates(wide2.copy(), place_each(xy, which, phi1 + g.phi2[free] + t0[free], pivot))
-    discs = shapely.buffer(shapely.points(contact), _WINDOW * g.module, quad_segs=16)
-    narrow1, narrow2 = shapely.intersection(wide1, discs), shapely.intersection(wide2, discs)
+    turned = phi1 + g.phi2[free] + t0[free]
+    wide1, narrow1 = wide1[free], narrow1[free]
+    wide2, narrow2 = (_placed(w[free], turned, pivot) for w in (wide2, narrow2))
     apart = ~(shapely.intersects(narrow1, wide2) | shapely.intersects(narrow2, wide1))
     k = g.slope(phi1)
     dk = (g.slope(phi1 + 1e-5) - g.slope(phi1 - 1e-5)) / 2e-5
-    for j, i in enumerate(free.tolist()):
-        if not apart[j]:
-            continue
+    kept = np.flatnonzero(apart)
+    ones, twos = outlines(narrow1[kept], wide1[kept]), outlines(narrow2[kept], wide2[kept])
+    for j, a, b in zip(kept.tolist(), ones, twos):
+        i = int(free[j])
         s = sites[i]
         s.t0, s.cap, s.k, s.dk = float(t0[i]), float((up[i] + down[i]) / 2), float(k[j]), float(dk[j])
         s.arm = float(g.center_distance - g.r1[i])
-        a, b = outline(narrow1[j], wide1[j]), outline(narrow2[j], wide2[j])
         s.a, s.b = a, b
     return sites, signed
+
+
+def _placed(windows: np.ndarray, turn: np.ndarray, pivot: np.ndarray) -> np.ndarray:
+    """Gear 2's ``windows`` (in its own frame) turned by ``turn`` about its pivot, placed at ``pivot``."""
+    xy, which = shapely.get_coordinates(windows, return_index=True)
+    return shapely.set_coordinates(windows.copy(), place_each(xy, which, turn, pivot))
 
 
 class Measures:

@@ -24,7 +24,7 @@ from dataclasses import dataclass
 import numpy as np
 import shapely
 
-__all__ = ["Site", "outline", "tube", "tubes"]
+__all__ = ["Site", "outlines", "tube", "tubes"]
 
 
 @dataclass
@@ -41,7 +41,8 @@ class Site:
     dk: float = 0.0
     arm: float = 0.0
     a: tuple | None = None
-    """Gear 1's window: (vertices, edge starts, edge ends, the edges' R-tree) (:func:`outline`)."""
+    """Gear 1's window: (vertices, edge starts, edge ends, the edges' R-tree, the vertices'
+    normals) (:func:`outlines`)."""
     b: tuple | None = None
     """Gear 2's window at (φ, t0): the same."""
     pivot: np.ndarray | None = None
@@ -53,14 +54,69 @@ class Site:
     """With ``pivot``: I' there (mm/rad)."""
 
 
-def outline(narrow, wide) -> tuple:
-    """(the vertices of ``narrow``, the edge starts and ends of ``wide``, an R-tree of those
-    edges): a gear's narrow window's vertices, its wide window's edges."""
-    rings = shapely.get_rings(shapely.get_parts(wide))
+def outlines(narrow: np.ndarray, wide: np.ndarray) -> list[tuple]:
+    """For each pair of a gear's windows (arrays of geometries, alike in length): (the narrow
+    window's vertices where the bound must look (:func:`_corners`), the wide window's edge starts
+    and ends, an R-tree of those edges, each vertex's normal: the unit normal to the chord between
+    its neighbours, its own outline's direction there) — the work of all in a few array operations."""
+    n = len(narrow)
+    rings, window = _rings(wide)
     ends, ring = shapely.get_coordinates(rings, return_index=True)
     same = ring[1:] == ring[:-1]
-    p, q = ends[:-1][same], ends[1:][same]
-    return shapely.get_coordinates(narrow), p, q, shapely.STRtree(shapely.linestrings(np.stack([p, q], 1)))
+    p, q, owner = ends[:-1][same], ends[1:][same], window[ring[:-1][same]]
+    cuts = np.searchsorted(owner, np.arange(n + 1))  # each window's edges, in order
+    lines = shapely.linestrings(np.stack([p, q], 1))
+    xy, normal, at = _corners(narrow)
+    starts = np.searchsorted(at, np.arange(n + 1))
+    return [
+        (
+            xy[starts[j] : starts[j + 1]],
+            p[cuts[j] : cuts[j + 1]],
+            q[cuts[j] : cuts[j + 1]],
+            shapely.STRtree(lines[cuts[j] : cuts[j + 1]]),
+            normal[starts[j] : starts[j + 1]],
+        )
+        for j in range(n)
+    ]
+
+
+def _rings(windows: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Every ring of ``windows`` (exterior then holes, part by part) and the window each is of."""
+    parts, window = shapely.get_parts(windows, return_index=True)
+    rings, part = shapely.get_rings(parts, return_index=True)
+    return rings, window[part]
+
+
+def _corners(narrow: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The vertices of the windows ``narrow`` where a mate can first touch them, at each the unit
+    normal to the chord from the vertex before it to the one after it (a direction, not a side:
+    either sign serves :func:`tubes`; (1, 0) where the chord is a point), and the window each is of.
+
+    Two polygons that come together first touch with a vertex of one on an edge of the other, and
+    that vertex is not reflex: at a reflex vertex the part fills more than a half-disc about it,
+    so an edge's inside or a reflex vertex of the mate there would already overlap it — a reflex
+    vertex touches only at a vertex of the mate that is not, which meets the reflex vertex's own
+    edges.  So each ring's reflex vertices (a root fillet's, seen from the part) are left out, as
+    is the vertex a closed ring repeats."""
+    rings, window = _rings(shapely.orient_polygons(narrow))  # the inside on the left
+    xy, ring = shapely.get_coordinates(rings, return_index=True)
+    if not len(xy):
+        return np.empty((0, 2)), np.empty((0, 2)), np.empty(0, dtype=int)
+    new = np.r_[True, ring[1:] != ring[:-1]]
+    starts = np.flatnonzero(new)
+    run = np.cumsum(new) - 1  # each row's ring, counted among the rings that have rows
+    first, size = starts[run], np.maximum(np.diff(np.r_[starts, len(ring)]) - 1, 1)[run]
+    at = np.arange(len(ring)) - first
+    before, after = xy[first + (at - 1) % size], xy[first + (at + 1) % size]
+    chord = after - before
+    length = np.hypot(*chord.T)
+    normal = np.column_stack([-chord[:, 1], chord[:, 0]]) / np.maximum(length, 1e-300)[:, None]
+    normal = np.where((length > 0)[:, None], normal, [1.0, 0.0])
+    ab, bc = xy - before, after - xy
+    turn = ab[:, 0] * bc[:, 1] - ab[:, 1] * bc[:, 0]  # < 0: a right turn, reflex with the inside on the left
+    reflex = turn < -1e-9 * np.hypot(*ab.T) * np.hypot(*bc.T)
+    keep = (at < size) & ~reflex  # (the last row of a closed ring repeats its first)
+    return xy[keep], normal[keep], window[ring[keep]]
 
 
 def _one_sided_min(b: np.ndarray, c: np.ndarray, a) -> np.ndarray:
@@ -207,6 +263,7 @@ def tubes(sites, h, e: float, bounds, slope) -> np.ndarray:
         sizes = np.array([len(m[0]) for m in mine])
         sv = np.repeat(np.arange(len(sites)), sizes)  # each vertex's site
         xy = np.concatenate([m[0] for m in mine])
+        own = np.concatenate([m[4] for m in mine])
         r0 = np.hypot(*(xy - centre[sv]).T)
         rho0 = np.hypot(*(xy - instant[sv]).T)
         hv, av, wv = h[sv], a[sv], w[sv]
@@ -297,9 +354,18 @@ def tubes(sites, h, e: float, bounds, slope) -> np.ndarray:
         pair = _safe_turn(n_near[None], gap[None], derivs, terms, hp, bp)
         o = np.flatnonzero(pair < bp)
         if len(o):
+            # the vertex's own outline's normal, either way: where a corner of the mate slides
+            # past the vertex, the gap across the vertex's own flank, not across the corner's
+            # short edges, is what the motion closes slowly
+            n_own = own[vi[o]]
+            lo = np.minimum(_dot(n_own, p[o]), _dot(n_own, p[o] + length[o, None] * unit[o]))
+            hi = np.maximum(_dot(n_own, p[o]), _dot(n_own, p[o] + length[o, None] * unit[o]))
+            at_v = _dot(n_own, v[o])
+            flip = hi - at_v > at_v - lo  # the segment lies on the normal's side: turn it round
+            n_own = np.where(flip[:, None], -n_own, n_own)
             pair[o] = _safe_turn(
-                np.stack([n_line[o], n_end[o], n_near[o]]),
-                np.stack([np.abs(side[o]), past[o], gap[o]]),
+                np.stack([n_line[o], n_end[o], n_near[o], n_own]),
+                np.stack([np.abs(side[o]), past[o], gap[o], np.where(flip, lo - at_v, at_v - hi)]),
                 tuple(x[o] for x in derivs),
                 tuple(x[o] for x in terms),
                 hp[o],
