@@ -341,7 +341,7 @@ def _jams(b: Band, internal: bool, key: str, room: float) -> str:
     text = (
         f"{b.mesh}: the play falls to {b.band[0]:.4f} mm at {where} (edges {b.edge[2]:+.3f} mm, centres "
         f"{'+' if internal else '−'}{b.center_spread:.3f} mm{', an internal mesh' if internal else ''}); "
-        f"it needs {b.needed_backlash:.3f} mm more play: "
+        f"it needs at least {b.needed_backlash:.3f} mm more play: "
     )
     if room < 2 * abs(b.margin):
         return text + (

@@ -288,7 +288,7 @@ def _jam_sentence(params, b: Band, where: str, cures, module: float) -> str:
     else:
         head = (
             f"{b.mesh}: the play falls to {b.least:.4f} mm at {where} (edges {b.edge[2]:+.3f} mm, centres "
-            f"−{b.center_spread:.3f} mm); it needs {b.needed_backlash:.3f} mm more"
+            f"−{b.center_spread:.3f} mm); it needs at least {b.needed_backlash:.3f} mm more"
         )
     tips = tips_reach_roots(params, b, module)
     contact = (
