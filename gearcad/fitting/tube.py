@@ -12,9 +12,9 @@ J(X − C); its second derivatives are exact at the position and its third bound
 its distance to the edge's segment less the most the vertex can move, or one of a few linear
 functionals of its place that bound that distance from below (:func:`_safe_turn`) stays ≥ 0 by
 its Taylor bound; then the windows never touch (two polygons moving continuously first meet
-vertex on edge), so every driver angle of the interval has a free turn 2Δ wide.  Gear 1's
-vertices against gear 2's moving edges are the same bound in gear 2's frame (the relative motion
-inverted: the same ω, |I'|)."""
+vertex on edge, and not at a vertex that is reflex: :func:`_corners`), so every driver angle of
+the interval has a free turn 2Δ wide.  Gear 1's vertices against gear 2's moving edges are the
+same bound in gear 2's frame (the relative motion inverted: the same ω, |I'|)."""
 
 from __future__ import annotations
 
@@ -66,8 +66,8 @@ def outlines(narrow: np.ndarray, wide: np.ndarray) -> list[tuple]:
     p, q, owner = ends[:-1][same], ends[1:][same], window[ring[:-1][same]]
     cuts = np.searchsorted(owner, np.arange(n + 1))  # each window's edges, in order
     lines = shapely.linestrings(np.stack([p, q], 1))
-    xy, normal, at = _corners(narrow)
-    starts = np.searchsorted(at, np.arange(n + 1))
+    xy, normal, of = _corners(narrow)
+    starts = np.searchsorted(of, np.arange(n + 1))  # each window's vertices, in order
     return [
         (
             xy[starts[j] : starts[j + 1]],
