@@ -222,16 +222,16 @@ def test_a_lone_first_position_bounds_the_whole_cycle():
 def test_the_bound_looks_only_at_vertices_where_a_mate_can_first_touch():
     """Two parts coming together first touch with a vertex of one on an edge of the other, and not
     at a reflex vertex (the part fills more than a half-disc there): the bound's vertices
-    (``tube._corners``) are a window's convex and straight vertices, each once — here a square
+    (``corners.corners``) are a window's convex and straight vertices, each once — here a square
     notched at (2, 2) and holed by a square, given clockwise: its four outer corners and the
     straight vertex at (4, 2); the notch's reflex vertex and the hole's four corners (reflex seen
     from the part) left out — and the normal at each is the unit normal to the chord between its
     neighbours."""
-    from gearcad.fitting.tube import _corners
+    from gearcad.fitting.corners import corners
 
     outer = [(0, 0), (0, 4), (2, 2), (4, 4), (4, 2), (4, 0)]  # clockwise
     hole = [(0.5, 0.5), (1.5, 0.5), (1.5, 1.5), (0.5, 1.5)]
-    xy, normal, window = _corners(np.array([shapely.Polygon(outer, [hole])]))
+    xy, normal, window = corners(np.array([shapely.Polygon(outer, [hole])]))
     assert not window.any()
     assert sorted(map(tuple, xy.tolist())) == [(0, 0), (0, 4), (4, 0), (4, 2), (4, 4)]
     chords = {(0, 0): (-4, 4), (0, 4): (2, 2), (4, 4): (2, 0), (4, 2): (0, 4), (4, 0): (4, 2)}

@@ -38,9 +38,10 @@ from ..threads import side_by_side
 from .band import Band, _margin, band_of
 from .band_mesh import _WINDOW, MeshGeometry, _windows, clip, contacts, mesh_play, signed_mesh_play
 from .certify import certify
+from .corners import outlines
 from .pair_geometry import interval_maxima
 from .prove import BEYOND, Measures, _placed, prove_play
-from .tube import Site, outlines
+from .tube import Site
 
 __all__ = ["MovingMesh", "MovingMeasures", "moving_band"]
 

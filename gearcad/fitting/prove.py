@@ -13,8 +13,9 @@ import shapely
 
 from ..geometry.outline import place_each
 from .certify import Certificate
+from .corners import outlines
 from .play import _WINDOW, PairGeometry, _signed_from, _windows, contacts, play_between, signed_play
-from .tube import Site, outlines
+from .tube import Site
 from .tube import tubes as tube_of
 
 __all__ = ["Measures", "PAIRS", "prove_lazily", "prove_play"]

@@ -12,7 +12,7 @@ J(X − C); its second derivatives are exact at the position and its third bound
 its distance to the edge's segment less the most the vertex can move, or one of a few linear
 functionals of its place that bound that distance from below (:func:`_safe_turn`) stays ≥ 0 by
 its Taylor bound; then the windows never touch (two polygons moving continuously first meet
-vertex on edge, and not at a vertex that is reflex: :func:`_corners`), so every driver angle of
+vertex on edge, and not at a vertex that is reflex: :func:`.corners.corners`), so every driver angle of
 the interval has a free turn 2Δ wide.  Gear 1's vertices against gear 2's moving edges are the
 same bound in gear 2's frame (the relative motion inverted: the same ω, |I'|)."""
 
@@ -24,7 +24,7 @@ from dataclasses import dataclass
 import numpy as np
 import shapely
 
-__all__ = ["Site", "outlines", "tube", "tubes"]
+__all__ = ["Site", "tube", "tubes"]
 
 
 @dataclass
@@ -42,7 +42,7 @@ class Site:
     arm: float = 0.0
     a: tuple | None = None
     """Gear 1's window: (vertices, edge starts, edge ends, the edges' R-tree, the vertices'
-    normals) (:func:`outlines`)."""
+    normals) (:func:`.corners.outlines`)."""
     b: tuple | None = None
     """Gear 2's window at (φ, t0): the same."""
     pivot: np.ndarray | None = None
@@ -52,71 +52,6 @@ class Site:
     """With ``pivot``: the instant centre I there (mm)."""
     turning: np.ndarray | None = None
     """With ``pivot``: I' there (mm/rad)."""
-
-
-def outlines(narrow: np.ndarray, wide: np.ndarray) -> list[tuple]:
-    """For each pair of a gear's windows (arrays of geometries, alike in length): (the narrow
-    window's vertices where the bound must look (:func:`_corners`), the wide window's edge starts
-    and ends, an R-tree of those edges, each vertex's normal: the unit normal to the chord between
-    its neighbours, its own outline's direction there) — the work of all in a few array operations."""
-    n = len(narrow)
-    rings, window = _rings(wide)
-    ends, ring = shapely.get_coordinates(rings, return_index=True)
-    same = ring[1:] == ring[:-1]
-    p, q, owner = ends[:-1][same], ends[1:][same], window[ring[:-1][same]]
-    cuts = np.searchsorted(owner, np.arange(n + 1))  # each window's edges, in order
-    lines = shapely.linestrings(np.stack([p, q], 1))
-    xy, normal, of = _corners(narrow)
-    starts = np.searchsorted(of, np.arange(n + 1))  # each window's vertices, in order
-    return [
-        (
-            xy[starts[j] : starts[j + 1]],
-            p[cuts[j] : cuts[j + 1]],
-            q[cuts[j] : cuts[j + 1]],
-            shapely.STRtree(lines[cuts[j] : cuts[j + 1]]),
-            normal[starts[j] : starts[j + 1]],
-        )
-        for j in range(n)
-    ]
-
-
-def _rings(windows: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Every ring of ``windows`` (exterior then holes, part by part) and the window each is of."""
-    parts, window = shapely.get_parts(windows, return_index=True)
-    rings, part = shapely.get_rings(parts, return_index=True)
-    return rings, window[part]
-
-
-def _corners(narrow: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """The vertices of the windows ``narrow`` where a mate can first touch them, at each the unit
-    normal to the chord from the vertex before it to the one after it (a direction, not a side:
-    either sign serves :func:`tubes`; (1, 0) where the chord is a point), and the window each is of.
-
-    Two polygons that come together first touch with a vertex of one on an edge of the other, and
-    that vertex is not reflex: at a reflex vertex the part fills more than a half-disc about it,
-    so an edge's inside or a reflex vertex of the mate there would already overlap it — a reflex
-    vertex touches only at a vertex of the mate that is not, which meets the reflex vertex's own
-    edges.  So each ring's reflex vertices (a root fillet's, seen from the part) are left out, as
-    is the vertex a closed ring repeats."""
-    rings, window = _rings(shapely.orient_polygons(narrow))  # the inside on the left
-    xy, ring = shapely.get_coordinates(rings, return_index=True)
-    if not len(xy):
-        return np.empty((0, 2)), np.empty((0, 2)), np.empty(0, dtype=int)
-    new = np.r_[True, ring[1:] != ring[:-1]]
-    starts = np.flatnonzero(new)
-    run = np.cumsum(new) - 1  # each row's ring, counted among the rings that have rows
-    first, size = starts[run], np.maximum(np.diff(np.r_[starts, len(ring)]) - 1, 1)[run]
-    at = np.arange(len(ring)) - first
-    before, after = xy[first + (at - 1) % size], xy[first + (at + 1) % size]
-    chord = after - before
-    length = np.hypot(*chord.T)
-    normal = np.column_stack([-chord[:, 1], chord[:, 0]]) / np.maximum(length, 1e-300)[:, None]
-    normal = np.where((length > 0)[:, None], normal, [1.0, 0.0])
-    ab, bc = xy - before, after - xy
-    turn = ab[:, 0] * bc[:, 1] - ab[:, 1] * bc[:, 0]  # < 0: a right turn, reflex with the inside on the left
-    reflex = turn < -1e-9 * np.hypot(*ab.T) * np.hypot(*bc.T)
-    keep = (at < size) & ~reflex  # (the last row of a closed ring repeats its first)
-    return xy[keep], normal[keep], window[ring[keep]]
 
 
 def _one_sided_min(b: np.ndarray, c: np.ndarray, a) -> np.ndarray:
