@@ -40,7 +40,7 @@ from .band_mesh import _WINDOW, MeshGeometry, _windows, clip, contacts, mesh_pla
 from .certify import certify
 from .corners import outlines
 from .pair_geometry import interval_maxima
-from .prove import BEYOND, Measures, _placed, prove_play
+from .prove import BEYOND, Measures, _placed, narrow_windows, prove_play
 from .tube import Site
 
 __all__ = ["MovingMesh", "MovingMeasures", "moving_band"]
@@ -222,9 +222,7 @@ class MovingMeasures(Measures):
         wide_r = (_WINDOW + BEYOND) * m.module
         wide1 = _windows(pieces[0], contact, wide_r, offsets[0], tol)
         wide2 = _windows(pieces[1], own, wide_r, offsets[1], tol)
-        radius = _WINDOW * m.module
-        narrow1 = shapely.intersection(wide1, shapely.buffer(shapely.points(contact), radius, quad_segs=16))
-        narrow2 = shapely.intersection(wide2, shapely.buffer(shapely.points(own), radius, quad_segs=16))
+        narrow1, narrow2 = narrow_windows(wide1, contact, m.module), narrow_windows(wide2, own, m.module)
         halves: list[np.ndarray] = []
         play = mesh_play(m, offsets, spread, tol, reach=reach, halves=halves, windows=(narrow1, narrow2))
         signed = play.copy()

@@ -53,9 +53,7 @@ def _sites(g: PairGeometry, offsets, spread: float, tol: float, reach: float) ->
     wide_r = (_WINDOW + BEYOND) * g.module
     wide1 = _windows(g.rings[0], contact, wide_r, offsets[0], tol)
     wide2 = _windows(g.rings[1], own, wide_r, offsets[1], tol)
-    radius = _WINDOW * g.module
-    narrow1 = shapely.intersection(wide1, shapely.buffer(shapely.points(contact), radius, quad_segs=16))
-    narrow2 = shapely.intersection(wide2, shapely.buffer(shapely.points(own), radius, quad_segs=16))
+    narrow1, narrow2 = narrow_windows(wide1, contact, g.module), narrow_windows(wide2, own, g.module)
     halves: list[np.ndarray] = []
     play, start = play_between(g, offsets, spread, tol, reach=reach, halves=halves, windows=(narrow1, narrow2))
     signed = _signed_from(g, play, start, offsets, spread, tol, reach=reach)
@@ -83,6 +81,13 @@ def _sites(g: PairGeometry, offsets, spread: float, tol: float, reach: float) ->
         s.arm = float(g.center_distance - g.r1[i])
         s.a, s.b = a, b
     return sites, signed
+
+
+def narrow_windows(wide: np.ndarray, centres: np.ndarray, module: float) -> np.ndarray:
+    """The narrow windows (:data:`~.play._WINDOW` modules about ``centres``, on which the play is
+    measured) cut from a gear's ``wide`` ones (:data:`BEYOND` modules more, against which the
+    mate's vertices are checked)."""
+    return shapely.intersection(wide, shapely.buffer(shapely.points(centres), _WINDOW * module, quad_segs=16))
 
 
 def _placed(windows: np.ndarray, turn: np.ndarray, pivot: np.ndarray) -> np.ndarray:
