@@ -1,12 +1,13 @@
 """What the proof's bound (:mod:`.tube`) reads of each position's windows: the narrow window's
 vertices where a mate can first touch it, with its own outline's direction at each, and the wide
-window's edges in an R-tree (docs/fit.md, "The vertex's own normal; only the vertices a mate can
+window's edges, their middles in a k-d tree (docs/fit.md, "The vertex's own normal; only the vertices a mate can
 first touch; the windows made once")."""
 
 from __future__ import annotations
 
 import numpy as np
 import shapely
+from scipy.spatial import cKDTree
 
 __all__ = ["corners", "outlines"]
 
@@ -14,15 +15,17 @@ __all__ = ["corners", "outlines"]
 def outlines(narrow: np.ndarray, wide: np.ndarray) -> list[tuple]:
     """For each pair of a gear's windows (arrays of geometries, alike in length): (the narrow
     window's vertices where the bound must look (:func:`corners`), the wide window's edge starts
-    and ends, an R-tree of those edges, each vertex's normal: the unit normal to the chord between
-    its neighbours, its own outline's direction there) — the work of all in a few array operations."""
+    and ends, a k-d tree of the edges' middles and their largest half-length (every edge within d
+    of a point has its middle within d + that half-length: a superset the bound filters exactly),
+    each vertex's normal: the unit normal to the chord between its neighbours, its own outline's
+    direction there) — the work of all in a few array operations."""
     n = len(narrow)
     rings, window = _rings(wide)
     ends, ring = shapely.get_coordinates(rings, return_index=True)
     same = ring[1:] == ring[:-1]
     p, q, owner = ends[:-1][same], ends[1:][same], window[ring[:-1][same]]
     cuts = np.searchsorted(owner, np.arange(n + 1))  # each window's edges, in order
-    lines = shapely.linestrings(np.stack([p, q], 1))
+    middle, half = (p + q) / 2, np.hypot(*(q - p).T) / 2
     xy, normal, of = corners(narrow)
     starts = np.searchsorted(of, np.arange(n + 1))  # each window's vertices, in order
     return [
@@ -30,7 +33,7 @@ def outlines(narrow: np.ndarray, wide: np.ndarray) -> list[tuple]:
             xy[starts[j] : starts[j + 1]],
             p[cuts[j] : cuts[j + 1]],
             q[cuts[j] : cuts[j + 1]],
-            shapely.STRtree(lines[cuts[j] : cuts[j + 1]]),
+            (cKDTree(middle[cuts[j] : cuts[j + 1]]), float(half[cuts[j] : cuts[j + 1]].max(initial=0.0))),
             normal[starts[j] : starts[j + 1]],
         )
         for j in range(n)
