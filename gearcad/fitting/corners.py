@@ -15,17 +15,17 @@ __all__ = ["corners", "outlines"]
 def outlines(narrow: np.ndarray, wide: np.ndarray) -> list[tuple]:
     """For each pair of a gear's windows (arrays of geometries, alike in length): (the narrow
     window's vertices where the bound must look (:func:`corners`), the wide window's edge starts
-    and ends, a k-d tree of the edges' middles and their largest half-length (every edge within d
-    of a point has its middle within d + that half-length: a superset the bound filters exactly),
-    each vertex's normal: the unit normal to the chord between its neighbours, its own outline's
-    direction there) — the work of all in a few array operations."""
+    and ends, its edges for a search by distance (:func:`_pieces`), each vertex's normal: the unit
+    normal to the chord between its neighbours, its own outline's direction there) — the work of
+    all in a few array operations."""
     n = len(narrow)
     rings, window = _rings(wide)
     ends, ring = shapely.get_coordinates(rings, return_index=True)
     same = ring[1:] == ring[:-1]
     p, q, owner = ends[:-1][same], ends[1:][same], window[ring[:-1][same]]
     cuts = np.searchsorted(owner, np.arange(n + 1))  # each window's edges, in order
-    middle, half = (p + q) / 2, np.hypot(*(q - p).T) / 2
+    middle, half, edge = _pieces(p, q)
+    pieces = np.searchsorted(edge, cuts)  # each window's pieces, in order
     xy, normal, of = corners(narrow)
     starts = np.searchsorted(of, np.arange(n + 1))  # each window's vertices, in order
     return [
@@ -33,11 +33,31 @@ def outlines(narrow: np.ndarray, wide: np.ndarray) -> list[tuple]:
             xy[starts[j] : starts[j + 1]],
             p[cuts[j] : cuts[j + 1]],
             q[cuts[j] : cuts[j + 1]],
-            (cKDTree(middle[cuts[j] : cuts[j + 1]]), float(half[cuts[j] : cuts[j + 1]].max(initial=0.0))),
+            (
+                cKDTree(middle[pieces[j] : pieces[j + 1]]),
+                float(half[pieces[j] : pieces[j + 1]].max(initial=0.0)),
+                edge[pieces[j] : pieces[j + 1]] - cuts[j],
+            ),
             normal[starts[j] : starts[j + 1]],
         )
         for j in range(n)
     ]
+
+
+def _pieces(p: np.ndarray, q: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The edges p→q cut into pieces no longer than four times the median edge (the long ones:
+    the window's own cut, a bore's flat) for a k-d tree of the pieces' middles: (middles,
+    half-lengths, each piece's edge).  Every edge within d of a point has a piece whose middle
+    lies within d + the largest half-length — a superset of the edges the bound wants, which it
+    then filters exactly; without the cut the window's few long edges would widen every query."""
+    half = np.hypot(*(q - p).T) / 2
+    if not len(half):
+        return np.empty((0, 2)), half, np.empty(0, dtype=np.intp)
+    count = np.maximum(np.ceil(half / (4 * max(float(np.median(half)), 1e-9))), 1).astype(np.intp)
+    edge = np.repeat(np.arange(len(half)), count)
+    k = np.arange(len(edge)) - np.repeat(np.cumsum(count) - count, count)
+    along = ((k + 0.5) / count[edge])[:, None]
+    return p[edge] + along * (q - p)[edge], half[edge] / count[edge], edge
 
 
 def _rings(windows: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

@@ -41,8 +41,9 @@ class Site:
     dk: float = 0.0
     arm: float = 0.0
     a: tuple | None = None
-    """Gear 1's window: (vertices, edge starts, edge ends, (a k-d tree of the edges' middles, their
-    largest half-length), the vertices' normals) (:func:`.corners.outlines`)."""
+    """Gear 1's window: (vertices, edge starts, edge ends, (a k-d tree of the edges' pieces'
+    middles, their largest half-length, each piece's edge), the vertices' normals)
+    (:func:`.corners.outlines`)."""
     b: tuple | None = None
     """Gear 2's window at (φ, t0): the same."""
     pivot: np.ndarray | None = None
@@ -211,10 +212,10 @@ def tubes(sites, h, e: float, bounds, slope) -> np.ndarray:
         rbar = np.maximum(rbar, 1e-12)  # (a vertex on gear 2's pivot: its turn does not move it)
         move = (wv * rho + rbar * av) * hv  # the most a vertex moves over the driver interval (sheared)
         # the (vertex, edge) pairs the segment's bound leaves open: the edge within the vertex's
-        # reach, best·r̄ + its move (a k-d tree query a site, not every pair: the edges whose middle
-        # lies within the reach and a half-length, more than needed, the exact test below keeps
-        # those within; a vertex with no edge so near is kept apart over the whole box by its
-        # distance alone)
+        # reach, best·r̄ + its move (a k-d tree query a site, not every pair: the edges with a
+        # piece's middle within the reach and a half-length, more than needed (an edge may come
+        # twice), the exact test below keeps those within; a vertex with no edge so near is kept
+        # apart over the whole box by its distance alone)
         bv = best[sv]
         reach = np.where(np.isfinite(bv), bv * rbar + move, np.inf)
         reach = reach * (1 + 1e-9) + 1e-12  # the tree's distance and ours may differ in the last bits
@@ -222,11 +223,11 @@ def tubes(sites, h, e: float, bounds, slope) -> np.ndarray:
         vis, ps, qs = [], [], []
         for j in np.flatnonzero((best > -np.inf) & (sizes > 0)).tolist():  # (−inf: no turn is left to prove)
             rows = np.arange(first[j], first[j + 1])
-            tree, half = other[j][3]
+            tree, half, edge = other[j][3]
             near = tree.query_ball_point(xy[rows], reach[rows] + half)
             counts = np.fromiter(map(len, near), dtype=np.intp, count=len(rows))
             vi = np.repeat(np.arange(len(rows)), counts)
-            ei = np.fromiter(itertools.chain.from_iterable(near), dtype=np.intp, count=int(counts.sum()))
+            ei = edge[np.fromiter(itertools.chain.from_iterable(near), dtype=np.intp, count=int(counts.sum()))]
             vis.append(rows[vi])
             ps.append(other[j][1][ei])
             qs.append(other[j][2][ei])
