@@ -110,6 +110,31 @@ def _kabsch(mine: np.ndarray, other: np.ndarray) -> tuple[float, np.ndarray]:
     return angle, other.mean(0) - _turn(mine.mean(0), angle)
 
 
+def _crosses(marks: list[np.ndarray]) -> list[tuple[int, int]]:
+    """The pivot crosses among ``marks``: pairs of straight two-point strokes of one length that
+    share their middle at right angles.  Each file draws them square to its own axes, so a part
+    turned into the assembly does not lay its cross onto the assembly's, only its centre."""
+    lines = [i for i, m in enumerate(marks) if len(m) == 2]
+    out = []
+    for n, i in enumerate(lines):
+        for j in lines[n + 1 :]:
+            a, b = marks[i], marks[j]
+            da, db = a[1] - a[0], b[1] - b[0]
+            same = abs(np.hypot(*da) - np.hypot(*db)) < 1e-9 * max(1.0, np.hypot(*da))
+            if same and np.hypot(*(a.mean(0) - b.mean(0))) < 1e-9 and abs(np.dot(da, db)) < 1e-9 * np.dot(da, da):
+                out.append((i, j))
+    return out
+
+
+def _not_crosses(marks: list[np.ndarray]) -> list[np.ndarray]:
+    used = {k for pair in _crosses(marks) for k in pair}
+    return [m for k, m in enumerate(marks) if k not in used]
+
+
+def _cross_centres(marks: list[np.ndarray]) -> list[np.ndarray]:
+    return [marks[i].mean(0) for i, _ in _crosses(marks)]
+
+
 def placement(part: Path, assembly: Path) -> tuple[float, np.ndarray, float]:
     """The rigid motion (turn rad, shift) that lays the part's engraved marks onto theirs in
     ``assembly.dxf`` (the assembly is drawn without a kerf, the marks never have one), and the
@@ -127,24 +152,38 @@ def placement(part: Path, assembly: Path) -> tuple[float, np.ndarray, float]:
     if len(exact) == 1:  # one part of that outline (two identical gears: their marks tell them apart)
         return exact[0]
     mine, theirs = _marks(part), _marks(assembly)
-    tree = cKDTree(np.concatenate(theirs))
-    everything = np.concatenate(mine)
-    key = max(mine, key=len)
-    best = None
+    tree = cKDTree(np.concatenate(_not_crosses(theirs) + [c[None] for c in _cross_centres(theirs)]))
+    everything = np.concatenate(_not_crosses(mine) + [c[None] for c in _cross_centres(mine)])
+    key = max(_not_crosses(mine), key=len)
+    best, laid = None, []
     for other in theirs:
         if len(other) != len(key):
             continue
         angle, shift = _kabsch(key, other)
         if float(np.max(np.hypot(*(_turn(key, angle) + shift - other).T))) > 1e-6:
             continue
-        err = float(np.max(tree.query(_turn(everything, angle) + shift)[0]))
+        err = float(np.max(tree.query(_turn(everything, angle) + shift)[0]))  # (a cross: by its centre)
+        if err < 1e-6:
+            laid.append((angle, shift, err))
         if best is None or err < best[2]:
             best = (angle, shift, err)
+    if len(laid) > 1:  # marks alike every few degrees (a dashed pitch circle): the outline decides
+        best = max(laid, key=lambda c: _parallel(cut, c, assembly))
     if best is None or best[2] >= 1e-6:  # the writer split the arcs of the turned copy elsewhere
         best = _by_curve(part, assembly, best)
     if best is None:
         raise ValueError(f"{part.name}: not found in {assembly.name}")
     return best
+
+
+def _parallel(cut: np.ndarray, motion, assembly: Path) -> float:
+    """How much of a part's cut path, moved by ``motion`` (turn, shift, …), runs at one distance
+    from the assembly's outlines: the share of its vertices within 2 µm of their median distance.
+    A cut path is its outline offset by half the kerf (or the tool's radius), so laid on its own
+    outline nearly all of it is; turned a dash of its pitch circle out of place, little is."""
+    lines = shapely.MultiLineString([np.vstack([o, o[:1]]) for o in read_loops(assembly, raw=True)])
+    gap = shapely.distance(shapely.points(_turn(cut, motion[0]) + motion[1]), lines)
+    return float(np.mean(np.abs(gap - np.median(gap)) < 2e-3))
 
 
 def _by_curve(part: Path, assembly: Path, best):
