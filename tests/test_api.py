@@ -82,8 +82,11 @@ OVERRIDES = [
 
 @pytest.mark.parametrize("overrides,code", OVERRIDES, ids=[" ".join(o) or "as written" for o, _ in OVERRIDES])
 def test_check_and_build_agree(tmp_path, capsys, overrides, code):
+    # the band bounded by the estimate (a third of the CPU of the theorem's, as written): what
+    # the two must agree on is what they refuse, a design error here; the theorem's band of the
+    # profile as written is the ``built`` report's (test_every_assembly_is_proved)
     path = str(ROOT / "profiles" / "elliptic_focus.toml")
-    quick = [arg for o in (*LEAN, *overrides) for arg in ("--set", o)]
+    quick = [arg for o in (*LEAN, 'output.certificate="estimate"', *overrides) for arg in ("--set", o)]
     checked = main(["check", path, *quick])
     check_err = capsys.readouterr().err
     built = main(["build", path, "--out", str(tmp_path / "out"), *quick])
@@ -109,14 +112,17 @@ def test_every_assembly_is_proved(built):
 def test_check_proves_the_assembly_of_each_mechanism(capsys):
     """``gearcad check`` prints the interference figure of every mechanism (one profile of each,
     at 0.05 mm: the proof is the same, on fewer vertices — 7 CPU-s for the six, 10 at 0.01 mm;
-    every profile's at its own tolerance is in its report.json, the test above)."""
+    every profile's at its own tolerance is in its report.json, the test above).  The bands'
+    least play bounded by the estimate, not the theorem: the assembly's figure is the same (the
+    theorem's band of every profile is in the ``built`` reports the test above reads), at 3.4
+    CPU-s for the six designs instead of 5.9."""
     kinds = {"spur_pair": "gear-pair", "planetary_external": "carrier-train", "roller_body_m3": "roller-body"}
     kinds["rolling_wheel"] = "rolling-wheel"
     kinds["nc_internal"] = "nc-internal"
     kinds["nc_square"] = "nc-planetary"
     assert set(kinds.values()) == set(MECHANISMS)  # one of each: a new mechanism joins this list
     names = [str(ROOT / "profiles" / f"{name}.toml") for name in kinds]
-    coarser = [*LEAN[:2], "output.tolerance=0.05"]
+    coarser = [*LEAN[:2], "output.tolerance=0.05", 'output.certificate="estimate"']
     assert main(["check", *names, *[arg for o in coarser for arg in ("--set", o)]]) == 0
     out = capsys.readouterr().out
     blocks = re.split(r"^(?=\S)", out, flags=re.M)

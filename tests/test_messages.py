@@ -153,7 +153,9 @@ def test_a_law_when_the_teeth_allow_no_ratio_says_so_in_words():
 def test_the_fitted_motion_error_is_printed_and_on_the_page(tmp_path, capsys):
     """check and build print the law's motion error (report.json's motion.error_deg), and the
     page shows it: ψ = φ + 0.3 sin φ + 0.002 sin 5φ fitted to 0.5° — the smoothest law keeps the
-    first order and misses the fifth by 0.002 rad = 0.115°."""
+    first order and misses the fifth by 0.002 rad = 0.115°.  (The band bounded by the estimate:
+    the law and its error are the pitch stage's; the theorem's band would be 1 of the build's
+    1.5 CPU-s.)"""
     import json
 
     from gearcad.cli import main
@@ -164,7 +166,7 @@ def test_the_fitted_motion_error_is_printed_and_on_the_page(tmp_path, capsys):
     profile.write_text(
         f'name = "fitted"\n[gear1]\ncurve = "motion"\nfollower_deg = [{samples}]\ntolerance_deg = 0.5\n'
         "[pair]\ncenter_distance = 50.0\n[teeth]\nmodule = 2.0\n"
-        '[output]\ntolerance = 0.05\ncharts = false\nanimation = false\nformats = ["dxf"]\n',
+        '[output]\ntolerance = 0.05\ncharts = false\nanimation = false\nformats = ["dxf"]\ncertificate = "estimate"\n',
         encoding="utf-8",
     )
     assert main(["check", str(profile), "--stage", "pitch"]) == 0

@@ -130,8 +130,11 @@ def test_the_assembly_fits_and_bites_when_turned(design):
 
 def test_an_inner_module_of_its_own():
     """Internal teeth of module 1 (44 teeth): gear 3 is cut with that module too.  Closed forms
-    only (speeds, module, wall), so at :data:`COARSE` (0.01 mm outlines, no chart data)."""
-    p = gearcad.load_profile(PROFILE, {**COARSE, "train.compound.inner_module": 1.0, "train.compound.inner_teeth": 44})
+    only (speeds, module, wall), so at :data:`COARSE` (0.01 mm outlines, no chart data), and the
+    bands bounded by the estimate (the assembly's interference proof is the same; 0.46 CPU-s
+    against the theorem's 0.78)."""
+    inner = {"train.compound.inner_module": 1.0, "train.compound.inner_teeth": 44}
+    p = gearcad.load_profile(PROFILE, {**COARSE, **inner, "output.certificate": "estimate"})
     d = gearcad.design(p)
     r2_in, r3 = 1.0 * 44 / 2, 1.0 * Z3 / 2
     assert d.data["gears"][2]["omega"] == pytest.approx(_omega3(W1, W, R1, R2_OUT, r2_in, r3), rel=1e-12)
