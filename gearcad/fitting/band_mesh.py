@@ -24,7 +24,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 import shapely
 
-from ..geometry.depth import overlap_exceeds
+from ..geometry.depth import inradius, overlap_exceeds
 from ..geometry.outline import place_each
 from ..geometry.sweep import free_turns
 from ..threads import side_by_side
@@ -159,29 +159,57 @@ def _placer(w2, coords: np.ndarray, which: np.ndarray, angle2: np.ndarray, centr
 
 
 def signed_mesh_play(g: MeshGeometry, pieces, edge: float, shift: float, tol: float, *, reach: float) -> np.ndarray:
-    """:func:`mesh_play` with both parts grown by ``edge``, negative where jammed: the shrink ε
-    that frees it counts −4ε/cos α.
+    """:func:`mesh_play` with both parts grown by ``edge``, negative where jammed: the least
+    shrink ε of both parts that frees it counts −4ε/cos α (a rack-cut flank moved ε along its
+    normal moves ε/cos α along the pitch curve, so the play grows by 4ε/cos α as both parts
+    shrink by ε).
 
-    A rack-cut flank moved ε along its normal moves ε/cos α along the pitch curve, so the play
-    grows by 4ε/cos α as both parts shrink by ε: a jammed position is measured shrunk until it
-    is free and its play extrapolated back to ε = 0.  Two quick looks confirm it (free just
-    past the shrink so found, jammed just short of it); where they do not (a tip in a root,
-    where the relation is not linear), the shrink is bisected between what they showed."""
+    A jammed position's ε is the inradius of the parts' overlap as placed
+    (:func:`~..geometry.depth.inradius`: the shrunk parts share a point exactly while the overlap
+    holds a disc of radius ε) — one overlay and a bisection on that small overlap, as a gear
+    pair's (:func:`~.play.signed_play`); an overlap that reaches its window's rim (a bite wider
+    than the window, whose rim is no outline) has the shrink bisected on the parts' offsets
+    instead (:func:`_shrink_to_free`)."""
     play = mesh_play(g, (edge, edge), shift, tol, reach=reach, pieces=pieces)
     jammed = np.isnan(play)
     if not jammed.any():
         return play
     sub, cut = g.at(jammed), (pieces[0][jammed], pieces[1][jammed])
-    cos_a, most = math.cos(g.pressure_angle), 0.5 * g.module
+    most, radius = 0.5 * g.module, _WINDOW * g.module
+    contact, own = contacts(sub)
+    w1 = _windows(cut[0], contact, radius, edge, tol)
+    w2 = _windows(cut[1], own, radius, edge, tol)
+    coords, which = shapely.get_coordinates(w2, return_index=True)
+    placed = _placer(w2, coords, which, sub.angle2, sub.centre2 + shift * sub.tighter)(np.zeros_like(sub.phi1))[0]
+    lap = shapely.intersection(w1, placed)
+    inside = shapely.within(lap, shapely.buffer(shapely.points(contact), 0.95 * radius, quad_segs=16))
+    shrink = np.full(len(sub.phi1), most)
+    shrink[inside] = np.minimum(inradius(lap[inside], 1e-6 * g.module), most)
+    wide = np.flatnonzero(~inside)
+    if len(wide):
+        shrink[wide] = _shrink_to_free(
+            sub.at(wide), (cut[0][wide], cut[1][wide]), edge, shift, tol, reach=reach, most=most
+        )
+    play[jammed] = -4 * shrink / math.cos(g.pressure_angle)
+    return play
+
+
+def _shrink_to_free(g: MeshGeometry, pieces, edge: float, shift: float, tol: float, *, reach: float, most: float):
+    """The least shrink (mm, to a quarter tolerance or 2 % of itself; at most ``most``) of both
+    parts grown by ``edge`` under which they are free as placed: doubled until free, then its
+    play extrapolated back (4ε/cos α), two quick looks either side confirming it (free just past
+    it, jammed just short), bisected where they do not (a tip in a root, where the relation is
+    not linear)."""
+    cos_a = math.cos(g.pressure_angle)
 
     def free(shrink: np.ndarray, at: np.ndarray | None = None, steps: int = 0) -> np.ndarray:
-        """The play with both parts shrunk (at the jammed positions ``at``: default all)."""
-        few, part = (sub, cut) if at is None else (sub.at(at), (cut[0][at], cut[1][at]))
+        """The play with both parts shrunk (at the positions ``at``: default all)."""
+        few, part = (g, pieces) if at is None else (g.at(at), (pieces[0][at], pieces[1][at]))
         return mesh_play(few, (edge - shrink, edge - shrink), shift, tol, reach=reach, steps=steps, pieces=part)
 
     # what the stack adds (the edge, the shift's share along the flanks) frees the drawn parts
     start = max(edge, 0.0) + abs(shift) * math.sin(g.pressure_angle) + 2 * tol
-    shrink = np.full(int(jammed.sum()), min(most, start))
+    shrink = np.full(len(g.phi1), min(most, start))
     for _ in range(12):
         stuck = np.isnan(free(shrink))
         if not stuck.any() or np.all(shrink[stuck] >= most):
@@ -204,8 +232,7 @@ def signed_mesh_play(g: MeshGeometry, pieces, edge: float, shift: float, tol: fl
         mid = 0.5 * (lo[doubtful] + hi[doubtful])
         ok = ~np.isnan(free(mid, doubtful))
         hi[doubtful], lo[doubtful] = np.where(ok, mid, hi[doubtful]), np.where(ok, lo[doubtful], mid)
-    play[jammed] = -4 * hi / cos_a
-    return play
+    return hi
 
 
 def mesh_band(
