@@ -223,7 +223,7 @@ def test_engraving_is_written_where_openscad_cannot_mistake_it_for_the_part(buil
         # the tolerance of their arcs, far under that
         space = doc.modelspace()
         rings = [np.array(e.get_points("xy")) for e in space.query("LWPOLYLINE") if e.dxf.layer == "CUT"]
-        edges = np.concatenate([np.stack([v, np.roll(v, -1, 0)], 1) for v in rings])
+        edges = np.concatenate([np.stack([v, np.roll(v, -1, 0)], 1) for v in rings] or [np.empty((0, 2, 2))])
         edges = shapely.STRtree(shapely.linestrings(edges))
 
         def leaves(vertices) -> bool:  # a vertex with no cut edge within 0.01 mm

@@ -182,7 +182,11 @@ def signed_mesh_play(g: MeshGeometry, pieces, edge: float, shift: float, tol: fl
     coords, which = shapely.get_coordinates(w2, return_index=True)
     placed = _placer(w2, coords, which, sub.angle2, sub.centre2 + shift * sub.tighter)(np.zeros_like(sub.phi1))[0]
     lap = shapely.intersection(w1, placed)
-    inside = shapely.within(lap, shapely.buffer(shapely.points(contact), 0.95 * radius, quad_segs=16))
+    # within both windows' rims (gear 2's disc moves with its pivot's shift)
+    rims = [
+        shapely.buffer(shapely.points(c), 0.95 * radius, quad_segs=16) for c in (contact, contact + shift * sub.tighter)
+    ]
+    inside = shapely.within(lap, rims[0]) & shapely.within(lap, rims[1])
     shrink = np.full(len(sub.phi1), most)
     shrink[inside] = np.minimum(inradius(lap[inside], 1e-6 * g.module), most)
     wide = np.flatnonzero(~inside)

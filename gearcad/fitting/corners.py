@@ -53,7 +53,8 @@ def _pieces(p: np.ndarray, q: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.nd
     half = np.hypot(*(q - p).T) / 2
     if not len(half):
         return np.empty((0, 2)), half, np.empty(0, dtype=np.intp)
-    count = np.maximum(np.ceil(half / (4 * max(float(np.median(half)), 1e-9))), 1).astype(np.intp)
+    size = max(4 * float(np.median(half)), float(half.max()) / 256, 1e-9)  # (at most 256 pieces an edge)
+    count = np.maximum(np.ceil(half / size), 1).astype(np.intp)
     edge = np.repeat(np.arange(len(half)), count)
     k = np.arange(len(edge)) - np.repeat(np.cumsum(count) - count, count)
     along = ((k + 0.5) / count[edge])[:, None]
