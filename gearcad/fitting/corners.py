@@ -1,7 +1,7 @@
 """What the proof's bound (:mod:`.tube`) reads of each position's windows: the narrow window's
 vertices where a mate can first touch it, with its own outline's direction at each, and the wide
-window's edges, their middles in a k-d tree (docs/fit.md, "The vertex's own normal; only the vertices a mate can
-first touch; the windows made once")."""
+window's edges, their middles in a k-d tree (docs/fit.md, "The vertex's own normal; only the
+vertices a mate can first touch; the windows made once")."""
 
 from __future__ import annotations
 
